@@ -1,0 +1,57 @@
+// Display: gray mapping of L_EN, colour maps, and the sector-formed (fan) image with its pixel <-> (r, a)
+// map.
+#pragma once
+#include "scene.hpp"
+#include "shade.hpp"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace sonarsim {
+
+struct Image8 {
+    int width = 0, height = 0, channels = 0;
+    std::vector<std::uint8_t> pixels; ///< row-major, top row first
+};
+
+/// gray = 255 clamp((L_EN - lo) / (hi - lo), 0, 1); -inf maps to 0. Returned as a float in [0, 255].
+float gray_level(float level_db, double lo_db, double hi_db);
+
+/// RGB of a colour map at t in [0, 1].
+std::array<std::uint8_t, 3> colormap_rgb(Colormap map, double t);
+
+/// The raw image as gray: range grows upward (row 0 of the data at the bottom), beam 0 (port) on the left.
+Image8 polar_gray_image(const PolarImage& img, const DisplayParams& display);
+
+/// Geometry of the sector-formed image: apex at the bottom centre, range up, port (positive azimuth) left.
+class SectorLayout {
+  public:
+    SectorLayout(const SonarParams& sonar, int height_px);
+    int width() const { return width_; }
+    int height() const { return height_; }
+    double metres_per_pixel() const { return m_per_px_; }
+    /// Pixel centre (px + 0.5, py + 0.5) -> range [m], azimuth [deg]; false outside the fan.
+    bool pixel_to_polar(double px, double py, double& range_m, double& azimuth_deg) const;
+    /// Range and azimuth -> continuous pixel coordinates.
+    void polar_to_pixel(double range_m, double azimuth_deg, double& px, double& py) const;
+    /// Fractional (bin, beam) of a range and azimuth, in data index units (centres at integers).
+    void polar_to_index(double range_m, double azimuth_deg, double& bin, double& beam) const;
+
+  private:
+    SonarParams s_;
+    int width_ = 0, height_ = 0;
+    double m_per_px_ = 0, y0_m_ = 0;
+};
+
+/// Default height of the sector image [px]: the number of range bins, kept within [256, 2048].
+int default_sector_height(const SonarParams& sonar);
+
+/// The sector-formed image (RGB): bilinear in (bin, beam) of the gray levels, then the colour map.
+Image8 sector_image(const PolarImage& img, const SonarParams& sonar, const DisplayParams& display,
+                    int height_px = 0);
+
+/// Background colour outside the fan.
+constexpr std::array<std::uint8_t, 3> kFanBackground{24, 26, 32};
+
+} // namespace sonarsim

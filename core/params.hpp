@@ -1,0 +1,73 @@
+// The one table of parameters: name, unit, default, bounds and help for every scene key.
+// It drives the scene-file parser, `--set`, validation, the viewer's sliders and the docs.
+#pragma once
+#include "scene.hpp"
+
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace sonarsim {
+
+using json = nlohmann::json;
+
+enum class ParamType { Number, Integer, Vec3, Enum };
+
+/// What must be recomputed when a parameter changes (each stage implies the ones after it).
+enum class Stage { Geometry = 0, Trace = 1, Shade = 2, Display = 3, None = 4 };
+
+/// Bounds and documentation of one value. Numbers: min/max bounds (exclusive where flagged).
+struct ValueSpec {
+    std::string key;  ///< dotted key, relative to its table ("sonar.range_max_m" or "nu_db")
+    std::string unit; ///< "m", "deg", "dB", "" ...
+    ParamType type = ParamType::Number;
+    double min = 0, max = 0;
+    bool min_exclusive = false, max_exclusive = false;
+    std::vector<std::string> choices; ///< for Enum
+    std::string help;
+    Stage stage = Stage::Trace;
+};
+
+/// A scene-level parameter with accessors into SceneDesc.
+struct ParamSpec : ValueSpec {
+    std::function<json(const SceneDesc&)> get;
+    std::function<void(SceneDesc&, const json&)> put; ///< value already validated
+};
+
+/// A per-material parameter with accessors into Material.
+struct MaterialSpec : ValueSpec {
+    double Material::*field = nullptr;
+};
+
+const std::vector<ParamSpec>& scene_params();
+const std::vector<MaterialSpec>& material_params();
+const ParamSpec* find_param(const std::string& key);
+const MaterialSpec* find_material_param(const std::string& key);
+
+/// Check `value` against `spec`; throws InputError(file, key_path, "... allowed ...") when it does not fit.
+/// Returns the value in canonical form (integers as integers, vec3 as 3 numbers).
+json validate_value(const ValueSpec& spec, const json& value, const std::string& file,
+                    const std::string& key_path);
+
+/// Human-readable description of what is allowed, e.g. "a number in (0, 180)".
+std::string allowed_text(const ValueSpec& spec);
+
+/// Apply `key_path = value` to the scene: scene params, "seafloor.material.nu_db",
+/// "objects.N.position", "objects.N.material.q", ... Returns the stage it invalidates.
+Stage apply_setting(SceneDesc& scene, const std::string& key_path, const json& value,
+                    const std::string& file);
+
+/// Parse "key.path=value" (value as JSON, or a bare word for enums) and apply it.
+Stage apply_setting_text(SceneDesc& scene, const std::string& assignment, const std::string& origin);
+
+/// Cross-field checks (range_min < range_max, ray buffers that fit in memory, ...).
+void validate_scene(const SceneDesc& scene, const std::string& file);
+
+/// Upper bound on the rays of one image; larger requests are rejected, not clamped.
+constexpr double kMaxRaysPerImage = 5.0e7;
+
+/// Markdown table of all parameters (for docs and `sonarsim params`).
+std::string params_markdown();
+
+} // namespace sonarsim

@@ -1,0 +1,90 @@
+// Plain data describing a scene: sonar, water, sampling, display, seafloor and objects.
+// Every field with a unit carries it in its name. Defaults are the paper's (Tables I-II, ARIS Explorer 3000).
+#pragma once
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sonarsim {
+
+using Vec3d = std::array<double, 3>;
+
+/// GSAB backscatter parameters (paper eq. 9). mu is linear, nu in dB (10 log10 nu).
+struct Material {
+    double nu_db = -45.0; ///< 10 log10 nu [dB]
+    double q = 2.0;       ///< Lambert exponent [-]
+    double mu = 0.0;      ///< specular amplitude [linear]; 0 turns the specular term off
+    double h_deg = 5.0;   ///< specular lobe width [deg]
+};
+
+struct Pose {
+    Vec3d position_m{0.34, 2.42, 0.90};          ///< [m]
+    Vec3d orientation_deg{-0.97, 29.79, -38.96}; ///< roll, pitch, yaw [deg]; R = Rz(yaw) Ry(pitch) Rx(roll)
+};
+
+struct SonarParams {
+    Pose pose;
+    double frequency_khz = 3000.0;
+    double azimuth_fov_deg = 32.0;
+    double elevation_fov_deg = 14.0;
+    int beams = 128;
+    double range_min_m = 0.5;
+    double range_max_m = 5.0;
+    int range_bins = 512;
+    double source_level_db = 230.0;
+    double noise_level_db = 10.0;
+};
+
+struct WaterParams {
+    double temperature_c = 10.0;
+    double depth_m = 3.0;
+};
+
+enum class NormalSource { Mesh, Paper };
+enum class SamplingScheme { Uniform, Spread, Adaptive };
+
+struct SamplingParams {
+    int elevation_rays = 281;
+    int azimuth_rays = 1;
+    NormalSource normals = NormalSource::Mesh;
+    SamplingScheme scheme = SamplingScheme::Spread;
+    double tolerance_db = 0.1; ///< adaptive scheme's target error [dB]
+};
+
+enum class Colormap { Gray, Viridis };
+
+struct DisplayParams {
+    double lo_db = 80.0;
+    double hi_db = 120.0;
+    Colormap colormap = Colormap::Gray;
+};
+
+struct Seafloor {
+    double height_m = 0.0;
+    Material material;
+};
+
+/// A scene object: a mesh file or an axis-aligned box (before rotation), placed by
+/// position/orientation/scale.
+struct ObjectDesc {
+    std::string mesh;           ///< path as written in the scene file (empty for a box)
+    std::string mesh_resolved;  ///< absolute or scene-relative-resolved path used for loading
+    std::optional<Vec3d> box_m; ///< box size dx, dy, dz [m]
+    Vec3d position_m{0, 0, 0};  ///< box centre / mesh origin [m]
+    Vec3d orientation_deg{0, 0, 0};
+    Vec3d scale{1, 1, 1};
+    Material material;
+};
+
+struct SceneDesc {
+    std::string source_file; ///< where it was read from ("" for built-in / in-memory)
+    SonarParams sonar;
+    WaterParams water;
+    SamplingParams sampling;
+    DisplayParams display;
+    std::optional<Seafloor> seafloor = Seafloor{};
+    std::vector<ObjectDesc> objects;
+};
+
+} // namespace sonarsim

@@ -1,0 +1,232 @@
+#include "scene_io.hpp"
+
+#include "errors.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace sonarsim {
+namespace {
+
+constexpr int kMaxNesting = 32;
+
+const json& require_object(const json& v, const std::string& file, const std::string& key) {
+    if (!v.is_object()) throw InputError(file, key, "expected an object");
+    return v;
+}
+
+Material parse_material(const json& v, const std::string& file, const std::string& key) {
+    require_object(v, file, key);
+    Material m;
+    for (auto& [k, val] : v.items()) {
+        const MaterialSpec* spec = find_material_param(k);
+        if (!spec) throw InputError(file, key + "." + k, "unknown key; allowed: nu_db, q, mu, h_deg");
+        m.*(spec->field) = validate_value(*spec, val, file, key + "." + k).get<double>();
+    }
+    return m;
+}
+
+Vec3d vec3_value(const json& v, double lo, double hi, const std::string& file, const std::string& key,
+                 bool positive = false) {
+    ValueSpec s;
+    s.type = ParamType::Vec3, s.min = lo, s.max = hi, s.min_exclusive = positive;
+    return validate_value(s, v, file, key).get<Vec3d>();
+}
+
+ObjectDesc parse_object(const json& v, const std::string& file, const std::string& key,
+                        const std::string& base) {
+    require_object(v, file, key);
+    ObjectDesc o;
+    for (auto& [k, val] : v.items()) {
+        const std::string kk = key + "." + k;
+        if (k == "mesh") {
+            if (!val.is_string() || val.get<std::string>().empty())
+                throw InputError(file, kk, "expected a non-empty path string (.obj, .ply, .stl, .off)");
+            o.mesh = val.get<std::string>();
+            std::filesystem::path p(o.mesh);
+            o.mesh_resolved =
+                p.is_absolute() ? p.string() : (std::filesystem::path(base) / p).lexically_normal().string();
+        } else if (k == "box") {
+            o.box_m = vec3_value(val, 0, 1e4, file, kk, true);
+        } else if (k == "position") {
+            o.position_m = vec3_value(val, -1e6, 1e6, file, kk);
+        } else if (k == "orientation_deg") {
+            o.orientation_deg = vec3_value(val, -360, 360, file, kk);
+        } else if (k == "scale") {
+            if (val.is_number()) {
+                ValueSpec s;
+                s.min = 0, s.max = 1e6, s.min_exclusive = true;
+                const double x = validate_value(s, val, file, kk).get<double>();
+                o.scale = {x, x, x};
+            } else {
+                o.scale = vec3_value(val, 0, 1e6, file, kk, true);
+            }
+        } else if (k == "material") {
+            o.material = parse_material(val, file, kk);
+        } else if (k == "name") {
+            if (!val.is_string()) throw InputError(file, kk, "expected a string");
+        } else {
+            throw InputError(
+                file, kk,
+                "unknown key; allowed: mesh, box, position, orientation_deg, scale, material, name");
+        }
+    }
+    if (o.mesh.empty() == !o.box_m)
+        throw InputError(file, key, "an object needs exactly one of \"mesh\" or \"box\"");
+    return o;
+}
+
+} // namespace
+
+SceneDesc default_scene() {
+    SceneDesc s;
+    ObjectDesc prism;
+    prism.box_m = Vec3d{0.07, 0.12, 0.22};
+    prism.position_m = {1.5, 1.5, 0.11};
+    s.objects.push_back(prism);
+    return s;
+}
+
+SceneDesc parse_scene(const std::string& text, const std::string& file, const std::string& base_dir) {
+    json root;
+    try {
+        root = json::parse(text, [&](int depth, json::parse_event_t, json&) {
+            if (depth > kMaxNesting)
+                throw InputError(file, "", "nesting deeper than " + std::to_string(kMaxNesting) + " levels");
+            return true;
+        });
+    } catch (const json::parse_error& e) {
+        // Turn the byte offset into a line number.
+        const size_t upto = std::min(e.byte, text.size());
+        const long line = 1 + std::count(text.begin(), text.begin() + long(upto), '\n');
+        std::string what = e.what();
+        const size_t pos = what.find("parse error");
+        throw InputError(file + ":" + std::to_string(line), "",
+                         "invalid JSON: " + what.substr(pos == std::string::npos ? 0 : pos));
+    }
+    if (!root.is_object()) throw InputError(file, "", "the top level must be a JSON object");
+
+    SceneDesc scene;
+    scene.source_file = file;
+    for (auto& [section, body] : root.items()) {
+        if (section == "sonar" || section == "water" || section == "sampling" || section == "display") {
+            require_object(body, file, section);
+            for (auto& [k, val] : body.items()) {
+                const std::string key = section + "." + k;
+                const ParamSpec* p = find_param(key);
+                if (!p) {
+                    std::string allowed;
+                    for (auto& q : scene_params())
+                        if (q.key.rfind(section + ".", 0) == 0)
+                            allowed += (allowed.empty() ? "" : ", ") + q.key.substr(section.size() + 1);
+                    throw InputError(file, key, "unknown key; allowed: " + allowed);
+                }
+                p->put(scene, validate_value(*p, val, file, key));
+            }
+        } else if (section == "seafloor") {
+            if (body.is_null()) {
+                scene.seafloor.reset();
+                continue;
+            }
+            require_object(body, file, section);
+            Seafloor f;
+            for (auto& [k, val] : body.items()) {
+                if (k == "height_m") {
+                    ValueSpec s;
+                    s.unit = "m", s.min = -1e6, s.max = 1e6;
+                    f.height_m = validate_value(s, val, file, "seafloor.height_m").get<double>();
+                } else if (k == "material") {
+                    f.material = parse_material(val, file, "seafloor.material");
+                } else {
+                    throw InputError(file, "seafloor." + k, "unknown key; allowed: height_m, material");
+                }
+            }
+            scene.seafloor = f;
+        } else if (section == "objects") {
+            if (!body.is_array()) throw InputError(file, "objects", "expected an array of objects");
+            for (size_t i = 0; i < body.size(); ++i)
+                scene.objects.push_back(
+                    parse_object(body[i], file, "objects[" + std::to_string(i) + "]", base_dir));
+        } else {
+            throw InputError(file, section,
+                             "unknown key; allowed: sonar, water, sampling, display, seafloor, objects");
+        }
+    }
+    if (!root.contains("seafloor")) scene.seafloor.reset(); // omit the seafloor key: no floor
+    validate_scene(scene, file);
+    return scene;
+}
+
+SceneDesc load_scene(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw InputError(path, "", "scene file not found");
+    if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "", "not a regular file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, "", "cannot be read");
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    const std::string base = std::filesystem::absolute(path, ec).parent_path().string();
+    return parse_scene(ss.str(), path, base);
+}
+
+json scene_to_json(const SceneDesc& s) {
+    json j = json::object();
+    for (auto& p : scene_params()) {
+        const size_t dot = p.key.find('.');
+        j[p.key.substr(0, dot)][p.key.substr(dot + 1)] = p.get(s);
+    }
+    auto material = [](const Material& m) {
+        json o;
+        for (auto& p : material_params()) o[p.key] = m.*(p.field);
+        return o;
+    };
+    if (s.seafloor)
+        j["seafloor"] = {{"height_m", s.seafloor->height_m}, {"material", material(s.seafloor->material)}};
+    j["objects"] = json::array();
+    for (auto& o : s.objects) {
+        json jo;
+        if (o.box_m)
+            jo["box"] = *o.box_m;
+        else
+            jo["mesh"] = o.mesh_resolved.empty() ? o.mesh : o.mesh_resolved;
+        jo["position"] = o.position_m;
+        jo["orientation_deg"] = o.orientation_deg;
+        jo["scale"] = o.scale;
+        jo["material"] = material(o.material);
+        j["objects"].push_back(jo);
+    }
+    return j;
+}
+
+Pose parse_pose_text(const std::string& text, const std::string& origin) {
+    std::vector<double> v;
+    std::stringstream ss(text);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        size_t used = 0;
+        double x = 0;
+        try {
+            x = std::stod(item, &used);
+        } catch (...) {
+            used = 0;
+        }
+        while (used < item.size() && std::isspace((unsigned char)item[used])) ++used;
+        if (used == 0 || used != item.size() || !std::isfinite(x))
+            throw InputError(origin, "",
+                             "\"" + item +
+                                 "\" is not a finite number; expected x,y,z,roll,pitch,yaw in m and deg");
+        v.push_back(x);
+    }
+    if (v.size() != 6)
+        throw InputError(origin, "",
+                         "expected 6 comma-separated numbers x,y,z,roll,pitch,yaw (m, deg), got " +
+                             std::to_string(v.size()));
+    SceneDesc tmp;
+    apply_setting(tmp, "sonar.position", json::array({v[0], v[1], v[2]}), origin);
+    apply_setting(tmp, "sonar.orientation_deg", json::array({v[3], v[4], v[5]}), origin);
+    return tmp.sonar.pose;
+}
+
+} // namespace sonarsim

@@ -1,0 +1,26 @@
+// Scene files (JSON): parsing against the parameter table, serialisation, and the built-in default scene.
+#pragma once
+#include "params.hpp"
+#include "scene.hpp"
+
+#include <string>
+
+namespace sonarsim {
+
+/// The paper's Fig. 9 scene: 70 x 120 x 220 mm prism standing on the floor at (1.5, 1.5), sonar at pose 1.
+SceneDesc default_scene();
+
+/// Parses a scene from JSON text. `file` names the source in errors; mesh paths resolve relative to
+/// `base_dir`.
+SceneDesc parse_scene(const std::string& text, const std::string& file, const std::string& base_dir);
+
+/// Reads and parses a scene file. Throws InputError naming the file, key path and what is allowed.
+SceneDesc load_scene(const std::string& path);
+
+/// Every effective parameter as a scene file (round-trips through parse_scene).
+json scene_to_json(const SceneDesc& scene);
+
+/// Parses "x,y,z,roll,pitch,yaw" into a pose; throws InputError naming `origin`.
+Pose parse_pose_text(const std::string& text, const std::string& origin);
+
+} // namespace sonarsim

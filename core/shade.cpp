@@ -1,0 +1,108 @@
+#include "shade.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tbb/parallel_for.h>
+
+namespace sonarsim {
+namespace {
+
+constexpr double kLn10Over10 = 0.23025850929940458;
+constexpr double kNegInf = -std::numeric_limits<double>::infinity();
+
+/// Sum of two independent uniforms U[a0, a1] + U[b0, b1]: its cumulative distribution (a trapezoid density).
+struct Footprint {
+    double lo, p, q; // support [lo, lo + p + q], p <= q the two widths
+    Footprint(double a0, double a1, double b0, double b1) {
+        const double w1 = std::abs(a1 - a0), w2 = std::abs(b1 - b0);
+        lo = std::min(a0, a1) + std::min(b0, b1);
+        p = std::min(w1, w2), q = std::max(w1, w2);
+    }
+    double hi() const { return lo + p + q; }
+    double cdf(double r) const {
+        const double x = r - lo;
+        if (x <= 0) return 0;
+        if (x >= p + q) return 1;
+        if (p <= 1e-12 * q) return x / q; // a single uniform
+        if (x < p) return x * x / (2 * p * q);
+        if (x <= q) return p / (2 * q) + (x - p) / q;
+        const double y = p + q - x;
+        return 1 - y * y / (2 * p * q);
+    }
+};
+
+Footprint footprint_of(const Cell& c) {
+    return Footprint(c.range_e_lo_m, c.range_e_hi_m, double(c.range_a_lo_m) - c.range_m,
+                     double(c.range_a_hi_m) - c.range_m);
+}
+
+/// Log-domain accumulator: value = exp(m) * s.
+struct LogSum {
+    double m = kNegInf, s = 0;
+    void add(double x) {
+        if (x == kNegInf) return;
+        if (x > m)
+            s = s * std::exp(m - x) + 1, m = x;
+        else
+            s += std::exp(x - m);
+    }
+    double log_value() const { return s > 0 ? m + std::log(s) : kNegInf; }
+};
+
+} // namespace
+
+const Material& material_of(const SceneDesc& s, unsigned m) {
+    static const Material none{};
+    if (m == 0) return s.seafloor ? s.seafloor->material : none;
+    return s.objects.at(m - 1).material;
+}
+
+double cell_fraction_in(const Cell& c, SamplingScheme scheme, double r0, double r1) {
+    if (scheme == SamplingScheme::Uniform) return (c.range_m >= r0 && c.range_m < r1) ? 1.0 : 0.0;
+    const Footprint f = footprint_of(c);
+    if (f.p + f.q <= 1e-9) return (f.lo >= r0 && f.lo < r1) ? 1.0 : 0.0;
+    return f.cdf(r1) - f.cdf(r0);
+}
+
+PolarImage shade(const TraceResult& hits, const SceneDesc& s) {
+    const ShadeConstants k = shade_constants(s);
+    const int K = s.sonar.range_bins, N = s.sonar.beams;
+    const double r_min = s.sonar.range_min_m, r_max = s.sonar.range_max_m, dr = (r_max - r_min) / K;
+    const bool spread = s.sampling.scheme == SamplingScheme::Spread;
+
+    PolarImage img;
+    img.bins = K, img.beams = N;
+    img.level_db.assign(size_t(K) * size_t(N), -std::numeric_limits<float>::infinity());
+    tbb::parallel_for(0, std::min(N, hits.beams), [&](int i) {
+        std::vector<LogSum> acc(static_cast<size_t>(K));
+        for (const Cell& c : hits.cells[size_t(i)]) {
+            const double x =
+                cell_echo_db(k, material_of(s, c.material), c.range_m, c.cos_incidence, c.solid_angle_sr) *
+                kLn10Over10;
+            if (x == kNegInf || std::isnan(x)) continue;
+            const Footprint f = footprint_of(c);
+            if (!spread || f.p + f.q <= 1e-9 * dr) {
+                const double r = spread ? f.lo : c.range_m;
+                const double b = std::floor((r - r_min) / dr);
+                if (b >= 0 && b < K) acc[size_t(b)].add(x);
+                continue;
+            }
+            const int b0 = int(std::clamp(std::floor((f.lo - r_min) / dr), 0.0, double(K)));
+            const int b1 = int(std::clamp(std::floor((f.hi() - r_min) / dr), -1.0, double(K - 1)));
+            double c_prev = f.cdf(r_min + b0 * dr);
+            for (int b = b0; b <= b1; ++b) {
+                const double c_next = f.cdf(b + 1 == K ? r_max : r_min + (b + 1) * dr);
+                if (c_next > c_prev) acc[size_t(b)].add(x + std::log(c_next - c_prev));
+                c_prev = c_next;
+            }
+        }
+        for (int b = 0; b < K; ++b) {
+            const double lv = acc[size_t(b)].log_value();
+            if (lv != kNegInf) img.level_db[size_t(b) * N + i] = float(lv / kLn10Over10 - k.noise_level_db);
+        }
+    });
+    return img;
+}
+
+} // namespace sonarsim

@@ -1,0 +1,97 @@
+#include "simulator.hpp"
+
+#include "pose.hpp"
+#include "scene_io.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+namespace sonarsim {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+json material_json(const Material& m) {
+    json o;
+    for (auto& p : material_params()) o[p.key] = m.*(p.field);
+    return o;
+}
+
+} // namespace
+
+Stage changed_stage(const SceneDesc& a, const SceneDesc& b) {
+    Stage st = Stage::None;
+    auto mark = [&](Stage s) { st = std::min(st, s); };
+    for (auto& p : scene_params())
+        if (p.get(a) != p.get(b)) mark(p.stage);
+    if (a.objects.size() != b.objects.size()) {
+        mark(Stage::Geometry);
+    } else {
+        for (size_t i = 0; i < a.objects.size(); ++i) {
+            const ObjectDesc &x = a.objects[i], &y = b.objects[i];
+            if (x.mesh_resolved != y.mesh_resolved || x.box_m != y.box_m || x.position_m != y.position_m ||
+                x.orientation_deg != y.orientation_deg || x.scale != y.scale)
+                mark(Stage::Geometry);
+            if (material_json(x.material) != material_json(y.material)) mark(Stage::Shade);
+        }
+    }
+    if (bool(a.seafloor) != bool(b.seafloor))
+        mark(Stage::Trace);
+    else if (a.seafloor) {
+        if (a.seafloor->height_m != b.seafloor->height_m) mark(Stage::Trace);
+        if (material_json(a.seafloor->material) != material_json(b.seafloor->material)) mark(Stage::Shade);
+    }
+    return st;
+}
+
+Simulator::Simulator(const SceneDesc& scene)
+    : scene_(scene), geometry_(std::make_unique<SceneGeometry>(scene)) {}
+
+void Simulator::set_scene(const SceneDesc& scene) {
+    const Stage s = changed_stage(scene_, scene);
+    if (s == Stage::Geometry)
+        geometry_ = std::make_unique<SceneGeometry>(scene); // may throw: keep the old one
+    scene_ = scene;
+    dirty_ = std::min(dirty_, s == Stage::Geometry ? Stage::Trace : s);
+}
+
+const Frame& Simulator::render() {
+    if (dirty_ <= Stage::Trace) {
+        frame_.hits = trace(*geometry_, scene_);
+        frame_.trace_ms = frame_.hits.trace_ms;
+    }
+    if (dirty_ <= Stage::Shade) {
+        const auto t0 = std::chrono::steady_clock::now();
+        frame_.polar = shade(frame_.hits, scene_);
+        frame_.alpha_db_per_m = shade_constants(scene_).alpha_db_per_m;
+        frame_.shade_ms = ms_since(t0);
+    }
+    if (dirty_ <= Stage::Display) {
+        const auto t0 = std::chrono::steady_clock::now();
+        frame_.sector = sector_image(frame_.polar, scene_.sonar, scene_.display);
+        frame_.image_ms = ms_since(t0);
+    }
+    dirty_ = Stage::None;
+    return frame_;
+}
+
+json frame_metadata(const SceneDesc& s, const Frame& f) {
+    json j = scene_to_json(s);
+    j["alpha_db_per_m"] = f.alpha_db_per_m;
+    j["beam_azimuths_deg"] = beam_azimuths_deg(s.sonar);
+    j["range_bin_edges_m"] = range_bin_edges_m(s.sonar);
+    j["rays_traced"] = f.hits.rays_traced;
+    j["time_ms"] = {{"trace", f.trace_ms},
+                    {"shade", f.shade_ms},
+                    {"image", f.image_ms},
+                    {"total", f.trace_ms + f.shade_ms + f.image_ms}};
+    j["image"] = {{"npy_shape", {s.sonar.range_bins, s.sonar.beams}},
+                  {"npy_rows", "range bins, row 0 nearest"},
+                  {"npy_columns", "beams, column 0 port-most"},
+                  {"npy_units", "L_EN dB; -inf where nothing echoes"}};
+    return j;
+}
+
+} // namespace sonarsim

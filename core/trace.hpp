@@ -1,0 +1,38 @@
+// Tracing: cast each beam's rays into the scene and keep, per ray, what shading needs (the "hits").
+// Physics is not applied here, so a change of L_S, L_N, alpha or a material re-shades without re-tracing.
+#pragma once
+#include "geometry.hpp"
+#include "scene.hpp"
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace sonarsim {
+
+/// One ray and the solid-angle cell [e +- de/2] x [a +- da/2] it stands for.
+struct Cell {
+    glm::vec3 point;      ///< first hit [m, world]
+    float range_m;        ///< distance from the sonar to the hit [m]
+    float cos_incidence;  ///< cos of the angle between the surface normal and the reversed ray
+    float solid_angle_sr; ///< dOmega = cos e de da [sr]
+    float range_e_lo_m,
+        range_e_hi_m; ///< range on the hit plane at the cell's lower / upper elevation edge [m]
+    float range_a_lo_m, range_a_hi_m; ///< range on the hit plane at the cell's two azimuth edges [m]
+    std::uint32_t material;           ///< kFloorMaterial or object index + 1
+    std::uint32_t elevation_index;
+};
+
+struct TraceResult {
+    int beams = 0;
+    std::vector<std::vector<Cell>> cells; ///< per beam: the cells whose ray hit something within reach
+    std::uint64_t rays_traced = 0;
+    double trace_ms = 0;
+};
+
+/// Elevation of ray j's cell centre [rad]: midpoint rule, e_j = Phi/2 - (j + 1/2) Phi / M.
+double elevation_of_ray_rad(const SceneDesc& scene, int j);
+
+TraceResult trace(const SceneGeometry& geometry, const SceneDesc& scene);
+
+} // namespace sonarsim
