@@ -3,7 +3,6 @@
 #include "load.hpp"
 
 #include "core/errors.hpp"
-#include "core/output.hpp"
 #include "core/simulator.hpp"
 
 #include <filesystem>
@@ -28,11 +27,7 @@ int run_render(const RenderOptions& o) {
 
     Simulator sim(scene);
     const Frame& f = sim.render();
-    const Image8 polar = polar_gray_image(f.polar, scene.display);
-    write_files_atomically({{o.out + ".png", encode_png(f.sector)},
-                            {o.out + "_polar.png", encode_png(polar)},
-                            {o.out + ".npy", encode_npy(f.polar)},
-                            {o.out + ".json", to_bytes(frame_metadata(scene, f).dump(2) + "\n")}});
+    write_render_files(o.out, scene, f);
     std::cout << "wrote " << o.out << ".png (sector image " << f.sector.width << "x" << f.sector.height
               << "), " << o.out << "_polar.png, " << o.out << ".npy (L_EN dB, " << f.polar.bins << " x "
               << f.polar.beams << "), " << o.out << ".json\n"

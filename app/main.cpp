@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
     std::function<int()> run;
     sonarsim::app::register_render(app, run);
     sonarsim::app::register_view(app, run);
+    sonarsim::app::register_study(app, run);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
