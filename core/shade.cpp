@@ -69,7 +69,7 @@ PolarImage shade(const TraceResult& hits, const SceneDesc& s) {
     const ShadeConstants k = shade_constants(s);
     const int K = s.sonar.range_bins, N = s.sonar.beams;
     const double r_min = s.sonar.range_min_m, r_max = s.sonar.range_max_m, dr = (r_max - r_min) / K;
-    const bool spread = s.sampling.scheme == SamplingScheme::Spread;
+    const bool spread = s.sampling.scheme != SamplingScheme::Uniform;
 
     PolarImage img;
     img.bins = K, img.beams = N;

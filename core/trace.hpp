@@ -27,12 +27,28 @@ struct TraceResult {
     int beams = 0;
     std::vector<std::vector<Cell>> cells; ///< per beam: the cells whose ray hit something within reach
     std::uint64_t rays_traced = 0;
+    /// Adaptive scheme: estimated error of this sampling (difference to one refinement level coarser).
+    struct ErrorEstimate {
+        bool valid = false;
+        double rel_l1 = 0, median_abs_db = 0, p95_abs_db = 0;
+        int passes = 0;
+    } error_estimate;
     double trace_ms = 0;
 };
 
 /// Elevation of ray j's cell centre [rad]: midpoint rule, e_j = Phi/2 - (j + 1/2) Phi / M.
 double elevation_of_ray_rad(const SceneDesc& scene, int j);
 
+/// Traces the scene with the scheme it asks for (sampling.scheme).
 TraceResult trace(const SceneGeometry& geometry, const SceneDesc& scene);
+
+/// The paper's regular grid: beams x azimuth_rays x elevation_rays rays at cell centres (midpoint rule).
+TraceResult trace_uniform(const SceneGeometry& geometry, const SceneDesc& scene);
+
+/// Adaptive: starts from the regular grid and refines elevation cells (ternary splits) where neighbouring
+/// rays see different surfaces, the echo density jumps by more than sampling.tolerance_db, or a specular lobe
+/// or a plane's horizon falls inside a cell; beams whose columns disagree get more azimuth rays.
+/// Fills `error_estimate`.
+TraceResult trace_adaptive(const SceneGeometry& geometry, const SceneDesc& scene);
 
 } // namespace sonarsim

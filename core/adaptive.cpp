@@ -1,0 +1,273 @@
+// Adaptive sampling: refine where the integrand of SONAR_MODEL.md is not smooth, leave the rest coarse.
+#include "params.hpp"
+#include "physics.hpp"
+#include "reference.hpp"
+#include "shade.hpp"
+#include "trace.hpp"
+#include "trace_detail.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <tbb/parallel_for.h>
+
+namespace sonarsim {
+
+using detail::Angle;
+
+namespace {
+
+constexpr int kElevationLevels = 5; // ternary splits: cells down to 1/243 of the base width
+constexpr int kAzimuthLevels = 2;   // beams with disagreeing columns: up to 9x the base azimuth rays
+constexpr int kMaxPasses = 3;       // base refinements (x3) when the error estimate misses the tolerance
+
+/// One elevation cell of a column.
+struct Node {
+    double e = 0, de = 0; ///< centre and width [rad]
+    std::optional<Hit> hit;
+    glm::dvec3 p{0};
+    double density_db = 0; ///< echo level per steradian (cell_echo_db with dOmega = 1)
+    int group = 0;         ///< siblings of one split (or base triples) share a group
+    bool refine = false;
+};
+
+struct Column {
+    double a = 0, da = 0;
+    std::vector<Node> nodes; ///< ordered by decreasing elevation
+    std::vector<Node> base;  ///< the base grid as first traced (for comparing neighbouring columns)
+    std::uint64_t rays = 0;
+};
+
+struct Context {
+    const SceneGeometry& g;
+    const SceneDesc& s;
+    detail::RayFrame frame;
+    ShadeConstants k;
+    double phi, jump_db;
+    Context(const SceneGeometry& geo, const SceneDesc& scene)
+        : g(geo), s(scene), frame(scene), k(shade_constants(scene)),
+          phi(deg2rad(scene.sonar.elevation_fov_deg)), jump_db(10 * scene.sampling.tolerance_db) {}
+
+    Node trace_node(const Angle& a, double e, double de, int group) const {
+        Node n;
+        n.e = e, n.de = de, n.group = group;
+        const glm::dvec3 d = frame.dir(a, Angle(e));
+        n.hit = detail::first_hit(g, s, frame.origin, d, frame.t_max);
+        if (n.hit) {
+            n.p = frame.origin + n.hit->t * d;
+            n.density_db = cell_echo_db(k, material_of(s, n.hit->material), n.hit->t,
+                                        std::abs(glm::dot(n.hit->normal, d)), 1.0);
+        }
+        return n;
+    }
+
+    bool discontinuous(const Node& x, const Node& y) const {
+        if (bool(x.hit) != bool(y.hit)) return true;
+        if (!x.hit) return false;
+        if (detail::different_surface(*x.hit, x.p, *y.hit, y.p)) return true;
+        return std::abs(x.density_db - y.density_db) > jump_db;
+    }
+
+    /// Direction of normal incidence on the node's plane, in the sonar frame.
+    glm::dvec3 normal_direction_sonar(const Node& n) const {
+        const glm::dvec3 v = glm::dot(n.hit->normal, n.p - frame.origin) > 0 ? n.hit->normal : -n.hit->normal;
+        return glm::transpose(frame.R) * v;
+    }
+
+    /// A specular lobe narrower than the cell, centred inside it, or a plane horizon inside the cell.
+    bool needs_split_alone(const Node& n, const Angle& a) const {
+        if (!n.hit) return false;
+        const Material& m = material_of(s, n.hit->material);
+        if (m.mu > 0 && n.de > deg2rad(m.h_deg) / 2) {
+            const glm::dvec3 v = normal_direction_sonar(n);
+            const double e_star = std::atan2(v.z, v.x * a.c + v.y * a.s);
+            if (std::abs(e_star - n.e) < n.de / 2 + 2 * deg2rad(m.h_deg)) return true;
+        }
+        for (double edge : {n.e - n.de / 2, n.e + n.de / 2})
+            if (detail::plane_range(frame.origin, n.p, n.hit->normal, frame.dir(a, Angle(edge))) < 0)
+                return true;
+        return false;
+    }
+
+    /// A specular lobe whose azimuth falls inside the beam [a_lo, a_hi] and is narrower than its columns.
+    bool specular_in_azimuth(const Node& n, double a_lo, double a_hi, double da) const {
+        if (!n.hit) return false;
+        const Material& m = material_of(s, n.hit->material);
+        if (!(m.mu > 0) || da <= deg2rad(m.h_deg) / 2) return false;
+        const glm::dvec3 v = normal_direction_sonar(n);
+        const double a_star = std::atan2(v.y, v.x), h = deg2rad(m.h_deg);
+        return a_star > a_lo - 2 * h && a_star < a_hi + 2 * h;
+    }
+
+    /// Base grid of M0 cells, then ternary refinement down to kElevationLevels.
+    Column trace_column(double a_rad, double da, int M0) const {
+        Column col;
+        col.a = a_rad, col.da = da;
+        const Angle a(a_rad);
+        const double de0 = phi / M0, de_min = de0 / std::pow(3.0, kElevationLevels) * 1.0001;
+        int next_group = (M0 + 2) / 3;
+        for (int j = 0; j < M0; ++j)
+            col.nodes.push_back(trace_node(a, phi / 2 - (j + 0.5) * de0, de0, j / 3));
+        if (M0 % 3) // an incomplete last base triple is never merged
+            for (int j = M0 - M0 % 3; j < M0; ++j) col.nodes[size_t(j)].group = next_group++;
+        col.rays = std::uint64_t(M0);
+        col.base = col.nodes;
+        for (int level = 0; level < kElevationLevels; ++level) {
+            bool any = false;
+            auto mark = [&](Node& n) {
+                if (n.de > de_min) n.refine = any = true;
+            };
+            for (size_t n = 0; n + 1 < col.nodes.size(); ++n)
+                if (discontinuous(col.nodes[n], col.nodes[n + 1])) mark(col.nodes[n]), mark(col.nodes[n + 1]);
+            for (auto& n : col.nodes)
+                if (!n.refine && needs_split_alone(n, a)) mark(n);
+            if (!any) break;
+            std::vector<Node> next;
+            next.reserve(col.nodes.size() + 16);
+            for (auto& n : col.nodes) {
+                if (!n.refine) {
+                    next.push_back(n);
+                    continue;
+                }
+                const double de = n.de / 3;
+                const int grp = next_group++;
+                next.push_back(trace_node(a, n.e + de, de, grp));
+                Node mid = n;
+                mid.de = de, mid.group = grp, mid.refine = false;
+                next.push_back(mid);
+                next.push_back(trace_node(a, n.e - de, de, grp));
+                col.rays += 2;
+            }
+            col.nodes.swap(next);
+        }
+        return col;
+    }
+
+    void emit(std::vector<Cell>& out, const Column& c, const Node& n, double de, double da) const {
+        if (!n.hit) return;
+        const Angle a(c.a);
+        Cell cell = detail::make_cell(frame, *n.hit, a, Angle(n.e), Angle(c.a - da / 2), Angle(c.a + da / 2),
+                                      Angle(n.e - de / 2), Angle(n.e + de / 2));
+        out.push_back(cell);
+    }
+
+    /// Cells of a column; `coarse` merges every complete sibling triple into its middle cell (one level up).
+    void cells_of(const Column& c, bool coarse, double da, std::vector<Cell>& out) const {
+        for (size_t n = 0; n < c.nodes.size();) {
+            if (coarse && n + 2 < c.nodes.size() && c.nodes[n].group == c.nodes[n + 1].group &&
+                c.nodes[n].group == c.nodes[n + 2].group) {
+                emit(out, c, c.nodes[n + 1], 3 * c.nodes[n + 1].de, da);
+                n += 3;
+            } else {
+                emit(out, c, c.nodes[n], c.nodes[n].de, da);
+                ++n;
+            }
+        }
+    }
+};
+
+/// Azimuth centre of column k of K in beam i (column 0 is the port-most).
+double column_azimuth(const SceneDesc& s, int i, int k, int K) {
+    const double theta = deg2rad(s.sonar.azimuth_fov_deg), w = theta / s.sonar.beams;
+    return theta / 2 - i * w - (k + 0.5) * w / K;
+}
+
+bool columns_disagree(const Context& ctx, const Column& x, const Column& y) {
+    for (size_t j = 0; j < x.base.size() && j < y.base.size(); ++j)
+        if (ctx.discontinuous(x.base[j], y.base[j])) return true;
+    return false;
+}
+
+TraceResult trace_pass(const Context& ctx, int M0, TraceResult::ErrorEstimate& est) {
+    const SceneDesc& s = ctx.s;
+    const int N = s.sonar.beams, K0 = s.sampling.azimuth_rays;
+    const double w = deg2rad(s.sonar.azimuth_fov_deg) / N;
+    std::vector<std::vector<Column>> beams(static_cast<size_t>(N));
+    tbb::parallel_for(0, N, [&](int i) {
+        for (int k = 0; k < K0; ++k)
+            beams[size_t(i)].push_back(ctx.trace_column(column_azimuth(s, i, k, K0), w / K0, M0));
+    });
+    // Beams whose columns (or whose edge columns and their neighbours') see different surfaces, or that hold
+    // a narrow specular lobe, get three times the azimuth rays; the existing columns are the middle ones.
+    std::vector<int> level(static_cast<size_t>(N), 0);
+    for (int lv = 0; lv < kAzimuthLevels; ++lv) {
+        std::vector<char> flag(static_cast<size_t>(N), 0);
+        tbb::parallel_for(0, N, [&](int i) {
+            const auto& cols = beams[size_t(i)];
+            const double a_hi = cols.front().a + cols.front().da / 2,
+                         a_lo = cols.back().a - cols.back().da / 2;
+            bool f = false;
+            for (size_t k = 0; k + 1 < cols.size() && !f; ++k)
+                f = columns_disagree(ctx, cols[k], cols[k + 1]);
+            if (!f && i > 0) f = columns_disagree(ctx, beams[size_t(i) - 1].back(), cols.front());
+            if (!f && i + 1 < N) f = columns_disagree(ctx, cols.back(), beams[size_t(i) + 1].front());
+            for (size_t k = 0; k < cols.size() && !f; ++k)
+                for (auto& n : cols[k].nodes)
+                    if ((f = ctx.specular_in_azimuth(n, a_lo, a_hi, cols[k].da))) break;
+            flag[size_t(i)] = f && level[size_t(i)] == lv;
+        });
+        bool any = false;
+        tbb::parallel_for(0, N, [&](int i) {
+            if (!flag[size_t(i)]) return;
+            auto& cols = beams[size_t(i)];
+            const int K = int(cols.size()) * 3;
+            std::vector<Column> next;
+            for (int k = 0; k < K; ++k) {
+                if (k % 3 == 1) {
+                    next.push_back(std::move(cols[size_t(k / 3)]));
+                    next.back().da = w / K;
+                } else {
+                    next.push_back(ctx.trace_column(column_azimuth(s, i, k, K), w / K, M0));
+                }
+            }
+            cols.swap(next);
+            level[size_t(i)] = lv + 1;
+        });
+        for (char f : flag) any |= f != 0;
+        if (!any) break;
+    }
+
+    TraceResult fine, coarse;
+    fine.beams = coarse.beams = N;
+    fine.cells.resize(size_t(N)), coarse.cells.resize(size_t(N));
+    tbb::parallel_for(0, N, [&](int i) {
+        const auto& cols = beams[size_t(i)];
+        for (auto& c : cols) ctx.cells_of(c, false, c.da, fine.cells[size_t(i)]);
+        // One level coarser everywhere: azimuth triples -> middle column (3 da), elevation triples -> middle.
+        const bool az = level[size_t(i)] > 0;
+        for (size_t k = 0; k < cols.size(); ++k)
+            if (!az || k % 3 == 1)
+                ctx.cells_of(cols[k], true, az ? 3 * cols[k].da : cols[k].da, coarse.cells[size_t(i)]);
+    });
+    for (auto& b : beams)
+        for (auto& c : b) fine.rays_traced += c.rays;
+    const ImageError e = compare_images(shade(coarse, s), shade(fine, s));
+    // The coarse image's error is taken as three times the fine one's (first order at discontinuities, the
+    // slowest case): fine error ~ |fine - coarse| / 2.
+    est.valid = true;
+    est.rel_l1 = e.rel_l1 / 2, est.median_abs_db = e.median_abs_db / 2, est.p95_abs_db = e.p95_abs_db / 2;
+    return fine;
+}
+
+} // namespace
+
+TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s) {
+    const Context ctx(g, s);
+    std::uint64_t rays = 0;
+    int M0 = s.sampling.elevation_rays;
+    TraceResult out;
+    for (int pass = 1;; ++pass) {
+        TraceResult::ErrorEstimate est;
+        out = trace_pass(ctx, M0, est);
+        rays += out.rays_traced;
+        est.passes = pass;
+        out.error_estimate = est;
+        if (est.median_abs_db <= s.sampling.tolerance_db || pass == kMaxPasses ||
+            double(M0) * 3 * s.sonar.beams * s.sampling.azimuth_rays > kMaxRaysPerImage / 9)
+            break;
+        M0 *= 3;
+    }
+    out.rays_traced = rays;
+    return out;
+}
+
+} // namespace sonarsim

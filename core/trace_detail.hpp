@@ -1,0 +1,45 @@
+// Internal to the tracers (trace.cpp, adaptive.cpp): one ray's first hit and the cell it stands for.
+#pragma once
+#include "geometry.hpp"
+#include "pose.hpp"
+#include "trace.hpp"
+
+#include <cmath>
+#include <optional>
+
+namespace sonarsim::detail {
+
+/// An angle [rad] with its cosine and sine.
+struct Angle {
+    double rad = 0, c = 1, s = 0;
+    Angle() = default;
+    explicit Angle(double r) : rad(r), c(std::cos(r)), s(std::sin(r)) {}
+};
+
+/// The sonar's frame and the reach of its rays.
+struct RayFrame {
+    glm::dmat3 R;
+    glm::dvec3 origin;
+    double t_max; ///< rays reaching past r_max can still spread part of their cell into the window
+    explicit RayFrame(const SceneDesc& s)
+        : R(rotation_matrix(s.sonar.pose.orientation_deg)), origin(to_glm(s.sonar.pose.position_m)),
+          t_max(s.sonar.range_max_m * 1.05) {}
+    glm::dvec3 dir(const Angle& a, const Angle& e) const { return R * glm::dvec3(e.c * a.c, e.c * a.s, e.s); }
+};
+
+/// Range at which direction d from o meets the plane through p with normal n; -1 if it does not.
+double plane_range(const glm::dvec3& o, const glm::dvec3& p, const glm::dvec3& n, const glm::dvec3& d);
+
+/// First hit against the floor plane and the meshes (meshes skipped when the ray misses their bounds).
+std::optional<Hit> first_hit(const SceneGeometry& g, const SceneDesc& s, const glm::dvec3& o,
+                             const glm::dvec3& d, double t_max);
+
+/// The cell [a_lo, a_hi] x [e_lo, e_hi] around the ray (a, e) that hit `h`: range, incidence, solid angle
+/// and the range footprint on the hit plane at the cell's edges.
+Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, const Angle& a_lo,
+               const Angle& a_hi, const Angle& e_lo, const Angle& e_hi);
+
+/// True when two hits lie on different surfaces (material, or plane), i.e. a discontinuity lies between them.
+bool different_surface(const Hit& h1, const glm::dvec3& p1, const Hit& h2, const glm::dvec3& p2);
+
+} // namespace sonarsim::detail
