@@ -28,6 +28,8 @@ struct Node {
     double density_db = 0; ///< echo level per steradian (cell_echo_db with dOmega = 1)
     int group = 0;         ///< siblings of one split (or base triples) share a group
     bool refine = false;
+    bool alone_checked = false; ///< needs_split_alone() depends on the node only: evaluate it once
+    Angle angle;                ///< e with its sine and cosine
 };
 
 struct Column {
@@ -49,8 +51,8 @@ struct Context {
 
     Node trace_node(const Angle& a, double e, double de, int group) const {
         Node n;
-        n.e = e, n.de = de, n.group = group;
-        const glm::dvec3 d = frame.dir(a, Angle(e));
+        n.e = e, n.de = de, n.group = group, n.angle = Angle(e);
+        const glm::dvec3 d = frame.dir(a, n.angle);
         n.hit = detail::first_hit(g, s, frame.origin, d, frame.t_max);
         if (n.hit) {
             n.p = frame.origin + n.hit->t * d;
@@ -119,7 +121,10 @@ struct Context {
             for (size_t n = 0; n + 1 < col.nodes.size(); ++n)
                 if (discontinuous(col.nodes[n], col.nodes[n + 1])) mark(col.nodes[n]), mark(col.nodes[n + 1]);
             for (auto& n : col.nodes)
-                if (!n.refine && needs_split_alone(n, a)) mark(n);
+                if (!n.refine && !n.alone_checked) {
+                    n.alone_checked = true;
+                    if (needs_split_alone(n, a)) mark(n);
+                }
             if (!any) break;
             std::vector<Node> next;
             next.reserve(col.nodes.size() + 16);
@@ -132,7 +137,7 @@ struct Context {
                 const int grp = next_group++;
                 next.push_back(trace_node(a, n.e + de, de, grp));
                 Node mid = n;
-                mid.de = de, mid.group = grp, mid.refine = false;
+                mid.de = de, mid.group = grp, mid.refine = false, mid.alone_checked = false;
                 next.push_back(mid);
                 next.push_back(trace_node(a, n.e - de, de, grp));
                 col.rays += 2;
@@ -142,23 +147,21 @@ struct Context {
         return col;
     }
 
-    void emit(std::vector<Cell>& out, const Column& c, const Node& n, double de, double da) const {
-        if (!n.hit) return;
-        const Angle a(c.a);
-        Cell cell = detail::make_cell(frame, *n.hit, a, Angle(n.e), Angle(c.a - da / 2), Angle(c.a + da / 2),
-                                      Angle(n.e - de / 2), Angle(n.e + de / 2));
-        out.push_back(cell);
-    }
-
     /// Cells of a column; `coarse` merges every complete sibling triple into its middle cell (one level up).
     void cells_of(const Column& c, bool coarse, double da, std::vector<Cell>& out) const {
+        const Angle a(c.a), a_lo(c.a - da / 2), a_hi(c.a + da / 2);
+        auto emit = [&](const Node& n, double de) {
+            if (n.hit)
+                out.push_back(detail::make_cell(frame, *n.hit, a, n.angle, a_lo, a_hi, Angle(n.e - de / 2),
+                                                Angle(n.e + de / 2)));
+        };
         for (size_t n = 0; n < c.nodes.size();) {
             if (coarse && n + 2 < c.nodes.size() && c.nodes[n].group == c.nodes[n + 1].group &&
                 c.nodes[n].group == c.nodes[n + 2].group) {
-                emit(out, c, c.nodes[n + 1], 3 * c.nodes[n + 1].de, da);
+                emit(c.nodes[n + 1], 3 * c.nodes[n + 1].de);
                 n += 3;
             } else {
-                emit(out, c, c.nodes[n], c.nodes[n].de, da);
+                emit(c.nodes[n], c.nodes[n].de);
                 ++n;
             }
         }

@@ -2,6 +2,8 @@
 
 #include "errors.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <sstream>
 
@@ -125,10 +127,12 @@ std::vector<ParamSpec> build_scene_params() {
                        [](S s) -> double& { return s.sonar.source_level_db; }));
     t.push_back(number("sonar.noise_level_db", "dB", -200, 300, false, false, Stage::Shade, "Noise level L_N",
                        [](S s) -> double& { return s.sonar.noise_level_db; }));
-    t.push_back(number("water.temperature_c", "degC", -2, 40, false, false, Stage::Shade,
+    // Bounds: the absorption formula (Ainslie & McColm 1998) holds for -6 < T < 35 degC and 0 < z < 7 km;
+    // below -2 degC sea water is ice.
+    t.push_back(number("water.temperature_c", "degC", -2, 35, false, false, Stage::Shade,
                        "Water temperature T (absorption formula range)",
                        [](S s) -> double& { return s.water.temperature_c; }));
-    t.push_back(number("water.depth_m", "m", 0, 12000, false, false, Stage::Shade,
+    t.push_back(number("water.depth_m", "m", 0, 7000, false, false, Stage::Shade,
                        "Water depth D (absorption)", [](S s) -> double& { return s.water.depth_m; }));
     t.push_back(integer("sampling.elevation_rays", 1, 1000000, Stage::Trace, "Elevation rays M per beam",
                         [](S s) -> int& { return s.sampling.elevation_rays; }));
@@ -326,7 +330,21 @@ Stage apply_setting_text(SceneDesc& scene, const std::string& text, const std::s
         throw InputError(origin, text, "expected key.path=value, e.g. sonar.range_max_m=8");
     const std::string key = text.substr(0, eq), raw = text.substr(eq + 1);
     json value = json::parse(raw, nullptr, false);
-    if (value.is_discarded()) value = json(raw); // a bare word: enum names such as paper, viridis
+    if (value.is_discarded()) {
+        // A bare word: enum names such as paper, viridis. Anything else that is not JSON is an error (a
+        // number out of double range such as 1e400 must not turn into a string or an infinity).
+        const bool word = !raw.empty() && std::isalpha(static_cast<unsigned char>(raw[0])) &&
+                          raw.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                "0123456789_-") == std::string::npos;
+        if (!word) {
+            std::string allowed;
+            if (const ParamSpec* p = find_param(key)) allowed = "; allowed: " + allowed_text(*p);
+            throw InputError(origin, key,
+                             raw.empty() ? "missing value after '='" + allowed
+                                         : "cannot read value \"" + raw + "\"" + allowed);
+        }
+        value = json(raw);
+    }
     return apply_setting(scene, key, value, origin);
 }
 
@@ -340,6 +358,24 @@ void validate_scene(const SceneDesc& s, const std::string& file) {
         throw InputError(file, "sampling.elevation_rays",
                          "beams x azimuth_rays x elevation_rays = " + fmt(rays) + " exceeds the limit of " +
                              fmt(kMaxRaysPerImage) + " rays per image");
+    // Ranges are carried in single precision; a bin narrower than 1 um resolves nothing.
+    const double bin_m = (s.sonar.range_max_m - s.sonar.range_min_m) / s.sonar.range_bins;
+    if (!(bin_m >= kMinRangeBinM))
+        throw InputError(file, "sonar.range_bins",
+                         "range bins of " + fmt(bin_m) +
+                             " m ((range_max_m - range_min_m) / range_bins) are below " + "the minimum of " +
+                             fmt(kMinRangeBinM) + " m; use fewer bins or a wider window");
+    const double cells = double(s.sonar.range_bins) * s.sonar.beams;
+    if (cells > kMaxImageCells)
+        throw InputError(file, "sonar.range_bins",
+                         "range_bins x beams = " + fmt(cells) + " exceeds the limit of " +
+                             fmt(kMaxImageCells) + " cells per image");
+    const double sector_px = sector_image_pixels(s.sonar);
+    if (!(sector_px <= kMaxImageCells))
+        throw InputError(file, "sonar.range_min_m",
+                         "the sector image would have " + fmt(sector_px) + " pixels (limit " +
+                             fmt(kMaxImageCells) +
+                             "): range_min_m is too close to range_max_m for this field of view");
     if (!(s.display.lo_db < s.display.hi_db))
         throw InputError(file, "display.lo_db", "lo_db must be below hi_db");
     for (size_t i = 0; i < s.objects.size(); ++i) {
@@ -349,6 +385,16 @@ void validate_scene(const SceneDesc& s, const std::string& file) {
                 throw InputError(file, "objects[" + std::to_string(i) + "].scale",
                                  "scale must be finite and > 0");
     }
+}
+
+double sector_image_pixels(const SonarParams& s) {
+    // The fan's geometry as SectorLayout (image.cpp) lays it out at its default height, in double
+    // precision so that absurd windows give a large number instead of an int overflow.
+    const double height = std::clamp(s.range_bins, 256, 2048);
+    const double half = s.azimuth_fov_deg / 2 * 3.14159265358979323846 / 180;
+    const double m_per_px = (s.range_max_m - s.range_min_m * std::cos(half)) / height;
+    const double width = std::max(16.0, std::ceil(2 * s.range_max_m * std::sin(half) / m_per_px));
+    return width * height;
 }
 
 std::string params_markdown() {

@@ -67,6 +67,15 @@ void validate_scene(const SceneDesc& scene, const std::string& file);
 /// Upper bound on the rays of one image; larger requests are rejected, not clamped.
 constexpr double kMaxRaysPerImage = 5.0e7;
 
+/// Upper bound on range_bins x beams and on the sector image's pixels (2^26: 256 MiB of float32).
+constexpr double kMaxImageCells = 67108864.0;
+
+/// Narrowest range bin [m]: ranges are carried in single precision.
+constexpr double kMinRangeBinM = 1e-6;
+
+/// Pixels of the sector (fan) image at its default height; validate_scene bounds it by kMaxImageCells.
+double sector_image_pixels(const SonarParams& sonar);
+
 /// Markdown table of all parameters (for docs and `sonarsim params`).
 std::string params_markdown();
 

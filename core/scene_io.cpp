@@ -2,15 +2,81 @@
 
 #include "errors.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <set>
 #include <sstream>
+#include <vector>
 
 namespace sonarsim {
 namespace {
 
 constexpr int kMaxNesting = 32;
+
+/// 1-based line of byte offset `at` in `text`.
+long line_of(const std::string& text, size_t at) {
+    const size_t upto = std::min(at, text.size());
+    return 1 + long(std::count(text.begin(), text.begin() + long(upto), '\n'));
+}
+
+/// Parser callback: limits nesting and rejects duplicate keys (nlohmann keeps the last one silently),
+/// naming the key path, e.g. objects[2].material.q.
+class KeyTracker {
+  public:
+    explicit KeyTracker(std::string file) : file_(std::move(file)) {}
+    bool operator()(int depth, json::parse_event_t event, json& parsed) {
+        using E = json::parse_event_t;
+        if (depth > kMaxNesting)
+            throw InputError(file_, path(), "nesting deeper than " + std::to_string(kMaxNesting) + " levels");
+        switch (event) {
+        case E::object_start:
+        case E::array_start:
+            frames_->push_back(Frame{event == E::array_start, 0, {}, {}});
+            break;
+        case E::key: {
+            Frame& f = frames_->back();
+            f.key = parsed.get<std::string>();
+            if (!f.keys.insert(f.key).second)
+                throw InputError(file_, path(), "duplicate key; each key may appear once per object");
+            break;
+        }
+        case E::object_end:
+        case E::array_end:
+            frames_->pop_back();
+            advance();
+            break;
+        case E::value:
+            advance();
+            break;
+        }
+        return true;
+    }
+
+  private:
+    struct Frame {
+        bool array;
+        size_t index;
+        std::set<std::string> keys;
+        std::string key;
+    };
+    void advance() {
+        if (!frames_->empty() && frames_->back().array) ++frames_->back().index;
+    }
+    std::string path() const {
+        std::string p;
+        for (const Frame& f : *frames_)
+            p += f.array ? "[" + std::to_string(f.index) + "]" : (p.empty() ? "" : ".") + f.key;
+        return p;
+    }
+    std::string file_;
+    // json::parse copies the callback; the copies share one stack.
+    std::shared_ptr<std::vector<Frame>> frames_ = std::make_shared<std::vector<Frame>>();
+};
 
 const json& require_object(const json& v, const std::string& file, const std::string& key) {
     if (!v.is_object()) throw InputError(file, key, "expected an object");
@@ -92,19 +158,25 @@ SceneDesc default_scene() {
 SceneDesc parse_scene(const std::string& text, const std::string& file, const std::string& base_dir) {
     json root;
     try {
-        root = json::parse(text, [&](int depth, json::parse_event_t, json&) {
-            if (depth > kMaxNesting)
-                throw InputError(file, "", "nesting deeper than " + std::to_string(kMaxNesting) + " levels");
-            return true;
-        });
+        root = json::parse(text, KeyTracker(file));
     } catch (const json::parse_error& e) {
         // Turn the byte offset into a line number.
-        const size_t upto = std::min(e.byte, text.size());
-        const long line = 1 + std::count(text.begin(), text.begin() + long(upto), '\n');
         std::string what = e.what();
         const size_t pos = what.find("parse error");
-        throw InputError(file + ":" + std::to_string(line), "",
+        throw InputError(file + ":" + std::to_string(line_of(text, e.byte)), "",
                          "invalid JSON: " + what.substr(pos == std::string::npos ? 0 : pos));
+    } catch (const json::exception& e) {
+        // e.g. out_of_range 406 "number overflow parsing '1e400'": find the literal for a line number.
+        std::string what = e.what();
+        const size_t bracket = what.find("] ");
+        what = what.substr(bracket == std::string::npos ? 0 : bracket + 2);
+        std::string where = file;
+        const size_t q0 = what.find('\''), q1 = what.rfind('\'');
+        if (q0 != std::string::npos && q1 > q0 + 1) {
+            const size_t at = text.find(what.substr(q0 + 1, q1 - q0 - 1));
+            if (at != std::string::npos) where += ":" + std::to_string(line_of(text, at));
+        }
+        throw InputError(where, "", "invalid JSON: " + what + " (numbers must be finite doubles)");
     }
     if (!root.is_object()) throw InputError(file, "", "the top level must be a JSON object");
 
@@ -163,10 +235,16 @@ SceneDesc load_scene(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw InputError(path, "", "scene file not found");
     if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "", "not a regular file");
+    const auto size = std::filesystem::file_size(path, ec);
+    if (!ec && size > kMaxSceneFileBytes)
+        throw InputError(path, "",
+                         "file is " + std::to_string(size) + " bytes; scene files may be at most " +
+                             std::to_string(kMaxSceneFileBytes) + " bytes (meshes belong in mesh files)");
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, "", "cannot be read");
+    if (!in) throw InputError(path, "", "cannot be read: " + std::string(std::strerror(errno)));
     std::ostringstream ss;
     ss << in.rdbuf();
+    if (in.bad()) throw InputError(path, "", "read error");
     const std::string base = std::filesystem::absolute(path, ec).parent_path().string();
     return parse_scene(ss.str(), path, base);
 }
@@ -201,6 +279,9 @@ json scene_to_json(const SceneDesc& s) {
 }
 
 Pose parse_pose_text(const std::string& text, const std::string& origin) {
+    if (std::count(text.begin(), text.end(), ',') != 5)
+        throw InputError(
+            origin, "", "\"" + text + "\": expected 6 comma-separated numbers x,y,z,roll,pitch,yaw (m, deg)");
     std::vector<double> v;
     std::stringstream ss(text);
     std::string item;

@@ -3,6 +3,7 @@
 #include "params.hpp"
 #include "scene.hpp"
 
+#include <cstdint>
 #include <string>
 
 namespace sonarsim {
@@ -13,6 +14,9 @@ SceneDesc default_scene();
 /// Parses a scene from JSON text. `file` names the source in errors; mesh paths resolve relative to
 /// `base_dir`.
 SceneDesc parse_scene(const std::string& text, const std::string& file, const std::string& base_dir);
+
+/// Largest scene file load_scene reads (scene files hold parameters; meshes live in their own files).
+constexpr std::uintmax_t kMaxSceneFileBytes = 16u << 20;
 
 /// Reads and parses a scene file. Throws InputError naming the file, key path and what is allowed.
 SceneDesc load_scene(const std::string& path);

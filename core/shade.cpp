@@ -61,9 +61,32 @@ const Material& material_of(const SceneDesc& s, unsigned m) {
 double cell_fraction_in(const Cell& c, SamplingScheme scheme, double r0, double r1) {
     if (scheme == SamplingScheme::Uniform) return (c.range_m >= r0 && c.range_m < r1) ? 1.0 : 0.0;
     const Footprint f = footprint_of(c);
-    if (f.p + f.q <= 1e-9) return (f.lo >= r0 && f.lo < r1) ? 1.0 : 0.0;
+    if (f.p + f.q <= 1e-9 * (r1 - r0)) return (f.lo >= r0 && f.lo < r1) ? 1.0 : 0.0;
     return f.cdf(r1) - f.cdf(r0);
 }
+
+namespace {
+
+/// Calls add(bin, fraction) for each range bin that receives part of the cell's echo.
+template <class F>
+void for_each_bin(const Cell& c, bool spread, int K, double r_min, double r_max, double dr, F&& add) {
+    const Footprint f = footprint_of(c);
+    if (!spread || f.p + f.q <= 1e-9 * dr) {
+        const double b = std::floor(((spread ? f.lo : double(c.range_m)) - r_min) / dr);
+        if (b >= 0 && b < K) add(int(b), 1.0);
+        return;
+    }
+    const int b0 = int(std::clamp(std::floor((f.lo - r_min) / dr), 0.0, double(K)));
+    const int b1 = int(std::clamp(std::floor((f.hi() - r_min) / dr), -1.0, double(K - 1)));
+    double c_prev = f.cdf(r_min + b0 * dr);
+    for (int b = b0; b <= b1; ++b) {
+        const double c_next = f.cdf(b + 1 == K ? r_max : r_min + (b + 1) * dr);
+        if (c_next > c_prev) add(b, c_next - c_prev);
+        c_prev = c_next;
+    }
+}
+
+} // namespace
 
 PolarImage shade(const TraceResult& hits, const SceneDesc& s) {
     const ShadeConstants k = shade_constants(s);
@@ -75,32 +98,50 @@ PolarImage shade(const TraceResult& hits, const SceneDesc& s) {
     img.bins = K, img.beams = N;
     img.level_db.assign(size_t(K) * size_t(N), -std::numeric_limits<float>::infinity());
     tbb::parallel_for(0, std::min(N, hits.beams), [&](int i) {
-        std::vector<LogSum> acc(static_cast<size_t>(K));
-        for (const Cell& c : hits.cells[size_t(i)]) {
-            const double x =
-                cell_echo_db(k, material_of(s, c.material), c.range_m, c.cos_incidence, c.solid_angle_sr) *
-                kLn10Over10;
-            if (x == kNegInf || std::isnan(x)) continue;
-            const Footprint f = footprint_of(c);
-            if (!spread || f.p + f.q <= 1e-9 * dr) {
-                const double r = spread ? f.lo : c.range_m;
-                const double b = std::floor((r - r_min) / dr);
-                if (b >= 0 && b < K) acc[size_t(b)].add(x);
-                continue;
-            }
-            const int b0 = int(std::clamp(std::floor((f.lo - r_min) / dr), 0.0, double(K)));
-            const int b1 = int(std::clamp(std::floor((f.hi() - r_min) / dr), -1.0, double(K - 1)));
-            double c_prev = f.cdf(r_min + b0 * dr);
-            for (int b = b0; b <= b1; ++b) {
-                const double c_next = f.cdf(b + 1 == K ? r_max : r_min + (b + 1) * dr);
-                if (c_next > c_prev) acc[size_t(b)].add(x + std::log(c_next - c_prev));
-                c_prev = c_next;
-            }
+        const auto& cells = hits.cells[size_t(i)];
+        // Each cell's level (natural-log units), then a linear sum scaled by the beam's peak: one exp per
+        // cell.
+        std::vector<double> x(cells.size());
+        double x_max = kNegInf;
+        for (size_t n = 0; n < cells.size(); ++n) {
+            const Cell& c = cells[n];
+            x[n] = cell_echo_db(k, material_of(s, c.material), c.range_m, c.cos_incidence, c.solid_angle_sr) *
+                   kLn10Over10;
+            if (std::isnan(x[n])) x[n] = kNegInf;
+            x_max = std::max(x_max, x[n]);
         }
-        for (int b = 0; b < K; ++b) {
-            const double lv = acc[size_t(b)].log_value();
-            if (lv != kNegInf) img.level_db[size_t(b) * N + i] = float(lv / kLn10Over10 - k.noise_level_db);
+        if (x_max == kNegInf) return;
+        std::vector<double> lin(static_cast<size_t>(K), 0.0);
+        std::vector<char> hit(static_cast<size_t>(K), 0);
+        for (size_t n = 0; n < cells.size(); ++n) {
+            if (x[n] == kNegInf) continue;
+            const double w = std::exp(x[n] - x_max);
+            for_each_bin(cells[n], spread, K, r_min, r_max, dr, [&](int b, double frac) {
+                lin[size_t(b)] += w * frac;
+                hit[size_t(b)] = 1;
+            });
         }
+        bool underflow = false;
+        for (int b = 0; b < K; ++b) underflow |= hit[size_t(b)] && !(lin[size_t(b)] > 0);
+        if (underflow) {
+            // Some bin lies more than ~3000 dB below the beam's peak: sum that beam in the log domain
+            // instead.
+            std::vector<LogSum> acc(static_cast<size_t>(K));
+            for (size_t n = 0; n < cells.size(); ++n)
+                if (x[n] != kNegInf)
+                    for_each_bin(cells[n], spread, K, r_min, r_max, dr,
+                                 [&](int b, double frac) { acc[size_t(b)].add(x[n] + std::log(frac)); });
+            for (int b = 0; b < K; ++b) {
+                const double lv = acc[size_t(b)].log_value();
+                if (lv != kNegInf)
+                    img.level_db[size_t(b) * N + i] = float(lv / kLn10Over10 - k.noise_level_db);
+            }
+            return;
+        }
+        for (int b = 0; b < K; ++b)
+            if (lin[size_t(b)] > 0)
+                img.level_db[size_t(b) * N + i] =
+                    float((x_max + std::log(lin[size_t(b)])) / kLn10Over10 - k.noise_level_db);
     });
     return img;
 }
