@@ -17,7 +17,7 @@ using detail::Angle;
 namespace {
 
 constexpr int kElevationLevels = 5; // ternary splits: cells down to 1/243 of the base width
-constexpr int kAzimuthLevels = 2;   // beams with disagreeing columns: up to 9x the base azimuth rays
+constexpr int kAzimuthLevels = 3;   // beams with disagreeing columns: up to 27x the base azimuth rays
 constexpr int kMaxPasses = 3;       // base refinements (x3) when the error estimate misses the tolerance
 
 /// One elevation cell of a column.
@@ -26,6 +26,7 @@ struct Node {
     std::optional<Hit> hit;
     glm::dvec3 p{0};
     double density_db = 0; ///< echo level per steradian (cell_echo_db with dOmega = 1)
+    double dr_de = 0;      ///< |d range / d elevation| on the hit plane [m/rad]
     int group = 0;         ///< siblings of one split (or base triples) share a group
     bool refine = false;
     bool alone_checked = false; ///< needs_split_alone() depends on the node only: evaluate it once
@@ -44,10 +45,12 @@ struct Context {
     const SceneDesc& s;
     detail::RayFrame frame;
     ShadeConstants k;
-    double phi, jump_db;
+    double phi, jump_db, range_jump_db, bin_m;
     Context(const SceneGeometry& geo, const SceneDesc& scene)
         : g(geo), s(scene), frame(scene), k(shade_constants(scene)),
-          phi(deg2rad(scene.sonar.elevation_fov_deg)), jump_db(10 * scene.sampling.tolerance_db) {}
+          phi(deg2rad(scene.sonar.elevation_fov_deg)), jump_db(10 * scene.sampling.tolerance_db),
+          range_jump_db(2 * scene.sampling.tolerance_db),
+          bin_m((scene.sonar.range_max_m - scene.sonar.range_min_m) / scene.sonar.range_bins) {}
 
     Node trace_node(const Angle& a, double e, double de, int group) const {
         Node n;
@@ -58,6 +61,9 @@ struct Context {
             n.p = frame.origin + n.hit->t * d;
             n.density_db = cell_echo_db(k, material_of(s, n.hit->material), n.hit->t,
                                         std::abs(glm::dot(n.hit->normal, d)), 1.0);
+            // On the hit plane r(e) = (n.(p - o)) / (n.d(e)), so dr/de = -r (n.d_e) / (n.d).
+            const glm::dvec3 d_e = frame.R * glm::dvec3(-n.angle.s * a.c, -n.angle.s * a.s, n.angle.c);
+            n.dr_de = std::abs(n.hit->t * glm::dot(n.hit->normal, d_e) / glm::dot(n.hit->normal, d));
         }
         return n;
     }
@@ -66,7 +72,14 @@ struct Context {
         if (bool(x.hit) != bool(y.hit)) return true;
         if (!x.hit) return false;
         if (detail::different_surface(*x.hit, x.p, *y.hit, y.p)) return true;
-        return std::abs(x.density_db - y.density_db) > jump_db;
+        if (std::abs(x.density_db - y.density_db) > jump_db) return true;
+        // Cells whose range footprint spans bins spread their echo evenly over it; where the echo per metre
+        // of range changes between neighbours (grazing incidence), that spreading needs finer cells.
+        const double wx = x.dr_de * x.de, wy = y.dr_de * y.de;
+        if (!(std::max(wx, wy) > bin_m)) return false;
+        const double gx = x.density_db + 10 * std::log10(x.angle.c * x.de / std::max(wx, bin_m));
+        const double gy = y.density_db + 10 * std::log10(y.angle.c * y.de / std::max(wy, bin_m));
+        return std::abs(gx - gy) > range_jump_db;
     }
 
     /// Direction of normal incidence on the node's plane, in the sonar frame.
@@ -79,7 +92,7 @@ struct Context {
     bool needs_split_alone(const Node& n, const Angle& a) const {
         if (!n.hit) return false;
         const Material& m = material_of(s, n.hit->material);
-        if (m.mu > 0 && n.de > deg2rad(m.h_deg) / 2) {
+        if (m.mu > 0 && n.de > deg2rad(m.h_deg) / 4) {
             const glm::dvec3 v = normal_direction_sonar(n);
             const double e_star = std::atan2(v.z, v.x * a.c + v.y * a.s);
             if (std::abs(e_star - n.e) < n.de / 2 + 2 * deg2rad(m.h_deg)) return true;
@@ -94,7 +107,7 @@ struct Context {
     bool specular_in_azimuth(const Node& n, double a_lo, double a_hi, double da) const {
         if (!n.hit) return false;
         const Material& m = material_of(s, n.hit->material);
-        if (!(m.mu > 0) || da <= deg2rad(m.h_deg) / 2) return false;
+        if (!(m.mu > 0) || da <= deg2rad(m.h_deg) / 4) return false;
         const glm::dvec3 v = normal_direction_sonar(n);
         const double a_star = std::atan2(v.y, v.x), h = deg2rad(m.h_deg);
         return a_star > a_lo - 2 * h && a_star < a_hi + 2 * h;

@@ -75,7 +75,7 @@ std::optional<Hit> SceneGeometry::intersect(const glm::dvec3& o, const glm::dvec
     RTCRayHit rh;
     rh.ray.org_x = float(o.x), rh.ray.org_y = float(o.y), rh.ray.org_z = float(o.z);
     rh.ray.dir_x = float(d.x), rh.ray.dir_y = float(d.y), rh.ray.dir_z = float(d.z);
-    rh.ray.tnear = 0.0f;
+    rh.ray.tnear = float(kMinHitRange_m);
     rh.ray.tfar = float(t_max);
     rh.ray.mask = ~0u;
     rh.ray.flags = 0;

@@ -12,6 +12,9 @@
 
 namespace sonarsim {
 
+/// Hits closer than this are ignored: a sonar touching a surface is not blocked by it [m].
+constexpr double kMinHitRange_m = 1e-5;
+
 /// Material index of the seafloor; object i has material index i + 1.
 constexpr unsigned kFloorMaterial = 0;
 

@@ -71,33 +71,55 @@ void SectorLayout::polar_to_index(double r, double a_deg, double& bin, double& b
     beam = (s_.azimuth_fov_deg / 2 - a_deg) / (s_.azimuth_fov_deg / s_.beams) - 0.5;
 }
 
-Image8 sector_image(const PolarImage& img, const SonarParams& s, const DisplayParams& d, int height_px) {
-    const SectorLayout L(s, height_px > 0 ? height_px : default_sector_height(s));
+SectorResampler::SectorResampler(const SonarParams& s, int height_px)
+    : sonar_(s), height_px_(height_px), layout_(s, height_px > 0 ? height_px : default_sector_height(s)) {
+    const int W = layout_.width(), H = layout_.height(), K = s.range_bins, N = s.beams;
+    taps_.resize(size_t(W) * H);
+    for (int py = 0; py < H; ++py)
+        for (int px = 0; px < W; ++px) {
+            double r, a, fb, fi;
+            if (!layout_.pixel_to_polar(px + 0.5, py + 0.5, r, a)) continue;
+            layout_.polar_to_index(r, a, fb, fi);
+            fb = std::clamp(fb, 0.0, K - 1.0), fi = std::clamp(fi, 0.0, N - 1.0);
+            const int b0 = std::min(int(fb), K - 1), i0 = std::min(int(fi), N - 1);
+            Tap& t = taps_[size_t(py) * W + px];
+            t.index = b0 * N + i0;
+            t.step_bin = b0 + 1 < K ? N : 0, t.step_beam = i0 + 1 < N ? 1 : 0;
+            t.tb = float(fb - b0), t.ti = float(fi - i0);
+        }
+}
+
+bool SectorResampler::matches(const SonarParams& s, int height_px) const {
+    return height_px == height_px_ && s.beams == sonar_.beams && s.range_bins == sonar_.range_bins &&
+           s.azimuth_fov_deg == sonar_.azimuth_fov_deg && s.range_min_m == sonar_.range_min_m &&
+           s.range_max_m == sonar_.range_max_m;
+}
+
+Image8 SectorResampler::apply(const PolarImage& img, const DisplayParams& d) const {
     std::vector<float> gray(img.level_db.size());
     for (size_t n = 0; n < gray.size(); ++n) gray[n] = gray_level(img.level_db[n], d.lo_db, d.hi_db);
+    std::array<std::array<std::uint8_t, 3>, 256> lut;
+    for (int g = 0; g < 256; ++g) lut[size_t(g)] = colormap_rgb(d.colormap, g / 255.0);
 
     Image8 out;
-    out.width = L.width(), out.height = L.height(), out.channels = 3;
-    out.pixels.resize(size_t(out.width) * out.height * 3);
-    for (int py = 0; py < out.height; ++py)
-        for (int px = 0; px < out.width; ++px) {
-            std::array<std::uint8_t, 3> c = kFanBackground;
-            double r, a;
-            if (L.pixel_to_polar(px + 0.5, py + 0.5, r, a)) {
-                double fb, fi;
-                L.polar_to_index(r, a, fb, fi);
-                fb = std::clamp(fb, 0.0, img.bins - 1.0), fi = std::clamp(fi, 0.0, img.beams - 1.0);
-                const int b0 = std::min(int(fb), img.bins - 1), i0 = std::min(int(fi), img.beams - 1);
-                const int b1 = std::min(b0 + 1, img.bins - 1), i1 = std::min(i0 + 1, img.beams - 1);
-                const double tb = fb - b0, ti = fi - i0;
-                auto g = [&](int b, int i) { return double(gray[size_t(b) * img.beams + i]); };
-                const double v = (1 - tb) * ((1 - ti) * g(b0, i0) + ti * g(b0, i1)) +
-                                 tb * ((1 - ti) * g(b1, i0) + ti * g(b1, i1));
-                c = colormap_rgb(d.colormap, v / 255.0);
-            }
-            std::copy(c.begin(), c.end(), out.pixels.begin() + (size_t(py) * out.width + px) * 3);
+    out.width = layout_.width(), out.height = layout_.height(), out.channels = 3;
+    out.pixels.resize(taps_.size() * 3);
+    for (size_t p = 0; p < taps_.size(); ++p) {
+        const Tap& t = taps_[p];
+        std::array<std::uint8_t, 3> c = kFanBackground;
+        if (t.index >= 0) {
+            const float* g = gray.data() + t.index;
+            const float v = (1 - t.tb) * ((1 - t.ti) * g[0] + t.ti * g[t.step_beam]) +
+                            t.tb * ((1 - t.ti) * g[t.step_bin] + t.ti * g[t.step_bin + t.step_beam]);
+            c = lut[size_t(std::clamp(int(std::lround(v)), 0, 255))];
         }
+        std::copy(c.begin(), c.end(), out.pixels.begin() + long(p) * 3);
+    }
     return out;
+}
+
+Image8 sector_image(const PolarImage& img, const SonarParams& s, const DisplayParams& d, int height_px) {
+    return SectorResampler(s, height_px).apply(img, d);
 }
 
 } // namespace sonarsim

@@ -47,6 +47,27 @@ class SectorLayout {
 /// Default height of the sector image [px]: the number of range bins, kept within [256, 2048].
 int default_sector_height(const SonarParams& sonar);
 
+/// Precomputed pixel -> (bin, beam) bilinear weights of a sector layout: forming an image is then a gather.
+class SectorResampler {
+  public:
+    SectorResampler(const SonarParams& sonar, int height_px);
+    /// True when it was built for the same image geometry.
+    bool matches(const SonarParams& sonar, int height_px) const;
+    Image8 apply(const PolarImage& img, const DisplayParams& display) const;
+    const SectorLayout& layout() const { return layout_; }
+
+  private:
+    struct Tap {
+        std::int32_t index = -1; ///< bin * beams + beam of the lower-left sample; -1 outside the fan
+        std::int32_t step_bin = 0, step_beam = 0;
+        float tb = 0, ti = 0;
+    };
+    SonarParams sonar_;
+    int height_px_;
+    SectorLayout layout_;
+    std::vector<Tap> taps_;
+};
+
 /// The sector-formed image (RGB): bilinear in (bin, beam) of the gray levels, then the colour map.
 Image8 sector_image(const PolarImage& img, const SonarParams& sonar, const DisplayParams& display,
                     int height_px = 0);

@@ -4,22 +4,464 @@
 #include "pose.hpp"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/IO/IOManager.hh>
+#include <OpenMesh/Core/IO/importer/ImporterT.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <mutex>
+#include <set>
+#include <sstream>
 
 namespace sonarsim {
 namespace {
 
 using OMesh = OpenMesh::PolyMesh_ArrayKernelT<>;
 
+// OpenMesh accepts much that is broken: it reads a binary STL with a lying triangle count as ASCII and
+// returns no faces, skips OBJ vertex lines it cannot read ("v nan 0 0"), drops faces with out-of-range
+// indices, and allocates whatever a PLY or OFF header or face valence claims (a 2e9-corner OFF face takes
+// gigabytes and minutes). So each file gets a structural check first (counts against the bytes that are
+// really there, every index in range, every coordinate a finite float), and OpenMesh's importer is watched
+// for faces it would drop. The checks never "repair": a file either loads as written or is rejected.
+
+/// A failed check: the message (and the 1-based line in text formats, 0 when unknown).
+struct Problem {
+    std::string message;
+    long line = 0;
+};
+
+[[noreturn]] void fail(const std::string& message, long line = 0) {
+    throw Problem{message, line};
+}
+
 std::string lower_extension(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
     return ext;
+}
+
+/// A token from the file for a message: quoted, shortened, bytes outside printable ASCII escaped.
+std::string show(const std::string& token) {
+    std::string s = "\"";
+    for (size_t i = 0; i < token.size() && i < 40; ++i) {
+        const auto c = static_cast<unsigned char>(token[i]);
+        if (c >= 0x20 && c < 0x7f) {
+            s += token[i];
+        } else {
+            char hex[8];
+            std::snprintf(hex, sizeof hex, "\\x%02x", unsigned(c));
+            s += hex;
+        }
+    }
+    return s + (token.size() > 40 ? "...\"" : "\"");
+}
+
+/// A finite single-precision number written as the whole token.
+bool finite_float(const std::string& token) {
+    if (token.empty()) return false;
+    char* end = nullptr;
+    errno = 0;
+    const float x = std::strtof(token.c_str(), &end);
+    return end == token.c_str() + token.size() && errno != ERANGE && std::isfinite(x);
+}
+
+/// A decimal integer written as the whole token.
+bool integer(const std::string& token, long long& value) {
+    if (token.empty()) return false;
+    char* end = nullptr;
+    errno = 0;
+    value = std::strtoll(token.c_str(), &end, 10);
+    return end == token.c_str() + token.size() && errno != ERANGE;
+}
+
+/// Lines of a text file split into whitespace-separated tokens; `#` comments removed when asked.
+class TextLines {
+  public:
+    TextLines(const std::string& text, bool hash_comments) : text_(text), comments_(hash_comments) {}
+    /// Next line with at least one token; false at the end.
+    bool next(std::vector<std::string>& tokens) {
+        while (pos_ < text_.size()) {
+            size_t end = text_.find('\n', pos_);
+            if (end == std::string::npos) end = text_.size();
+            std::string line = text_.substr(pos_, end - pos_);
+            pos_ = end + 1;
+            ++line_;
+            if (comments_) line = line.substr(0, line.find('#'));
+            tokens.clear();
+            std::istringstream in(line);
+            for (std::string t; in >> t;) tokens.push_back(t);
+            if (!tokens.empty()) return true;
+        }
+        return false;
+    }
+    long line() const { return line_; }
+
+  private:
+    const std::string& text_;
+    bool comments_;
+    size_t pos_ = 0;
+    long line_ = 0;
+};
+
+bool text_like(const std::string& bytes) {
+    for (unsigned char c : bytes)
+        if (c == 0 || (c < 0x20 && c != '\n' && c != '\r' && c != '\t' && c != '\f' && c != '\v'))
+            return false;
+    return true;
+}
+
+/// What a check learnt: the faces the file declares (OpenMesh must see as many).
+struct Expect {
+    long long faces = -1;
+    std::string hint; ///< added when OpenMesh refuses the file
+};
+
+// ---- OBJ ----
+
+Expect check_obj(const std::string& text) {
+    TextLines lines(text, true);
+    std::vector<std::string> t;
+    long long vertices = 0, faces = 0;
+    while (lines.next(t)) {
+        if (t[0] == "v") {
+            if (t.size() < 4 || !finite_float(t[1]) || !finite_float(t[2]) || !finite_float(t[3]))
+                fail("vertex needs 3 finite coordinates (single precision), got " +
+                         show(t.size() < 4 ? "" : t[1] + " " + t[2] + " " + t[3]),
+                     lines.line());
+            ++vertices;
+        } else if (t[0] == "f") {
+            std::set<long long> corners;
+            for (size_t k = 1; k < t.size(); ++k) {
+                long long i = 0;
+                if (!integer(t[k].substr(0, t[k].find('/')), i))
+                    fail("face corner " + show(t[k]) + " does not start with a vertex index", lines.line());
+                const long long resolved = i < 0 ? vertices + i + 1 : i;
+                if (i == 0 || resolved < 1 || resolved > vertices)
+                    fail(
+                        "face refers to vertex " + std::to_string(i) + " but " + std::to_string(vertices) +
+                            " vertices are defined before this line (indices start at 1; negative ones count "
+                            "back)",
+                        lines.line());
+                corners.insert(resolved);
+            }
+            if (corners.size() >= 3 && corners.size() != t.size() - 1)
+                fail("face repeats a vertex", lines.line());
+            if (corners.size() >= 3) ++faces; // fewer: a point or a line, no area; OpenMesh skips it
+        }
+    }
+    return {faces, ""};
+}
+
+// ---- OFF ----
+
+Expect check_off(const std::string& text) {
+    // OpenMesh reads the counts from the line after the magic word and knows no comments.
+    if (const size_t hash = text.find('#'); hash != std::string::npos)
+        fail("comments (#) are not supported in OFF files",
+             1 + long(std::count(text.begin(), text.begin() + long(hash), '\n')));
+    TextLines lines(text, false);
+    std::vector<std::string> t;
+    if (!lines.next(t)) fail("empty OFF file");
+    const std::string magic = t[0];
+    const size_t off = magic.rfind("OFF");
+    if (off == std::string::npos || off + 3 != magic.size() ||
+        magic.substr(0, off).find_first_not_of("STCN") != std::string::npos)
+        fail("first line must be OFF (or STOFF, COFF, NOFF, CNOFF...), got " + show(magic), lines.line());
+    if (t.size() > 1 && t[1] == "BINARY") fail("binary OFF is not supported; use ASCII OFF, PLY or STL");
+    if (t.size() > 1) fail("the counts must be on the line after " + show(magic), lines.line());
+    std::vector<std::string> counts;
+    if (!lines.next(counts)) fail("truncated: the vertex and face counts are missing");
+    long long nv = 0, nf = 0;
+    if (counts.size() < 2 || !integer(counts[0], nv) || !integer(counts[1], nf) || nv < 0 || nf < 0)
+        fail("expected the counts \"vertices faces edges\", got " + show(counts.empty() ? "" : counts[0]),
+             lines.line());
+    // Every vertex takes at least 6 bytes ("0 0 0\n"), every face at least 2: reject lying counts before
+    // anything is allocated.
+    if (double(nv) * 6 + double(nf) * 2 > double(text.size()))
+        fail("truncated: the header declares " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
+             " faces, more than the file's " + std::to_string(text.size()) + " bytes can hold");
+    const std::string declared =
+        " (the header declares " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces)";
+    for (long long v = 0; v < nv; ++v) {
+        if (!lines.next(t))
+            fail("truncated: the file ends after " + std::to_string(v) + " vertices" + declared);
+        if (t.size() < 3 || !finite_float(t[0]) || !finite_float(t[1]) || !finite_float(t[2]))
+            fail("vertex " + std::to_string(v) + " needs 3 finite coordinates (single precision), got " +
+                     show(t[0]),
+                 lines.line());
+    }
+    for (long long f = 0; f < nf; ++f) {
+        if (!lines.next(t)) fail("truncated: the file ends after " + std::to_string(f) + " faces" + declared);
+        long long k = 0;
+        if (!integer(t[0], k) || k < 0 || k > (long long)t.size() - 1)
+            fail("face " + std::to_string(f) + ": the corner count " + show(t[0]) +
+                     " is not followed by that many vertex indices on its line",
+                 lines.line());
+        for (long long c = 1; c <= k; ++c) {
+            long long i = 0;
+            if (!integer(t[size_t(c)], i) || i < 0 || i >= nv)
+                fail("face " + std::to_string(f) + " refers to vertex " + show(t[size_t(c)]) +
+                         "; allowed: 0 to " + std::to_string(nv - 1),
+                     lines.line());
+        }
+    }
+    return {nf, ""};
+}
+
+// ---- PLY ----
+
+struct PlyProperty {
+    int count_size = 0; ///< bytes of a list's count (0: not a list)
+    bool count_signed = false;
+    int size = 0; ///< bytes of the value or of each list item
+};
+struct PlyElement {
+    std::string name;
+    long long count = 0;
+    std::vector<PlyProperty> properties;
+};
+
+int ply_type_size(const std::string& type, bool& is_signed) {
+    is_signed = !(type[0] == 'u');
+    if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
+    if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+    if (type == "int" || type == "uint" || type == "int32" || type == "uint32") return 4;
+    if (type == "float" || type == "float32") return 4;
+    if (type == "double" || type == "float64") return 8;
+    return 0;
+}
+
+long long ply_read_count(const unsigned char* p, int size, bool is_signed, bool big_endian) {
+    std::uint64_t u = 0;
+    for (int b = 0; b < size; ++b) u |= std::uint64_t(p[big_endian ? size - 1 - b : b]) << (8 * b);
+    if (is_signed && size < 8 && (u >> (8 * size - 1)) & 1) return -1; // negative
+    return (long long)u;
+}
+
+Expect check_ply(const std::string& bytes) {
+    // The header, line by line and strictly: OpenMesh's PLY reader loops forever on some malformed headers.
+    std::vector<PlyElement> elements;
+    std::string format, hint;
+    size_t pos = 0, body = std::string::npos;
+    for (long line = 1; pos < bytes.size() && body == std::string::npos; ++line) {
+        size_t eol = bytes.find('\n', pos);
+        if (eol == std::string::npos) fail("truncated: the header has no end_header line");
+        std::istringstream in(bytes.substr(pos, eol - pos));
+        pos = eol + 1;
+        std::vector<std::string> t;
+        for (std::string w; in >> w;) t.push_back(w);
+        if (line == 1) {
+            if (t.size() != 1 || t[0] != "ply") fail("not a PLY file (the first line must be \"ply\")");
+        } else if (line == 2) {
+            if (t.size() != 3 || t[0] != "format" || t[2] != "1.0")
+                fail("header: the second line must be \"format ascii|binary_little_endian|binary_big_endian "
+                     "1.0\"",
+                     line);
+            format = t[1];
+        } else if (t.empty()) {
+            fail("header: empty line", line);
+        } else if (t[0] == "comment" || t[0] == "obj_info") {
+        } else if (t[0] == "end_header" && t.size() == 1) {
+            body = pos;
+        } else if (t[0] == "element") {
+            PlyElement e;
+            if (t.size() != 3 || !integer(t[2], e.count) || e.count < 0)
+                fail("header: bad element line " + show(t.size() > 1 ? t[1] : ""), line);
+            e.name = t[1];
+            elements.push_back(e);
+        } else if (t[0] == "property") {
+            if (elements.empty()) fail("header: property before any element", line);
+            PlyProperty p;
+            bool is_signed = false;
+            if (t.size() == 5 && t[1] == "list") {
+                p.count_size = ply_type_size(t[2], p.count_signed);
+                if (t[2] != "uchar" && t[2] != "uint8" && t[2] != "uint16" && t[2] != "int")
+                    hint = " (OpenMesh reads list lengths of type uchar, uint8, uint16 or int, not " +
+                           show(t[2]) + ")";
+                p.size = ply_type_size(t[3], is_signed);
+                if (p.count_size == 0 || p.size == 0 || t[2] == "float" || t[2] == "float32" ||
+                    t[2] == "double" || t[2] == "float64")
+                    fail("header: bad list property types " + show(t[2] + " " + t[3]), line);
+            } else if (t.size() == 3) {
+                p.size = ply_type_size(t[1], is_signed);
+                if (p.size == 0) fail("header: unknown property type " + show(t[1]), line);
+            } else {
+                fail("header: bad property line", line);
+            }
+            elements.back().properties.push_back(p);
+        } else {
+            fail("header: unknown keyword " + show(t[0]), line);
+        }
+    }
+    if (body == std::string::npos) fail("truncated: the header has no end_header line");
+    long long faces = -1;
+    for (auto& e : elements)
+        if (e.name == "face") faces = e.count;
+    const bool ascii = format == "ascii", big = format == "binary_big_endian";
+    if (!ascii && !big && format != "binary_little_endian")
+        fail("header: format must be ascii, binary_little_endian or binary_big_endian, got " + show(format));
+
+    // Walk the body element by element so that every declared count is backed by bytes (or tokens).
+    const size_t size = bytes.size();
+    auto truncated = [&](const PlyElement& e, long long i) {
+        fail("truncated: the header declares " + std::to_string(e.count) + " " + e.name +
+             " elements but the file ends inside " + e.name + " " + std::to_string(i));
+    };
+    if (ascii) {
+        std::istringstream in(bytes.substr(body));
+        std::string token;
+        for (const auto& e : elements)
+            for (long long i = 0; i < e.count; ++i)
+                for (const auto& p : e.properties) {
+                    long long items = 1;
+                    if (p.count_size) {
+                        if (!(in >> token)) truncated(e, i);
+                        if (!integer(token, items) || items < 0)
+                            fail(e.name + " " + std::to_string(i) + ": list length " + show(token) +
+                                 " is not a count");
+                        // Each item takes at least 2 bytes: no list can be longer than the file.
+                        if (double(items) * 2 > double(size)) truncated(e, i);
+                    }
+                    for (long long k = 0; k < items; ++k)
+                        if (!(in >> token)) truncated(e, i);
+                }
+    } else {
+        const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+        size_t pos = body;
+        for (const auto& e : elements)
+            for (long long i = 0; i < e.count; ++i)
+                for (const auto& p : e.properties) {
+                    if (p.count_size) {
+                        if (size - pos < size_t(p.count_size)) truncated(e, i);
+                        const long long items = ply_read_count(data + pos, p.count_size, p.count_signed, big);
+                        pos += size_t(p.count_size);
+                        if (items < 0) fail(e.name + " " + std::to_string(i) + ": negative list length");
+                        if (double(size - pos) < double(items) * p.size) truncated(e, i);
+                        pos += size_t(items) * size_t(p.size);
+                    } else {
+                        if (size - pos < size_t(p.size)) truncated(e, i);
+                        pos += size_t(p.size);
+                    }
+                }
+    }
+    return {faces, hint};
+}
+
+// ---- STL ----
+
+bool starts_with_solid(const std::string& bytes) {
+    const size_t p = bytes.find_first_not_of(" \t\r\n");
+    return p != std::string::npos && bytes.compare(p, 5, "solid") == 0;
+}
+
+Expect check_stl(const std::string& bytes) {
+    const size_t size = bytes.size();
+    if (size >= 84) {
+        std::uint32_t n = 0;
+        for (int b = 0; b < 4; ++b)
+            n |= std::uint32_t(static_cast<unsigned char>(bytes[size_t(80 + b)])) << (8 * b);
+        // OpenMesh's rule: binary when the size matches the triangle count exactly, otherwise ASCII.
+        if (84 + 50 * std::uint64_t(n) == size) {
+            for (std::uint32_t i = 0; i < n; ++i)
+                for (int c = 0; c < 9; ++c) {
+                    float x;
+                    std::memcpy(&x, bytes.data() + 84 + 50 * size_t(i) + 12 + 4 * c,
+                                4); // little-endian hosts
+                    if (!std::isfinite(x))
+                        fail("triangle " + std::to_string(i) + " has a non-finite vertex coordinate");
+                }
+            // OpenMesh skips triangles with two equal corners (no area), so no face count to compare.
+            return {};
+        }
+        if (!starts_with_solid(bytes) || !text_like(bytes))
+            fail("binary STL: the header declares " + std::to_string(n) +
+                 " triangles, which take 84 + 50 x " + std::to_string(n) + " = " +
+                 std::to_string(84 + 50 * std::uint64_t(n)) + " bytes, but the file has " +
+                 std::to_string(size) + " (truncated, or the count is wrong)");
+    } else if (!starts_with_solid(bytes) || !text_like(bytes)) {
+        fail("too short for a binary STL (" + std::to_string(size) +
+             " bytes, the header alone takes 84) and not "
+             "an ASCII STL (\"solid ...\")");
+    }
+    // ASCII STL: count facets, check every vertex line, and require the closing endsolid.
+    TextLines lines(bytes, false);
+    std::vector<std::string> t;
+    long long facets = 0, vertices = 0;
+    std::string last;
+    while (lines.next(t)) {
+        last = t[0];
+        if (t[0] == "facet") {
+            if (vertices != 3 * facets)
+                fail("facet " + std::to_string(facets) + " does not have 3 vertices", lines.line());
+            ++facets;
+        } else if (t[0] == "vertex") {
+            if (t.size() != 4 || !finite_float(t[1]) || !finite_float(t[2]) || !finite_float(t[3]))
+                fail("vertex needs 3 finite coordinates (single precision)", lines.line());
+            ++vertices;
+        }
+    }
+    if (last != "endsolid") fail("ASCII STL is truncated: it does not end with \"endsolid\"");
+    if (vertices != 3 * facets) fail("facet " + std::to_string(facets - 1) + " does not have 3 vertices");
+    return {}; // OpenMesh skips triangles with two equal corners (no area): no face count to compare
+}
+
+// ---- OpenMesh, watched ----
+
+/// Sees every face a reader hands over and records those that OpenMesh would drop without a word.
+class CheckingImporter : public OpenMesh::IO::ImporterT<OMesh> {
+  public:
+    CheckingImporter(OMesh& mesh, std::uintmax_t file_bytes) : ImporterT(mesh), file_bytes_(file_bytes) {}
+
+    OpenMesh::FaceHandle add_face(const VHandles& corners) override {
+        ++faces_seen;
+        const size_t n_vertices = this->n_vertices();
+        std::set<int> distinct;
+        for (const auto& vh : corners) {
+            if (vh.idx() < 0 || size_t(vh.idx()) >= n_vertices) {
+                if (problem.empty())
+                    problem = "face " + std::to_string(faces_seen - 1) + " refers to vertex " +
+                              std::to_string(vh.idx()) + "; allowed: 0 to " + std::to_string(n_vertices - 1) +
+                              " (" + std::to_string(n_vertices) + " vertices)";
+                return OpenMesh::FaceHandle();
+            }
+            distinct.insert(vh.idx());
+        }
+        if (distinct.size() < 3) return OpenMesh::FaceHandle(); // a point or a line: no area, no echo
+        if (distinct.size() != corners.size()) {
+            if (problem.empty()) problem = "face " + std::to_string(faces_seen - 1) + " repeats a vertex";
+            return OpenMesh::FaceHandle();
+        }
+        return ImporterT::add_face(corners);
+    }
+    using ImporterT::add_face;
+
+    /// Readers reserve what the header claims; never more than the file could hold.
+    void reserve(unsigned int nv, unsigned int ne, unsigned int nf) override {
+        if (nv <= file_bytes_ && nf <= file_bytes_ && ne <= 3 * file_bytes_) ImporterT::reserve(nv, ne, nf);
+    }
+
+    long long faces_seen = 0;
+    std::string problem;
+
+  private:
+    std::uintmax_t file_bytes_;
+};
+
+std::string read_all(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) fail("read error");
+    return bytes;
 }
 
 } // namespace
@@ -34,16 +476,40 @@ TriMesh load_mesh(const std::string& path, const std::string& scene_file, const 
     if (!std::filesystem::exists(path, ec)) throw InputError(scene_file, key, where + ": file not found");
     if (!std::filesystem::is_regular_file(path, ec))
         throw InputError(scene_file, key, where + ": not a regular file");
-    if (!std::ifstream(path).good()) throw InputError(scene_file, key, where + ": cannot be read");
-    if (std::filesystem::file_size(path, ec) == 0)
-        throw InputError(scene_file, key, where + ": file is empty");
+    if (!std::ifstream(path).good())
+        throw InputError(scene_file, key, where + ": cannot be read: " + std::strerror(errno));
+    const std::uintmax_t file_bytes = std::filesystem::file_size(path, ec);
+    if (file_bytes == 0) throw InputError(scene_file, key, where + ": file is empty");
 
     OMesh om;
-    OpenMesh::IO::Options opt;
-    omerr().disable();
-    omlog().disable();
-    const bool ok = OpenMesh::IO::read_mesh(om, path, opt);
-    if (!ok) throw InputError(scene_file, key, where + ": not a valid " + ext.substr(1) + " mesh");
+    CheckingImporter importer(om, file_bytes);
+    try {
+        const std::string bytes = read_all(path);
+        const Expect expect = ext == ".obj"   ? check_obj(bytes)
+                              : ext == ".off" ? check_off(bytes)
+                              : ext == ".ply" ? check_ply(bytes)
+                                              : check_stl(bytes);
+        bool ok = false;
+        {
+            // OpenMesh's log streams are process-wide; loads are rare, so one at a time.
+            static std::mutex mutex;
+            std::lock_guard<std::mutex> lock(mutex);
+            omerr().disable();
+            omlog().disable();
+            OpenMesh::IO::Options opt;
+            ok = OpenMesh::IO::IOManager().read(path, importer, opt);
+        }
+        if (!ok) fail("not a valid " + ext.substr(1) + " mesh" + expect.hint);
+        if (!importer.problem.empty()) fail(importer.problem);
+        if (expect.faces >= 0 && importer.faces_seen != expect.faces)
+            fail("the file declares " + std::to_string(expect.faces) + " faces but " +
+                 std::to_string(importer.faces_seen) + " could be read");
+    } catch (const Problem& p) {
+        throw InputError(scene_file, key,
+                         where + (p.line > 0 ? ", line " + std::to_string(p.line) : "") + ": " + p.message);
+    } catch (const std::exception& e) { // e.g. std::bad_alloc from a reader
+        throw InputError(scene_file, key, where + ": cannot be loaded: " + e.what());
+    }
 
     TriMesh out;
     out.vertices.reserve(om.n_vertices());
@@ -80,7 +546,13 @@ TriMesh object_world_mesh(const ObjectDesc& o, const std::string& scene_file, co
     TriMesh m = o.box_m ? make_box(*o.box_m) : load_mesh(o.mesh_resolved, scene_file, key + ".mesh");
     const glm::dmat3 R = rotation_matrix(o.orientation_deg);
     const glm::dvec3 t = to_glm(o.position_m), s = to_glm(o.scale);
-    for (auto& v : m.vertices) v = glm::vec3(R * (s * glm::dvec3(v)) + t);
+    for (auto& v : m.vertices) {
+        v = glm::vec3(R * (s * glm::dvec3(v)) + t);
+        if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+            throw InputError(scene_file, key + ".scale",
+                             "scaled and placed, the object's coordinates exceed single precision; use a "
+                             "smaller scale");
+    }
     return m;
 }
 

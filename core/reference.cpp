@@ -61,6 +61,14 @@ PolarImage floor_reference(const SceneDesc& s, int panels) {
                         }
                 };
                 add_roots(0.0); // horizon
+                if (mat.mu >
+                    0) // a specular lobe: cut around normal incidence (d_z extreme at e = delta, delta + pi)
+                    for (double centre : {delta, delta + kPi, delta - kPi})
+                        for (double f : {0.0, 0.25, 0.5, 1.0, 2.0, 4.0, 8.0})
+                            for (double sgn : {-1.0, 1.0}) {
+                                const double e = centre + sgn * f * deg2rad(mat.h_deg);
+                                if (e > -phi / 2 && e < phi / 2) cuts.push_back(e);
+                            }
                 for (int k = 0; k <= K; ++k) add_roots(H / (r_min + k * dr));
                 std::sort(cuts.begin(), cuts.end());
                 for (size_t m = 0; m + 1 < cuts.size(); ++m) {

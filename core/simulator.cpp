@@ -71,7 +71,9 @@ const Frame& Simulator::render() {
     }
     if (dirty_ <= Stage::Display) {
         const auto t0 = std::chrono::steady_clock::now();
-        frame_.sector = sector_image(frame_.polar, scene_.sonar, scene_.display);
+        if (!resampler_ || !resampler_->matches(scene_.sonar, 0))
+            resampler_ = std::make_unique<SectorResampler>(scene_.sonar, 0);
+        frame_.sector = resampler_->apply(frame_.polar, scene_.display);
         frame_.image_ms = ms_since(t0);
     }
     dirty_ = Stage::None;

@@ -44,6 +44,7 @@ class Simulator {
     SceneDesc scene_;
     std::unique_ptr<SceneGeometry> geometry_;
     Frame frame_;
+    std::unique_ptr<SectorResampler> resampler_; ///< rebuilt only when the image geometry changes
     Stage dirty_ = Stage::Trace;
 };
 
