@@ -30,17 +30,20 @@ PolarImage render(const SceneDesc& s) {
 
 /// No NaN, no +inf anywhere; returns the number of echoing (finite) bins.
 long check_finite(const PolarImage& img) {
-    long finite = 0;
+    long finite = 0, nan = 0, pos_inf = 0;
     for (float v : img.level_db) {
-        REQUIRE_FALSE(std::isnan(v));
-        REQUIRE(v < INFINITY);
-        finite += v > -INFINITY;
+        nan += std::isnan(v);
+        pos_inf += v == INFINITY;
+        finite += std::isfinite(v);
     }
+    REQUIRE(nan == 0);
+    REQUIRE(pos_inf == 0);
     return finite;
 }
 
-ImageError against_floor_reference(const SceneDesc& s) {
-    const PolarImage img = render(s), ref = floor_reference(s, 16);
+/// The floor reference with `panels` x 8 Gauss-Legendre azimuth nodes per beam (16 resolve a 0.05 deg lobe).
+ImageError against_floor_reference(const SceneDesc& s, int panels = 4) {
+    const PolarImage img = render(s), ref = floor_reference(s, panels);
     REQUIRE(check_finite(img) > 0);
     REQUIRE(check_finite(ref) > 0);
     const ImageError e = compare_images(img, ref);
@@ -78,7 +81,7 @@ TEST_CASE("narrow specular lobe at normal incidence, h down to 0.05 deg", "[stif
         SceneDesc s = floor_scene(2.0, {0, 90, 0}); // looking straight down: normal incidence at the centre
         s.seafloor->material.mu = 1.0, s.seafloor->material.h_deg = h;
         s.sonar.range_min_m = 1.5, s.sonar.range_max_m = 2.5, s.sonar.range_bins = 200;
-        const ImageError e = against_floor_reference(s);
+        const ImageError e = against_floor_reference(s, 16);
         INFO("h = " << h);
         CHECK(e.rel_l1 < 0.01);
         CHECK(e.holes == 0);
