@@ -86,6 +86,18 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
     j["beam_azimuths_deg"] = beam_azimuths_deg(s.sonar);
     j["range_bin_edges_m"] = range_bin_edges_m(s.sonar);
     j["rays_traced"] = f.hits.rays_traced;
+    const auto& est = f.hits.error_estimate;
+    if (est.valid)
+        j["sampling_error_estimate"] = {
+            {"rel_l1", est.rel_l1},
+            {"median_abs_db", est.median_abs_db},
+            {"p95_abs_db", est.p95_abs_db},
+            {"passes", est.passes},
+            {"tolerance_met", est.median_abs_db <= s.sampling.tolerance_db},
+            {"method",
+             "half the difference to the same cells one refinement level coarser (bins echoing in both)"}};
+    else
+        j["sampling_error_estimate"] = nullptr;
     j["time_ms"] = {{"trace", f.trace_ms},
                     {"shade", f.shade_ms},
                     {"image", f.image_ms},
