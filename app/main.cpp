@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
     sonarsim::app::register_render(app, run);
     sonarsim::app::register_view(app, run);
     sonarsim::app::register_study(app, run);
+    sonarsim::app::register_params(app, run);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
