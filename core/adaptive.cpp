@@ -16,9 +16,10 @@ using detail::Angle;
 
 namespace {
 
-constexpr int kElevationLevels = 5; // ternary splits: cells down to 1/243 of the base width
-constexpr int kAzimuthLevels = 3;   // beams with disagreeing columns: up to 27x the base azimuth rays
-constexpr int kMaxPasses = 3;       // base refinements (x3) when the error estimate misses the tolerance
+constexpr int kElevationLevels = 5;   // ternary splits: cells down to 1/243 of the base width
+constexpr int kAzimuthLevels = 3;     // beams holding a narrow specular lobe: up to 27x the base azimuth rays
+constexpr int kEdgeAzimuthLevels = 2; // beams whose columns see different surfaces: up to 9x
+constexpr int kMaxPasses = 3;         // base refinements (x3) when the error estimate misses the tolerance
 
 /// One elevation cell of a column.
 struct Node {
@@ -212,10 +213,12 @@ TraceResult trace_pass(const Context& ctx, int M0, TraceResult::ErrorEstimate& e
             const double a_hi = cols.front().a + cols.front().da / 2,
                          a_lo = cols.back().a - cols.back().da / 2;
             bool f = false;
-            for (size_t k = 0; k + 1 < cols.size() && !f; ++k)
+            for (size_t k = 0; k + 1 < cols.size() && !f && lv < kEdgeAzimuthLevels; ++k)
                 f = columns_disagree(ctx, cols[k], cols[k + 1]);
-            if (!f && i > 0) f = columns_disagree(ctx, beams[size_t(i) - 1].back(), cols.front());
-            if (!f && i + 1 < N) f = columns_disagree(ctx, cols.back(), beams[size_t(i) + 1].front());
+            if (!f && i > 0 && lv < kEdgeAzimuthLevels)
+                f = columns_disagree(ctx, beams[size_t(i) - 1].back(), cols.front());
+            if (!f && i + 1 < N && lv < kEdgeAzimuthLevels)
+                f = columns_disagree(ctx, cols.back(), beams[size_t(i) + 1].front());
             for (size_t k = 0; k < cols.size() && !f; ++k)
                 for (auto& n : cols[k].nodes)
                     if ((f = ctx.specular_in_azimuth(n, a_lo, a_hi, cols[k].da))) break;
@@ -256,7 +259,9 @@ TraceResult trace_pass(const Context& ctx, int M0, TraceResult::ErrorEstimate& e
     });
     for (auto& b : beams)
         for (auto& c : b) fine.rays_traced += c.rays;
-    const ImageError e = compare_images(shade(coarse, s), shade(fine, s));
+    PolarImage fine_image = shade(fine, s);
+    const ImageError e = compare_images(shade(coarse, s), fine_image);
+    fine.shaded = std::move(fine_image); // the caller need not shade these cells again
     // The coarse image's error is taken as three times the fine one's (first order at discontinuities, the
     // slowest case): fine error ~ |fine - coarse| / 2.
     est.valid = true;

@@ -26,6 +26,7 @@ double backscatter_db(const Material& m, double cos_inc) {
     cos_inc = std::min(cos_inc, 1.0);
     // Natural-log terms; the sum is done as log-sum-exp so no term underflows on its own.
     const double lambert = m.nu_db * kLn10Over10 + (m.q == 0 ? 0.0 : m.q * std::log(cos_inc));
+    if (!(m.mu > 0)) return lambert / kLn10Over10;
     double spec = kNegInf;
     if (m.mu > 0) {
         const double theta = std::acos(cos_inc), h = deg2rad(m.h_deg);
@@ -43,10 +44,14 @@ ShadeConstants shade_constants(const SceneDesc& s) {
 
 double cell_echo_db(const ShadeConstants& c, const Material& m, double r, double cos_inc, double d_omega) {
     if (!(r > 0) || !(cos_inc > 0) || !(d_omega > 0)) return kNegInf;
-    // -2 L_TL + 10 log10(r^2) = -20 log10 r - 2 alpha r (spreading and area combined: stays finite as r ->
-    // 0).
-    return c.source_level_db - 20.0 * std::log10(r) - 2.0 * c.alpha_db_per_m * r +
-           backscatter_db(m, cos_inc) + 10.0 * std::log10(d_omega / std::min(cos_inc, 1.0));
+    cos_inc = std::min(cos_inc, 1.0);
+    // -2 L_TL + 10 log10(r^2 dOmega / cos) = -20 log10 r - 2 alpha r + 10 log10(dOmega / cos): spreading and
+    // area combined, so it stays finite as r -> 0. Without a specular term L_BS folds in as nu + q 10 log10
+    // cos.
+    const double base = c.source_level_db - 2.0 * c.alpha_db_per_m * r;
+    if (m.mu == 0)
+        return base + m.nu_db + (std::log(d_omega / (r * r)) + (m.q - 1.0) * std::log(cos_inc)) / kLn10Over10;
+    return base + backscatter_db(m, cos_inc) + 10.0 * std::log10(d_omega / (cos_inc * r * r));
 }
 
 } // namespace sonarsim

@@ -1,19 +1,13 @@
 // Shading: apply the sonar equation to stored hits and sum echoes in linear intensity per (range bin, beam).
 #pragma once
 #include "physics.hpp"
+#include "polar_image.hpp"
 #include "scene.hpp"
 #include "trace.hpp"
 
 #include <vector>
 
 namespace sonarsim {
-
-/// Raw (polar) image: rows = range bins (row 0 nearest), columns = beams (column 0 port-most).
-struct PolarImage {
-    int bins = 0, beams = 0;
-    std::vector<float> level_db; ///< L_EN [dB]; -inf where nothing echoes. Index [bin * beams + beam].
-    float at(int bin, int beam) const { return level_db[size_t(bin) * size_t(beams) + size_t(beam)]; }
-};
 
 /// Material of index `m` (kFloorMaterial or object index + 1).
 const Material& material_of(const SceneDesc& scene, unsigned m);

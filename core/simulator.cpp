@@ -63,7 +63,12 @@ const Frame& Simulator::render() {
         frame_.hits = trace(*geometry_, scene_);
         frame_.trace_ms = frame_.hits.trace_ms;
     }
-    if (dirty_ <= Stage::Shade) {
+    if (dirty_ <= Stage::Trace && frame_.hits.shaded) { // the tracer shaded its cells with this very scene
+        frame_.polar = std::move(*frame_.hits.shaded);
+        frame_.hits.shaded.reset();
+        frame_.alpha_db_per_m = shade_constants(scene_).alpha_db_per_m;
+        frame_.shade_ms = 0;
+    } else if (dirty_ <= Stage::Shade) {
         const auto t0 = std::chrono::steady_clock::now();
         frame_.polar = shade(frame_.hits, scene_);
         frame_.alpha_db_per_m = shade_constants(scene_).alpha_db_per_m;

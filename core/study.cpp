@@ -18,7 +18,7 @@ SceneDesc with_sampling(SceneDesc s, const Sampling& m) {
 
 PolarImage render_raw(const SceneGeometry& g, const SceneDesc& s, TraceResult* hits = nullptr) {
     TraceResult t = trace(g, s);
-    PolarImage img = shade(t, s);
+    PolarImage img = t.shaded ? std::move(*t.shaded) : shade(t, s);
     if (hits) *hits = std::move(t);
     return img;
 }

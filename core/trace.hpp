@@ -4,7 +4,10 @@
 #include "geometry.hpp"
 #include "scene.hpp"
 
+#include "polar_image.hpp"
+
 #include <cstdint>
+#include <optional>
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -27,6 +30,9 @@ struct TraceResult {
     int beams = 0;
     std::vector<std::vector<Cell>> cells; ///< per beam: the cells whose ray hit something within reach
     std::uint64_t rays_traced = 0;
+    /// Set when the tracer already shaded its cells with the scene it was given (adaptive does, to estimate
+    /// its error); the L_EN image of those cells.
+    std::optional<PolarImage> shaded;
     /// Adaptive scheme: estimated error of this sampling (difference to one refinement level coarser).
     struct ErrorEstimate {
         bool valid = false;
