@@ -23,7 +23,6 @@ namespace {
 void apply_paper_normals(TraceResult& out, const SceneDesc& s, const std::vector<glm::vec3>& grid_point,
                          const std::vector<char>& grid_hit) {
     const int N = s.sonar.beams, K = s.sampling.azimuth_rays, M = s.sampling.elevation_rays, cols = N * K;
-    const glm::dvec3 o = to_glm(s.sonar.pose.position_m);
     tbb::parallel_for(0, N, [&](int i) {
         for (auto& c : out.cells[size_t(i)]) {
             const int k = int(c.elevation_index) / M, j = int(c.elevation_index) % M, col = i * K + k;
@@ -37,8 +36,9 @@ void apply_paper_normals(TraceResult& out, const SceneDesc& s, const std::vector
             const glm::vec3* pe = at(col, j - 1);
             if (!pe) pe = at(col, j + 1);
             if (!pa || !pe) continue;
-            const glm::dvec3 n = glm::cross(glm::dvec3(*pa - c.point), glm::dvec3(*pe - c.point));
-            const glm::dvec3 ray = glm::dvec3(c.point) - o;
+            // Grid points are stored relative to the sonar, so they keep their precision far from the origin.
+            const glm::dvec3 ray(*at(col, j));
+            const glm::dvec3 n = glm::cross(glm::dvec3(*pa) - ray, glm::dvec3(*pe) - ray);
             const double len = glm::length(n) * glm::length(ray);
             if (len > 0) c.cos_incidence = float(std::abs(glm::dot(n, ray)) / len);
         }
@@ -58,7 +58,8 @@ TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s) {
     for (int j = 0; j < M; ++j) e_mid[size_t(j)] = Angle(phi / 2 - (j + 0.5) * de);
     for (int j = 0; j <= M; ++j) e_edge[size_t(j)] = Angle(phi / 2 - j * de);
 
-    // Paper normals need each ray's neighbours across beams, so they need the full grid first.
+    // Paper normals need each ray's neighbours across beams, so they need the full grid first (hit points
+    // relative to the sonar).
     const bool paper = s.sampling.normals == NormalSource::Paper;
     std::vector<glm::vec3> grid_point(paper ? size_t(N) * K * M : 0);
     std::vector<char> grid_hit(paper ? size_t(N) * K * M : 0, 0);
@@ -81,7 +82,7 @@ TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s) {
                 c.elevation_index = std::uint32_t(k * M + j);
                 if (paper) {
                     const size_t gi = size_t(i * K + k) * M + size_t(j);
-                    grid_point[gi] = c.point, grid_hit[gi] = 1;
+                    grid_point[gi] = glm::vec3(h->t * d), grid_hit[gi] = 1; // p - o
                 }
                 cells.push_back(c);
             }

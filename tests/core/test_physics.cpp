@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 
 using namespace sonarsim;
 
@@ -30,9 +31,55 @@ TEST_CASE("GSAB backscatter against hand values", "[physics]") {
           Approx(10 * std::log10(std::exp(-0.5) + std::pow(10, -4.5) * c * c)).epsilon(1e-9));
 }
 
-TEST_CASE("Fig. 9 pose 1 sees the prism centre at +0.45 deg, 1.68 m", "[pose]") {
-    const SceneDesc s = default_scene();
-    const Polar p = world_to_sonar_polar(s.sonar.pose, to_glm(s.objects[0].position_m));
-    CHECK(p.azimuth_deg == Approx(0.45).margin(0.05));
-    CHECK(p.range_m == Approx(1.68).margin(0.005));
+TEST_CASE("absorption follows eq. 7 in f, T and D", "[physics]") {
+    // f in kHz, T in degC, D in km: 0.00049 f^2 exp(-(T/27 + D/17)) / 1000
+    CHECK(absorption_db_per_m(1000, 0, 0) == Approx(0.49).epsilon(1e-12));
+    CHECK(absorption_db_per_m(2000, 27, 0) == Approx(4 * 0.49 / std::exp(1.0)).epsilon(1e-12));
+    CHECK(absorption_db_per_m(1000, 0, 17000) == Approx(0.49 / std::exp(1.0)).epsilon(1e-12));
+    // Depth in metres enters as D/1000 km: 3 m changes alpha by a factor exp(-3/17000) only.
+    CHECK(absorption_db_per_m(3000, 10, 3) / absorption_db_per_m(3000, 10, 0) ==
+          Approx(std::exp(-3.0 / 17000)).epsilon(1e-12));
+}
+
+TEST_CASE("transmission loss against hand values", "[physics]") {
+    // 2 m at Table II's alpha: 20 log10 2 + 2 * 3.04 = 6.0206 + 6.08
+    CHECK(transmission_loss_db(2.0, 3.04) == Approx(12.10060).margin(1e-5));
+    CHECK(transmission_loss_db(0.1, 0.0) == Approx(-20.0));
+    CHECK(transmission_loss_db(4.0, 1.5) == Approx(12.04120 + 6.0).margin(1e-5));
+}
+
+TEST_CASE("GSAB: Lambert exponent, specular lobe and no return", "[physics]") {
+    Material m;
+    m.nu_db = -30, m.q = 4;
+    CHECK(backscatter_db(m, 0.5) == Approx(-30 + 40 * std::log10(0.5)).epsilon(1e-12));
+    m.q = 0; // Lambert term constant
+    CHECK(backscatter_db(m, 0.01) == Approx(-30.0).epsilon(1e-12));
+    // Specular term alone dominates near normal incidence: mu = 0.1, h = 5 deg, theta = 3 deg.
+    m.q = 2, m.nu_db = -45, m.mu = 0.1, m.h_deg = 5;
+    const double th = 3 * kPi / 180, h = 5 * kPi / 180;
+    const double s =
+        0.1 * std::exp(-th * th / (2 * h * h)) + std::pow(10, -4.5) * std::cos(th) * std::cos(th);
+    CHECK(backscatter_db(m, std::cos(th)) == Approx(10 * std::log10(s)).epsilon(1e-10));
+    // mu = 0 turns it off exactly (the paper's default).
+    m.mu = 0;
+    CHECK(backscatter_db(m, std::cos(th)) == Approx(-45 + 20 * std::log10(std::cos(th))).epsilon(1e-12));
+    // Nothing returns from behind the surface or exactly at grazing incidence.
+    CHECK(backscatter_db(m, 0.0) == -std::numeric_limits<double>::infinity());
+    CHECK(backscatter_db(m, -0.3) == -std::numeric_limits<double>::infinity());
+}
+
+TEST_CASE("one cell's echo level is L_S - 2 TL + L_BS + 10 log10(r^2 dOmega / cos)", "[physics]") {
+    const ShadeConstants k{230.0, 10.0, 3.04};
+    Material m; // nu -45 dB, q 2
+    const double r = 2.0, c = 0.5, dom = 1e-6;
+    const double expect = 230 - 2 * (20 * std::log10(r) + 3.04 * r) + (-45 + 20 * std::log10(c)) +
+                          10 * std::log10(r * r * dom / c);
+    CHECK(cell_echo_db(k, m, r, c, dom) == Approx(expect).epsilon(1e-12));
+    CHECK(cell_echo_db(k, m, r, 0.0, dom) == -std::numeric_limits<double>::infinity());
+    CHECK(cell_echo_db(k, m, 0.0, c, dom) == -std::numeric_limits<double>::infinity());
+    // The noise level does not enter a cell's echo; shade_constants carries it with L_S and alpha.
+    const ShadeConstants d = shade_constants(SceneDesc{});
+    CHECK(d.source_level_db == 230.0);
+    CHECK(d.noise_level_db == 10.0);
+    CHECK(d.alpha_db_per_m == Approx(3.0443).margin(5e-4));
 }

@@ -1,0 +1,143 @@
+// Energy bookkeeping: the echo a beam's cells carry ends up, all of it and only it, in that beam's bins.
+#include "support.hpp"
+
+#include "core/physics.hpp"
+#include "core/pose.hpp"
+#include "core/scene_io.hpp"
+#include "core/shade.hpp"
+#include "core/simulator.hpp"
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+
+using namespace sonarsim;
+
+namespace {
+
+/// Range interval a cell's echo may spread over (sum of its elevation and azimuth range extents).
+void footprint(const Cell& c, double& lo, double& hi) {
+    lo = std::min(c.range_e_lo_m, c.range_e_hi_m) + std::min(c.range_a_lo_m, c.range_a_hi_m) - c.range_m;
+    hi = std::max(c.range_e_lo_m, c.range_e_hi_m) + std::max(c.range_a_lo_m, c.range_a_hi_m) - c.range_m;
+}
+
+/// The default scene, seen from a pose where every cell lies inside [r_min, r_max).
+SceneDesc inside_scene() {
+    SceneDesc s = default_scene();
+    s.sonar.range_min_m = 0.5, s.sonar.range_max_m = 6.0; // floor echoes reach ~2.4 m, prism ~1.6 m
+    return s;
+}
+
+Cell hand_cell(float r, float e_lo, float e_hi, float a_lo, float a_hi) {
+    Cell c{};
+    c.range_m = r, c.range_e_lo_m = e_lo, c.range_e_hi_m = e_hi, c.range_a_lo_m = a_lo, c.range_a_hi_m = a_hi;
+    c.cos_incidence = 1, c.solid_angle_sr = 1e-6;
+    return c;
+}
+
+} // namespace
+
+TEST_CASE("each beam's bins hold exactly the sum of its cells' intensities", "[energy]") {
+    for (SamplingScheme scheme : {SamplingScheme::Uniform, SamplingScheme::Spread}) {
+        SceneDesc s = inside_scene();
+        s.sampling.scheme = scheme;
+        s.sampling.azimuth_rays = 2;
+        INFO((scheme == SamplingScheme::Spread ? "spread" : "uniform"));
+        Simulator sim(s);
+        const Frame& f = sim.render();
+        const ShadeConstants k = shade_constants(s);
+        const std::vector<double> edges = range_bin_edges_m(s.sonar);
+        double worst = 0;
+        size_t cells = 0, object_cells = 0;
+        for (int i = 0; i < s.sonar.beams; ++i) {
+            double cell_sum = 0;
+            for (const Cell& c : f.hits.cells[size_t(i)]) {
+                double lo, hi;
+                footprint(c, lo, hi);
+                if (scheme == SamplingScheme::Uniform) lo = hi = c.range_m;
+                REQUIRE(lo >= s.sonar.range_min_m); // premise: nothing falls outside the window
+                REQUIRE(hi < s.sonar.range_max_m);
+                cell_sum += test::lin(cell_echo_db(k, material_of(s, c.material), c.range_m, c.cos_incidence,
+                                                   c.solid_angle_sr));
+                ++cells, object_cells += c.material != kFloorMaterial;
+            }
+            // The image stores L_EN as float: each bin may be off by half an ulp of its dB value.
+            double bin_sum = 0, bound = 0;
+            for (int b = 0; b < s.sonar.range_bins; ++b) {
+                const float l = f.polar.at(b, i);
+                const double e = test::lin(double(l) + s.sonar.noise_level_db);
+                bin_sum += e;
+                if (std::isfinite(l))
+                    bound +=
+                        e * std::log(10.0) / 10 * (std::nextafter(std::abs(l), INFINITY) - std::abs(l)) / 2;
+            }
+            INFO("beam " << i);
+            CHECK(std::abs(bin_sum - cell_sum) <= 1.0001 * bound + 1e-12 * cell_sum);
+            if (cell_sum > 0) worst = std::max(worst, std::abs(bin_sum / cell_sum - 1));
+        }
+        std::printf(
+            "energy %-7s: %zu cells (%zu on the prism), worst beam |sum bins / sum cells - 1| = %.2e\n",
+            scheme == SamplingScheme::Spread ? "spread" : "uniform", cells, object_cells, worst);
+        CHECK(object_cells > 100); // the prism is in the picture
+        CHECK(worst < 1e-6);       // float storage of the dB image: ~9e-7 at most
+    }
+}
+
+TEST_CASE("cell_fraction_in sums to 1 over the bins covering each cell", "[energy]") {
+    SceneDesc s = inside_scene();
+    Simulator sim(s);
+    const Frame& f = sim.render();
+    const std::vector<double> edges = range_bin_edges_m(s.sonar);
+    const double dr = edges[1] - edges[0];
+    size_t checked = 0;
+    double worst = 0;
+    for (int i = 0; i < s.sonar.beams; i += 5)
+        for (const Cell& c : f.hits.cells[size_t(i)]) {
+            for (SamplingScheme scheme : {SamplingScheme::Uniform, SamplingScheme::Spread}) {
+                double lo, hi;
+                footprint(c, lo, hi);
+                const int k0 =
+                    std::max(0, int(std::floor((std::min<double>(lo, c.range_m) - edges[0]) / dr)) - 1);
+                const int k1 =
+                    std::min(s.sonar.range_bins - 1,
+                             int(std::floor((std::max<double>(hi, c.range_m) - edges[0]) / dr)) + 1);
+                double sum = 0, all = 0;
+                for (int b = k0; b <= k1; ++b)
+                    sum += cell_fraction_in(c, scheme, edges[size_t(b)], edges[size_t(b) + 1]);
+                for (int b = 0; b < s.sonar.range_bins; ++b)
+                    all += cell_fraction_in(c, scheme, edges[size_t(b)], edges[size_t(b) + 1]);
+                worst = std::max(worst, std::abs(sum - 1));
+                CHECK(all == Approx(sum).margin(1e-15)); // nothing outside the footprint
+            }
+            ++checked;
+        }
+    CHECK(checked > 1000);
+    CHECK(worst < 1e-12);
+}
+
+TEST_CASE("cell_fraction_in against hand values", "[energy]") {
+    // Elevation extent U[1.0, 1.2] plus azimuth extent U[-0.05, 0.05] about r = 1.1: a trapezoid on
+    // [0.95, 1.25] rising over 0.1 m, flat over 0.1 m, falling over 0.1 m (p = 0.1, q = 0.2).
+    const Cell c = hand_cell(1.1f, 1.0f, 1.2f, 1.05f, 1.15f);
+    const auto S = SamplingScheme::Spread;
+    CHECK(cell_fraction_in(c, S, 0.90, 0.95) == Approx(0.0).margin(1e-6));
+    CHECK(cell_fraction_in(c, S, 0.95, 1.00) == Approx(0.0625).margin(1e-6)); // x^2 / (2pq), x = 0.05
+    CHECK(cell_fraction_in(c, S, 0.95, 1.05) == Approx(0.25).margin(1e-6));   // p / (2q)
+    CHECK(cell_fraction_in(c, S, 1.05, 1.15) == Approx(0.5).margin(1e-6));    // flat part: 0.1 / q
+    CHECK(cell_fraction_in(c, S, 1.15, 1.25) == Approx(0.25).margin(1e-6));
+    CHECK(cell_fraction_in(c, S, 0.0, 10.0) == Approx(1.0).margin(1e-12));
+    // The reversed edge order (range falls with elevation) gives the same distribution.
+    const Cell rev = hand_cell(1.1f, 1.2f, 1.0f, 1.15f, 1.05f);
+    CHECK(cell_fraction_in(rev, S, 0.95, 1.00) == Approx(0.0625).margin(1e-6));
+    // No azimuth extent: a single uniform over the elevation extent.
+    const Cell flat = hand_cell(1.1f, 1.0f, 1.2f, 1.1f, 1.1f);
+    CHECK(cell_fraction_in(flat, S, 1.0, 1.05) == Approx(0.25).margin(1e-6));
+    // Uniform: all of it in the bin that holds its range, half-open [r0, r1).
+    const auto U = SamplingScheme::Uniform;
+    CHECK(cell_fraction_in(c, U, 1.0, 1.09) == 0.0);
+    CHECK(cell_fraction_in(c, U, 1.09, 1.2) == 1.0);
+    const Cell edge = hand_cell(1.125f, 1.0f, 1.2f, 1.1f, 1.15f);
+    CHECK(cell_fraction_in(edge, U, 1.0, 1.125) == 0.0);
+    CHECK(cell_fraction_in(edge, U, 1.125, 1.25) == 1.0);
+}

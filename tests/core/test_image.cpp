@@ -1,0 +1,130 @@
+// Display geometry: gray mapping, the raw image's orientation and the sector-formed (fan) image layout.
+#include "core/image.hpp"
+#include "core/pose.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
+
+using namespace sonarsim;
+
+namespace {
+
+/// A raw image with every bin -inf except beam `beam`, which holds `level` in every bin.
+PolarImage one_beam(const SonarParams& s, int beam, float level) {
+    PolarImage img;
+    img.bins = s.range_bins, img.beams = s.beams;
+    img.level_db.assign(size_t(img.bins) * img.beams, -std::numeric_limits<float>::infinity());
+    for (int b = 0; b < img.bins; ++b) img.level_db[size_t(b) * img.beams + beam] = level;
+    return img;
+}
+
+} // namespace
+
+TEST_CASE("gray level = 255 clamp((L - lo) / (hi - lo))", "[image]") {
+    CHECK(gray_level(100.0f, 80, 120) == Approx(127.5));
+    CHECK(gray_level(80.0f, 80, 120) == 0.0f);
+    CHECK(gray_level(130.0f, 80, 120) == 255.0f);
+    CHECK(gray_level(-std::numeric_limits<float>::infinity(), 80, 120) == 0.0f);
+    CHECK(gray_level(10.0f, 0, 40) == Approx(63.75));
+}
+
+TEST_CASE("SectorLayout: pixel <-> polar round trip", "[image]") {
+    SonarParams s;
+    const SectorLayout L(s, 512);
+    REQUIRE(L.height() == 512);
+    for (double r : {0.6, 1.0, 2.5, 4.9})
+        for (double a : {-15.9, -7.0, 0.0, 3.3, 15.9}) {
+            double px, py, r2, a2;
+            L.polar_to_pixel(r, a, px, py);
+            CHECK(L.pixel_to_polar(px, py, r2, a2));
+            CHECK(r2 == Approx(r).epsilon(1e-12));
+            CHECK(a2 == Approx(a).margin(1e-10));
+        }
+    // And the other way, for pixel centres inside the fan.
+    int inside = 0;
+    for (int py = 0; py < L.height(); py += 37)
+        for (int px = 0; px < L.width(); px += 29) {
+            double r, a, qx, qy;
+            if (!L.pixel_to_polar(px + 0.5, py + 0.5, r, a)) continue;
+            ++inside;
+            CHECK(r >= s.range_min_m);
+            CHECK(r < s.range_max_m);
+            L.polar_to_pixel(r, a, qx, qy);
+            CHECK(qx == Approx(px + 0.5).margin(1e-9));
+            CHECK(qy == Approx(py + 0.5).margin(1e-9));
+        }
+    CHECK(inside > 50);
+}
+
+TEST_CASE("SectorLayout: apex at the bottom centre, range up, port on the left", "[image]") {
+    SonarParams s;
+    s.range_min_m = 0; // the apex itself is then inside the image's bottom edge
+    const SectorLayout L(s, 400);
+    double px, py;
+    L.polar_to_pixel(0, 0, px, py);
+    CHECK(px == Approx(L.width() / 2.0));
+    CHECK(py == Approx(double(L.height())));
+    // Range grows upward along the boresight; r_max at the top edge.
+    L.polar_to_pixel(s.range_max_m, 0, px, py);
+    CHECK(px == Approx(L.width() / 2.0));
+    CHECK(py == Approx(0.0).margin(1e-9));
+    // Port (positive azimuth) is on the left, starboard on the right, symmetric.
+    double lx, ly, rx, ry;
+    L.polar_to_pixel(3, 10, lx, ly);
+    L.polar_to_pixel(3, -10, rx, ry);
+    CHECK(lx < L.width() / 2.0);
+    CHECK(rx > L.width() / 2.0);
+    CHECK(lx + rx == Approx(double(L.width())));
+    CHECK(ly == Approx(ry));
+    // The fan's edges: +-Theta/2 at r_max touch the image's sides.
+    L.polar_to_pixel(s.range_max_m, s.azimuth_fov_deg / 2, lx, ly);
+    CHECK(lx == Approx(0.0).margin(1.0));
+    double r, a;
+    CHECK_FALSE(L.pixel_to_polar(0.5, 0.5, r, a)); // top-left corner lies outside the fan
+    CHECK_FALSE(L.pixel_to_polar(L.width() / 2.0, L.height() + 5.0, r, a)); // below the apex
+}
+
+TEST_CASE("SectorLayout: polar_to_index hits bin and beam centres", "[image]") {
+    SonarParams s;
+    const SectorLayout L(s, 512);
+    const std::vector<double> az = beam_azimuths_deg(s);
+    const double dr = (s.range_max_m - s.range_min_m) / s.range_bins;
+    for (int k : {0, 100, 511})
+        for (int i : {0, 40, 127}) {
+            double bin, beam;
+            L.polar_to_index(s.range_min_m + (k + 0.5) * dr, az[size_t(i)], bin, beam);
+            CHECK(bin == Approx(k).margin(1e-9));
+            CHECK(beam == Approx(i).margin(1e-9));
+        }
+}
+
+TEST_CASE("sector and raw images put beam 0 (port) on the left, near range at the bottom", "[image]") {
+    SonarParams s;
+    s.range_bins = 64, s.beams = 32;
+    DisplayParams d; // 80..120 dB
+    const Image8 sec = sector_image(one_beam(s, 0, 120.0f), s, d, 256);
+    REQUIRE(sec.channels == 3);
+    const SectorLayout L(s, 256);
+    REQUIRE(sec.width == L.width());
+    auto gray_at = [&](double r, double a) {
+        double px, py;
+        L.polar_to_pixel(r, a, px, py);
+        return int(sec.pixels[(size_t(py) * sec.width + size_t(px)) * 3]);
+    };
+    const std::vector<double> az = beam_azimuths_deg(s);
+    CHECK(gray_at(3.0, az[0]) > 128); // the lit beam (bilinear across beams), left side
+    CHECK(gray_at(3.0, az[2]) == 0);
+    CHECK(gray_at(3.0, az[31]) == 0); // the starboard-most beam stays black
+    CHECK(gray_at(3.0, 0.0) == 0);
+    // The raw image: column i = beam i, data row 0 (nearest) at the bottom.
+    PolarImage raw = one_beam(s, 0, 120.0f);
+    raw.level_db[0 * 32 + 5] = 100.0f; // bin 0, beam 5
+    const Image8 g = polar_gray_image(raw, d);
+    REQUIRE(g.width == 32);
+    REQUIRE(g.height == 64);
+    CHECK(int(g.pixels[0]) == 255);                   // top row, column 0
+    CHECK(int(g.pixels[31]) == 0);                    // top row, column 31
+    CHECK(int(g.pixels[size_t(63) * 32 + 5]) == 128); // bottom row = bin 0
+    CHECK(int(g.pixels[5]) == 0);                     // top row = last bin
+}
