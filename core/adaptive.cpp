@@ -16,9 +16,9 @@ using detail::Angle;
 
 namespace {
 
-constexpr int kElevationLevels = 5;   // ternary splits: cells down to 1/243 of the base width
-constexpr int kAzimuthLevels = 3;     // beams holding a narrow specular lobe: up to 27x the base azimuth rays
-constexpr int kEdgeAzimuthLevels = 2; // beams whose columns see different surfaces: up to 9x
+constexpr int kElevationLevels = 5; // ternary splits: cells down to 1/243 of the base width
+constexpr int kAzimuthLevels = 3; // columns split in three locally: down to 1/27 of the base width (specular)
+constexpr int kEdgeAzimuthLevels = 2; // ... and down to 1/9 where neighbouring columns see different surfaces
 constexpr int kMaxPasses = 3;         // base refinements (x3) when the error estimate misses the tolerance
 
 /// One elevation cell of a column.
@@ -36,6 +36,7 @@ struct Node {
 
 struct Column {
     double a = 0, da = 0;
+    int group = 0;           ///< sibling columns of one split (or base triples) share a group
     std::vector<Node> nodes; ///< ordered by decreasing elevation
     std::vector<Node> base;  ///< the base grid as first traced (for comparing neighbouring columns)
     std::uint64_t rays = 0;
@@ -200,49 +201,66 @@ TraceResult trace_pass(const Context& ctx, int M0, TraceResult::ErrorEstimate& e
     const double w = deg2rad(s.sonar.azimuth_fov_deg) / N;
     std::vector<std::vector<Column>> beams(static_cast<size_t>(N));
     tbb::parallel_for(0, N, [&](int i) {
-        for (int k = 0; k < K0; ++k)
+        for (int k = 0; k < K0; ++k) {
             beams[size_t(i)].push_back(ctx.trace_column(column_azimuth(s, i, k, K0), w / K0, M0));
+            beams[size_t(i)].back().group = k / 3 + (K0 % 3 && k >= K0 - K0 % 3 ? K0 + k : 0);
+        }
     });
-    // Beams whose columns (or whose edge columns and their neighbours') see different surfaces, or that hold
-    // a narrow specular lobe, get three times the azimuth rays; the existing columns are the middle ones.
-    std::vector<int> level(static_cast<size_t>(N), 0);
+    // Columns that see different surfaces than their neighbours (within the beam or across its edges), or
+    // that hold a specular lobe narrower than themselves, split in three (the middle one keeps its rays).
+    int next_group = 2 * K0 + 2;
     for (int lv = 0; lv < kAzimuthLevels; ++lv) {
-        std::vector<char> flag(static_cast<size_t>(N), 0);
+        std::vector<std::vector<char>> mark(static_cast<size_t>(N));
         tbb::parallel_for(0, N, [&](int i) {
             const auto& cols = beams[size_t(i)];
-            const double a_hi = cols.front().a + cols.front().da / 2,
-                         a_lo = cols.back().a - cols.back().da / 2;
-            bool f = false;
-            for (size_t k = 0; k + 1 < cols.size() && !f && lv < kEdgeAzimuthLevels; ++k)
-                f = columns_disagree(ctx, cols[k], cols[k + 1]);
-            if (!f && i > 0 && lv < kEdgeAzimuthLevels)
-                f = columns_disagree(ctx, beams[size_t(i) - 1].back(), cols.front());
-            if (!f && i + 1 < N && lv < kEdgeAzimuthLevels)
-                f = columns_disagree(ctx, cols.back(), beams[size_t(i) + 1].front());
-            for (size_t k = 0; k < cols.size() && !f; ++k)
-                for (auto& n : cols[k].nodes)
-                    if ((f = ctx.specular_in_azimuth(n, a_lo, a_hi, cols[k].da))) break;
-            flag[size_t(i)] = f && level[size_t(i)] == lv;
+            auto& m = mark[size_t(i)];
+            m.assign(cols.size(), 0);
+            const double min_da = w / K0 / std::pow(3.0, kAzimuthLevels) * 1.0001;
+            if (lv < kEdgeAzimuthLevels) {
+                for (size_t k = 0; k + 1 < cols.size(); ++k)
+                    if (columns_disagree(ctx, cols[k], cols[k + 1])) m[k] = m[k + 1] = 1;
+                if (i > 0 && columns_disagree(ctx, beams[size_t(i) - 1].back(), cols.front())) m.front() = 1;
+                if (i + 1 < N && columns_disagree(ctx, cols.back(), beams[size_t(i) + 1].front()))
+                    m.back() = 1;
+            }
+            for (size_t k = 0; k < cols.size(); ++k) {
+                if (!m[k])
+                    for (auto& n : cols[k].nodes)
+                        if ((m[k] = ctx.specular_in_azimuth(n, cols[k].a - cols[k].da / 2,
+                                                            cols[k].a + cols[k].da / 2, cols[k].da)))
+                            break;
+                if (cols[k].da <= min_da) m[k] = 0;
+            }
         });
         bool any = false;
+        for (auto& m : mark)
+            for (char f : m) any |= f != 0;
+        if (!any) break;
+        std::vector<int> first_group(static_cast<size_t>(N));
+        for (int i = 0; i < N; ++i) {
+            first_group[size_t(i)] = next_group;
+            for (char f : mark[size_t(i)]) next_group += f != 0;
+        }
         tbb::parallel_for(0, N, [&](int i) {
-            if (!flag[size_t(i)]) return;
             auto& cols = beams[size_t(i)];
-            const int K = int(cols.size()) * 3;
+            const auto& m = mark[size_t(i)];
+            int grp = first_group[size_t(i)];
             std::vector<Column> next;
-            for (int k = 0; k < K; ++k) {
-                if (k % 3 == 1) {
-                    next.push_back(std::move(cols[size_t(k / 3)]));
-                    next.back().da = w / K;
-                } else {
-                    next.push_back(ctx.trace_column(column_azimuth(s, i, k, K), w / K, M0));
+            for (size_t k = 0; k < cols.size(); ++k) {
+                if (!m[k]) {
+                    next.push_back(std::move(cols[k]));
+                    continue;
                 }
+                const double a = cols[k].a, da = cols[k].da / 3;
+                next.push_back(ctx.trace_column(a + da, da, M0)); // port side first
+                next.push_back(std::move(cols[k]));
+                next.back().da = da;
+                next.push_back(ctx.trace_column(a - da, da, M0));
+                for (size_t t = next.size() - 3; t < next.size(); ++t) next[t].group = grp;
+                ++grp;
             }
             cols.swap(next);
-            level[size_t(i)] = lv + 1;
         });
-        for (char f : flag) any |= f != 0;
-        if (!any) break;
     }
 
     TraceResult fine, coarse;
@@ -251,11 +269,18 @@ TraceResult trace_pass(const Context& ctx, int M0, TraceResult::ErrorEstimate& e
     tbb::parallel_for(0, N, [&](int i) {
         const auto& cols = beams[size_t(i)];
         for (auto& c : cols) ctx.cells_of(c, false, c.da, fine.cells[size_t(i)]);
-        // One level coarser everywhere: azimuth triples -> middle column (3 da), elevation triples -> middle.
-        const bool az = level[size_t(i)] > 0;
-        for (size_t k = 0; k < cols.size(); ++k)
-            if (!az || k % 3 == 1)
-                ctx.cells_of(cols[k], true, az ? 3 * cols[k].da : cols[k].da, coarse.cells[size_t(i)]);
+        // One level coarser everywhere: sibling column triples -> the middle column (3 da), and within each
+        // column sibling elevation triples -> the middle cell.
+        for (size_t k = 0; k < cols.size();) {
+            if (k + 2 < cols.size() && cols[k].group == cols[k + 1].group &&
+                cols[k].group == cols[k + 2].group) {
+                ctx.cells_of(cols[k + 1], true, 3 * cols[k + 1].da, coarse.cells[size_t(i)]);
+                k += 3;
+            } else {
+                ctx.cells_of(cols[k], true, cols[k].da, coarse.cells[size_t(i)]);
+                ++k;
+            }
+        }
     });
     for (auto& b : beams)
         for (auto& c : b) fine.rays_traced += c.rays;

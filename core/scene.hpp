@@ -45,10 +45,10 @@ enum class NormalSource { Mesh, Paper };
 enum class SamplingScheme { Uniform, Spread, Adaptive };
 
 struct SamplingParams {
-    int elevation_rays = 281;
+    int elevation_rays = 101; ///< adaptive: rays of the base grid; uniform, spread: all rays (paper: 281)
     int azimuth_rays = 1;
     NormalSource normals = NormalSource::Mesh;
-    SamplingScheme scheme = SamplingScheme::Spread;
+    SamplingScheme scheme = SamplingScheme::Adaptive;
     double tolerance_db = 0.1; ///< adaptive scheme's target error [dB]
 };
 

@@ -14,19 +14,25 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-json material_json(const Material& m) {
-    json o;
-    for (auto& p : material_params()) o[p.key] = m.*(p.field);
-    return o;
-}
-
 } // namespace
 
 Stage changed_stage(const SceneDesc& a, const SceneDesc& b) {
     Stage st = Stage::None;
     auto mark = [&](Stage s) { st = std::min(st, s); };
+    // The adaptive scheme places its rays where the echo level varies, so the parameters that change how it
+    // varies over a surface (absorption, q, the specular lobe) re-trace; pure level offsets (L_S, L_N, nu)
+    // and display settings still only re-shade or re-map.
+    const bool adaptive = b.sampling.scheme == SamplingScheme::Adaptive;
+    const Stage shaping = adaptive ? Stage::Trace : Stage::Shade;
     for (auto& p : scene_params())
-        if (p.get(a) != p.get(b)) mark(p.stage);
+        if (p.get(a) != p.get(b))
+            mark(p.key == "sonar.frequency_khz" || p.key == "water.temperature_c" || p.key == "water.depth_m"
+                     ? shaping
+                     : p.stage);
+    auto material_stage = [&](const Material& x, const Material& y) {
+        if (x.q != y.q || x.mu != y.mu || x.h_deg != y.h_deg) mark(shaping);
+        if (x.nu_db != y.nu_db) mark(Stage::Shade);
+    };
     if (a.objects.size() != b.objects.size()) {
         mark(Stage::Geometry);
     } else {
@@ -35,14 +41,14 @@ Stage changed_stage(const SceneDesc& a, const SceneDesc& b) {
             if (x.mesh_resolved != y.mesh_resolved || x.box_m != y.box_m || x.position_m != y.position_m ||
                 x.orientation_deg != y.orientation_deg || x.scale != y.scale)
                 mark(Stage::Geometry);
-            if (material_json(x.material) != material_json(y.material)) mark(Stage::Shade);
+            material_stage(x.material, y.material);
         }
     }
     if (bool(a.seafloor) != bool(b.seafloor))
         mark(Stage::Trace);
     else if (a.seafloor) {
         if (a.seafloor->height_m != b.seafloor->height_m) mark(Stage::Trace);
-        if (material_json(a.seafloor->material) != material_json(b.seafloor->material)) mark(Stage::Shade);
+        material_stage(a.seafloor->material, b.seafloor->material);
     }
     return st;
 }

@@ -25,7 +25,8 @@ struct Frame {
     double trace_ms = 0, shade_ms = 0, image_ms = 0;
 };
 
-/// Earliest stage at which two scenes differ (Stage::None if they render identically).
+/// Earliest stage at which two scenes differ (Stage::None if they render identically). Under the adaptive
+/// scheme, absorption (f, T, D) and material q, mu, h re-trace: they decide where its rays go.
 Stage changed_stage(const SceneDesc& before, const SceneDesc& after);
 
 class Simulator {

@@ -39,7 +39,7 @@ TEST_CASE("assets/scenes/fig9.json is the built-in default scene", "[scene]") {
     REQUIRE(def.seafloor);
     CHECK(def.seafloor->height_m == 0.0);
     CHECK(def.sonar.beams == 128);
-    CHECK(def.sampling.elevation_rays == 281);
+    CHECK(def.sampling.elevation_rays == 101);
 }
 
 TEST_CASE("fig9_pose2.json differs from the default only in the pose", "[scene]") {
@@ -87,7 +87,7 @@ TEST_CASE("missing keys take the paper's defaults and mesh paths resolve against
     CHECK(s.sonar.beams == 64);
     CHECK(s.sonar.range_max_m == 5.0);
     CHECK(s.sonar.frequency_khz == 3000.0);
-    CHECK(s.sampling.elevation_rays == 281);
+    CHECK(s.sampling.elevation_rays == 101);
     CHECK_FALSE(s.seafloor); // no seafloor key
     REQUIRE(s.objects.size() == 1);
     CHECK(s.objects[0].mesh_resolved == "/data/scenes/m/x.obj");

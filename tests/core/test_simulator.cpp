@@ -18,9 +18,11 @@ TEST_CASE("incremental re-render equals a fresh render and starts at the right s
         {"display range", [](SceneDesc& s) { s.display.lo_db = 60; }, Stage::Display},
         {"colour map", [](SceneDesc& s) { s.display.colormap = Colormap::Viridis; }, Stage::Display},
         {"source level", [](SceneDesc& s) { s.sonar.source_level_db = 220; }, Stage::Shade},
-        {"temperature", [](SceneDesc& s) { s.water.temperature_c = 20; }, Stage::Shade},
+        {"temperature", [](SceneDesc& s) { s.water.temperature_c = 20; },
+         Stage::Trace}, // adaptive: see below
         {"floor material", [](SceneDesc& s) { s.seafloor->material.nu_db = -30; }, Stage::Shade},
-        {"object material", [](SceneDesc& s) { s.objects[0].material.mu = 0.5; }, Stage::Shade},
+        {"object material", [](SceneDesc& s) { s.objects[0].material.nu_db = -40; }, Stage::Shade},
+        {"object specular lobe", [](SceneDesc& s) { s.objects[0].material.mu = 0.5; }, Stage::Trace},
         {"pose", [](SceneDesc& s) { s.sonar.pose.orientation_deg[2] = -35; }, Stage::Trace},
         {"range window", [](SceneDesc& s) { s.sonar.range_max_m = 3; }, Stage::Trace},
         {"floor height", [](SceneDesc& s) { s.seafloor->height_m = -0.1; }, Stage::Trace},
@@ -45,5 +47,22 @@ TEST_CASE("incremental re-render equals a fresh render and starts at the right s
         CHECK(inc.polar.level_db == ref.polar.level_db);
         CHECK(inc.sector.pixels == ref.sector.pixels);
         CHECK(inc.hits.rays_traced == ref.hits.rays_traced);
+    }
+}
+
+TEST_CASE("uniform and spread schemes re-shade on absorption and material changes", "[simulator]") {
+    for (SamplingScheme scheme : {SamplingScheme::Uniform, SamplingScheme::Spread}) {
+        SceneDesc before = default_scene();
+        before.sampling.scheme = scheme;
+        SceneDesc after = before;
+        after.water.temperature_c = 20;
+        after.objects[0].material.mu = 0.5;
+        CHECK(changed_stage(before, after) == Stage::Shade);
+        Simulator sim(before);
+        sim.render();
+        sim.set_scene(after);
+        const Frame& inc = sim.render();
+        Simulator fresh(after);
+        CHECK(inc.polar.level_db == fresh.render().polar.level_db);
     }
 }
