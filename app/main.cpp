@@ -4,6 +4,7 @@
 #include "core/errors.hpp"
 
 #include <iostream>
+#include <new>
 
 int main(int argc, char** argv) {
     CLI::App app{"sonarsim: simulated forward-looking imaging sonar (acoustic camera) images"};
@@ -13,21 +14,26 @@ int main(int argc, char** argv) {
     sonarsim::app::register_view(app, run);
     sonarsim::app::register_study(app, run);
     sonarsim::app::register_params(app, run);
+    // Exit status: 0 done, 2 bad input (command line, scene file, mesh), 1 anything else (I/O, memory).
+    // Every error is one line on stderr.
+    using sonarsim::InputError;
     try {
         app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::cerr << "sonarsim: error: " << e.what() << " (see sonarsim --help)\n";
+        if (e.get_exit_code() == 0) return app.exit(e); // --help and the like
+        std::cerr << "sonarsim: error: " << InputError::printable(e.what()) << " (see sonarsim --help)\n";
         return 2;
     }
     try {
         return run ? run() : sonarsim::app::run_default_view();
-    } catch (const sonarsim::InputError& e) {
+    } catch (const InputError& e) {
         std::cerr << "sonarsim: error: " << e.what() << "\n";
         return 2;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "sonarsim: error: out of memory\n";
+        return 1;
     } catch (const std::exception& e) {
-        std::cerr << "sonarsim: error: " << e.what() << "\n";
+        std::cerr << "sonarsim: error: " << InputError::printable(e.what()) << "\n";
         return 1;
     }
 }

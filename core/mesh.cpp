@@ -16,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <iterator>
 #include <mutex>
 #include <set>
@@ -28,10 +29,14 @@ using OMesh = OpenMesh::PolyMesh_ArrayKernelT<>;
 
 // OpenMesh accepts much that is broken: it reads a binary STL with a lying triangle count as ASCII and
 // returns no faces, skips OBJ vertex lines it cannot read ("v nan 0 0"), drops faces with out-of-range
-// indices, and allocates whatever a PLY or OFF header or face valence claims (a 2e9-corner OFF face takes
-// gigabytes and minutes). So each file gets a structural check first (counts against the bytes that are
-// really there, every index in range, every coordinate a finite float), and OpenMesh's importer is watched
-// for faces it would drop. The checks never "repair": a file either loads as written or is rejected.
+// indices, allocates whatever a PLY or OFF header or face valence claims (a 2e9-corner OFF face takes
+// gigabytes and minutes), loops forever on some malformed PLY headers and prints some format errors to
+// std::cerr and reads on. So OBJ, PLY and STL files get a structural check first (counts against the bytes
+// that are really there, every index in range, every coordinate a finite float), OpenMesh's importer is
+// watched for faces it would drop and its complaints are caught; OFF files are read here. Nothing is
+// "repaired": a file either loads as written or is rejected. Faces with fewer than 3 distinct corners have
+// no area and are skipped (OpenMesh does the same); a face that repeats a corner of a larger polygon is an
+// error.
 
 /// A failed check: the message (and the 1-based line in text formats, 0 when unknown).
 struct Problem {
@@ -53,7 +58,7 @@ std::string lower_extension(const std::string& path) {
 /// A token from the file for a message: quoted, shortened, bytes outside printable ASCII escaped.
 std::string show(const std::string& token) {
     std::string s = "\"";
-    for (size_t i = 0; i < token.size() && i < 40; ++i) {
+    for (size_t i = 0; i < token.size() && i < 60; ++i) {
         const auto c = static_cast<unsigned char>(token[i]);
         if (c >= 0x20 && c < 0x7f) {
             s += token[i];
@@ -63,12 +68,13 @@ std::string show(const std::string& token) {
             s += hex;
         }
     }
-    return s + (token.size() > 40 ? "...\"" : "\"");
+    return s + (token.size() > 60 ? "...\"" : "\"");
 }
 
-/// A finite single-precision number written as the whole token.
+/// A finite single-precision number in decimal notation, written as the whole token (no hex, inf or nan:
+/// OpenMesh's readers would read "0x10" as 0 and carry on).
 bool finite_float(const std::string& token) {
-    if (token.empty()) return false;
+    if (token.empty() || token.find_first_not_of("0123456789+-.eE") != std::string::npos) return false;
     char* end = nullptr;
     errno = 0;
     const float x = std::strtof(token.c_str(), &end);
@@ -122,8 +128,9 @@ bool text_like(const std::string& bytes) {
 
 /// What a check learnt: the faces the file declares (OpenMesh must see as many).
 struct Expect {
-    long long faces = -1;
-    std::string hint; ///< added when OpenMesh refuses the file
+    long long faces = -1;   ///< faces with at least 3 distinct corners (-1: not known)
+    std::string hint;       ///< added when OpenMesh refuses the file
+    bool all_faces = false; ///< `faces` counts every face, zero-area ones included
 };
 
 // ---- OBJ ----
@@ -159,28 +166,29 @@ Expect check_obj(const std::string& text) {
             if (corners.size() >= 3) ++faces; // fewer: a point or a line, no area; OpenMesh skips it
         }
     }
-    return {faces, ""};
+    return {faces, "", false};
 }
 
 // ---- OFF ----
+// Read here, not by OpenMesh: its OFF reader takes a face's corner count from wherever its token stream
+// happens to be, so a stray byte can make it allocate gigabytes (fuzzing found several). OFF is simple enough
+// to read in full: "OFF" (or COFF, NOFF, STOFF...), the counts, one vertex per line (x y z, then colour or
+// normal values, ignored), one face per line (k i1 .. ik, then an optional colour, ignored); # starts a
+// comment.
 
-Expect check_off(const std::string& text) {
-    // OpenMesh reads the counts from the line after the magic word and knows no comments.
-    if (const size_t hash = text.find('#'); hash != std::string::npos)
-        fail("comments (#) are not supported in OFF files",
-             1 + long(std::count(text.begin(), text.begin() + long(hash), '\n')));
-    TextLines lines(text, false);
+TriMesh read_off(const std::string& text) {
+    TextLines lines(text, true);
     std::vector<std::string> t;
     if (!lines.next(t)) fail("empty OFF file");
     const std::string magic = t[0];
     const size_t off = magic.rfind("OFF");
     if (off == std::string::npos || off + 3 != magic.size() ||
         magic.substr(0, off).find_first_not_of("STCN") != std::string::npos)
-        fail("first line must be OFF (or STOFF, COFF, NOFF, CNOFF...), got " + show(magic), lines.line());
+        fail("first line must be OFF (or STOFF, COFF, NOFF, CNOFF...; 3D only), got " + show(magic),
+             lines.line());
     if (t.size() > 1 && t[1] == "BINARY") fail("binary OFF is not supported; use ASCII OFF, PLY or STL");
-    if (t.size() > 1) fail("the counts must be on the line after " + show(magic), lines.line());
-    std::vector<std::string> counts;
-    if (!lines.next(counts)) fail("truncated: the vertex and face counts are missing");
+    std::vector<std::string> counts(t.begin() + 1, t.end());
+    if (counts.empty() && !lines.next(counts)) fail("truncated: the vertex and face counts are missing");
     long long nv = 0, nf = 0;
     if (counts.size() < 2 || !integer(counts[0], nv) || !integer(counts[1], nf) || nv < 0 || nf < 0)
         fail("expected the counts \"vertices faces edges\", got " + show(counts.empty() ? "" : counts[0]),
@@ -192,6 +200,8 @@ Expect check_off(const std::string& text) {
              " faces, more than the file's " + std::to_string(text.size()) + " bytes can hold");
     const std::string declared =
         " (the header declares " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces)";
+    TriMesh mesh;
+    mesh.vertices.reserve(size_t(nv));
     for (long long v = 0; v < nv; ++v) {
         if (!lines.next(t))
             fail("truncated: the file ends after " + std::to_string(v) + " vertices" + declared);
@@ -199,6 +209,8 @@ Expect check_off(const std::string& text) {
             fail("vertex " + std::to_string(v) + " needs 3 finite coordinates (single precision), got " +
                      show(t[0]),
                  lines.line());
+        mesh.vertices.emplace_back(std::strtof(t[0].c_str(), nullptr), std::strtof(t[1].c_str(), nullptr),
+                                   std::strtof(t[2].c_str(), nullptr));
     }
     for (long long f = 0; f < nf; ++f) {
         if (!lines.next(t)) fail("truncated: the file ends after " + std::to_string(f) + " faces" + declared);
@@ -207,15 +219,22 @@ Expect check_off(const std::string& text) {
             fail("face " + std::to_string(f) + ": the corner count " + show(t[0]) +
                      " is not followed by that many vertex indices on its line",
                  lines.line());
+        std::vector<unsigned> corners;
         for (long long c = 1; c <= k; ++c) {
             long long i = 0;
             if (!integer(t[size_t(c)], i) || i < 0 || i >= nv)
                 fail("face " + std::to_string(f) + " refers to vertex " + show(t[size_t(c)]) +
                          "; allowed: 0 to " + std::to_string(nv - 1),
                      lines.line());
+            corners.push_back(unsigned(i));
         }
+        const size_t distinct = std::set<unsigned>(corners.begin(), corners.end()).size();
+        if (distinct < 3) continue; // a point or a line: no area, no echo
+        if (distinct != corners.size()) fail("face " + std::to_string(f) + " repeats a vertex", lines.line());
+        for (size_t c = 1; c + 1 < corners.size(); ++c)
+            mesh.triangles.emplace_back(corners[0], corners[c], corners[c + 1]);
     }
-    return {nf, ""};
+    return mesh;
 }
 
 // ---- PLY ----
@@ -223,7 +242,8 @@ Expect check_off(const std::string& text) {
 struct PlyProperty {
     int count_size = 0; ///< bytes of a list's count (0: not a list)
     bool count_signed = false;
-    int size = 0; ///< bytes of the value or of each list item
+    int size = 0;      ///< bytes of the value or of each list item
+    bool real = false; ///< the value or the items are float or double
 };
 struct PlyElement {
     std::string name;
@@ -289,12 +309,20 @@ Expect check_ply(const std::string& bytes) {
                     hint = " (OpenMesh reads list lengths of type uchar, uint8, uint16 or int, not " +
                            show(t[2]) + ")";
                 p.size = ply_type_size(t[3], is_signed);
+                p.real = t[3].find("float") != std::string::npos || t[3].find("double") != std::string::npos;
                 if (p.count_size == 0 || p.size == 0 || t[2] == "float" || t[2] == "float32" ||
                     t[2] == "double" || t[2] == "float64")
                     fail("header: bad list property types " + show(t[2] + " " + t[3]), line);
             } else if (t.size() == 3) {
                 p.size = ply_type_size(t[1], is_signed);
+                p.real = t[1].find("float") != std::string::npos || t[1].find("double") != std::string::npos;
                 if (p.size == 0) fail("header: unknown property type " + show(t[1]), line);
+                if (elements.back().name == "vertex" && (t[2] == "x" || t[2] == "y" || t[2] == "z") &&
+                    t[1] != "float" && t[1] != "float32" && t[1] != "double" && t[1] != "float64")
+                    fail("header: vertex coordinates must be float or double (OpenMesh reads no others), "
+                         "got " +
+                             show(t[1]),
+                         line);
             } else {
                 fail("header: bad property line", line);
             }
@@ -305,8 +333,13 @@ Expect check_ply(const std::string& bytes) {
     }
     if (body == std::string::npos) fail("truncated: the header has no end_header line");
     long long faces = -1;
-    for (auto& e : elements)
+    for (auto& e : elements) {
         if (e.name == "face") faces = e.count;
+        // Every element then takes at least one byte or token, so the walk below ends with the file.
+        if (e.properties.empty() && e.count > 0)
+            fail("header: element " + show(e.name) + " has " + std::to_string(e.count) +
+                 " entries but no properties");
+    }
     const bool ascii = format == "ascii", big = format == "binary_big_endian";
     if (!ascii && !big && format != "binary_little_endian")
         fail("header: format must be ascii, binary_little_endian or binary_big_endian, got " + show(format));
@@ -332,8 +365,15 @@ Expect check_ply(const std::string& bytes) {
                         // Each item takes at least 2 bytes: no list can be longer than the file.
                         if (double(items) * 2 > double(size)) truncated(e, i);
                     }
-                    for (long long k = 0; k < items; ++k)
+                    // Every token must be exactly one value of its type, or OpenMesh's reader (`>>` per type)
+                    // would split or skip it and read the rest of the file out of step.
+                    long long whole = 0;
+                    for (long long k = 0; k < items; ++k) {
                         if (!(in >> token)) truncated(e, i);
+                        if (p.real ? !finite_float(token) : !integer(token, whole))
+                            fail(e.name + " " + std::to_string(i) + ": " + show(token) + " is not " +
+                                 (p.real ? "a finite number" : "an integer"));
+                    }
                 }
     } else {
         const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
@@ -354,7 +394,7 @@ Expect check_ply(const std::string& bytes) {
                     }
                 }
     }
-    return {faces, hint};
+    return {faces, hint, true};
 }
 
 // ---- STL ----
@@ -437,6 +477,7 @@ class CheckingImporter : public OpenMesh::IO::ImporterT<OMesh> {
             distinct.insert(vh.idx());
         }
         if (distinct.size() < 3) return OpenMesh::FaceHandle(); // a point or a line: no area, no echo
+        ++faces_with_area;
         if (distinct.size() != corners.size()) {
             if (problem.empty()) problem = "face " + std::to_string(faces_seen - 1) + " repeats a vertex";
             return OpenMesh::FaceHandle();
@@ -450,11 +491,30 @@ class CheckingImporter : public OpenMesh::IO::ImporterT<OMesh> {
         if (nv <= file_bytes_ && nf <= file_bytes_ && ne <= 3 * file_bytes_) ImporterT::reserve(nv, ne, nf);
     }
 
-    long long faces_seen = 0;
+    long long faces_seen = 0, faces_with_area = 0;
     std::string problem;
 
   private:
     std::uintmax_t file_bytes_;
+};
+
+/// Collects what is written to a standard stream while it lives (OpenMesh's readers print some format errors
+/// straight to std::cerr or std::cout and read on).
+class Capture {
+  public:
+    explicit Capture(std::ostream& stream) : stream_(stream), old_(stream.rdbuf(text_.rdbuf())) {}
+    ~Capture() { stream_.rdbuf(old_); }
+    Capture(const Capture&) = delete;
+    Capture& operator=(const Capture&) = delete;
+    std::string first_line() const {
+        const std::string t = text_.str();
+        return t.substr(0, t.find('\n'));
+    }
+
+  private:
+    std::ostream& stream_;
+    std::ostringstream text_;
+    std::streambuf* old_;
 };
 
 std::string read_all(const std::string& path) {
@@ -462,6 +522,49 @@ std::string read_all(const std::string& path) {
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (in.bad()) fail("read error");
     return bytes;
+}
+
+/// OBJ, PLY and STL through OpenMesh, after the structural check of the bytes.
+TriMesh read_with_openmesh(const std::string& path, const std::string& bytes, const std::string& ext,
+                           std::uintmax_t file_bytes) {
+    const Expect expect = ext == ".obj"   ? check_obj(bytes)
+                          : ext == ".ply" ? check_ply(bytes)
+                                          : check_stl(bytes);
+    OMesh om;
+    CheckingImporter importer(om, file_bytes);
+    bool ok = false;
+    std::string complaint;
+    {
+        // OpenMesh's log streams are process-wide; loads are rare, so one at a time.
+        static std::mutex mutex;
+        std::lock_guard<std::mutex> lock(mutex);
+        omerr().disable();
+        omlog().disable();
+        const Capture out(std::cout), err(std::cerr);
+        OpenMesh::IO::Options opt;
+        ok = OpenMesh::IO::IOManager().read(path, importer, opt);
+        complaint = !err.first_line().empty() ? err.first_line() : out.first_line();
+    }
+    if (!complaint.empty()) fail("OpenMesh cannot read it: " + show(complaint));
+    if (!ok) fail("not a valid " + ext.substr(1) + " mesh" + expect.hint);
+    if (!importer.problem.empty()) fail(importer.problem);
+    const long long read = expect.all_faces ? importer.faces_seen : importer.faces_with_area;
+    if (expect.faces >= 0 && read != expect.faces)
+        fail("the file has " + std::to_string(expect.faces) + " faces but OpenMesh read " +
+             std::to_string(read));
+
+    TriMesh mesh;
+    mesh.vertices.reserve(om.n_vertices());
+    for (auto vh : om.vertices()) {
+        const auto& p = om.point(vh);
+        mesh.vertices.emplace_back(p[0], p[1], p[2]);
+    }
+    for (auto fh : om.faces()) {
+        std::vector<unsigned> idx;
+        for (auto vh : om.fv_range(fh)) idx.push_back(unsigned(vh.idx()));
+        for (size_t k = 1; k + 1 < idx.size(); ++k) mesh.triangles.emplace_back(idx[0], idx[k], idx[k + 1]);
+    }
+    return mesh;
 }
 
 } // namespace
@@ -481,49 +584,21 @@ TriMesh load_mesh(const std::string& path, const std::string& scene_file, const 
     const std::uintmax_t file_bytes = std::filesystem::file_size(path, ec);
     if (file_bytes == 0) throw InputError(scene_file, key, where + ": file is empty");
 
-    OMesh om;
-    CheckingImporter importer(om, file_bytes);
+    TriMesh out;
     try {
         const std::string bytes = read_all(path);
-        const Expect expect = ext == ".obj"   ? check_obj(bytes)
-                              : ext == ".off" ? check_off(bytes)
-                              : ext == ".ply" ? check_ply(bytes)
-                                              : check_stl(bytes);
-        bool ok = false;
-        {
-            // OpenMesh's log streams are process-wide; loads are rare, so one at a time.
-            static std::mutex mutex;
-            std::lock_guard<std::mutex> lock(mutex);
-            omerr().disable();
-            omlog().disable();
-            OpenMesh::IO::Options opt;
-            ok = OpenMesh::IO::IOManager().read(path, importer, opt);
-        }
-        if (!ok) fail("not a valid " + ext.substr(1) + " mesh" + expect.hint);
-        if (!importer.problem.empty()) fail(importer.problem);
-        if (expect.faces >= 0 && importer.faces_seen != expect.faces)
-            fail("the file declares " + std::to_string(expect.faces) + " faces but " +
-                 std::to_string(importer.faces_seen) + " could be read");
+        out = ext == ".off" ? read_off(bytes) : read_with_openmesh(path, bytes, ext, file_bytes);
     } catch (const Problem& p) {
         throw InputError(scene_file, key,
                          where + (p.line > 0 ? ", line " + std::to_string(p.line) : "") + ": " + p.message);
     } catch (const std::exception& e) { // e.g. std::bad_alloc from a reader
         throw InputError(scene_file, key, where + ": cannot be loaded: " + e.what());
     }
-
-    TriMesh out;
-    out.vertices.reserve(om.n_vertices());
-    for (auto vh : om.vertices()) {
-        const auto& p = om.point(vh);
-        if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+    for (size_t i = 0; i < out.vertices.size(); ++i) {
+        const glm::vec3& v = out.vertices[i];
+        if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
             throw InputError(scene_file, key,
-                             where + ": vertex " + std::to_string(vh.idx()) + " has a non-finite coordinate");
-        out.vertices.emplace_back(p[0], p[1], p[2]);
-    }
-    for (auto fh : om.faces()) {
-        std::vector<unsigned> idx;
-        for (auto vh : om.fv_range(fh)) idx.push_back(unsigned(vh.idx()));
-        for (size_t k = 1; k + 1 < idx.size(); ++k) out.triangles.emplace_back(idx[0], idx[k], idx[k + 1]);
+                             where + ": vertex " + std::to_string(i) + " has a non-finite coordinate");
     }
     if (out.triangles.empty()) throw InputError(scene_file, key, where + ": contains no faces");
     return out;

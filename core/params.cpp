@@ -150,7 +150,7 @@ std::vector<ParamSpec> build_scene_params() {
         [](S s) -> SamplingScheme& { return s.sampling.scheme; }));
     t.push_back(
         number("sampling.tolerance_db", "dB", 0, 10, true, false, Stage::Trace,
-               "adaptive: target error of each beam's echo levels; the sampler refines until it meets it",
+               "adaptive: target median |dB error| over echoing bins, as the sampler estimates it; it refines until met",
                [](S s) -> double& { return s.sampling.tolerance_db; }));
     t.push_back(number("display.lo_db", "dB", -1000, 1000, false, false, Stage::Display,
                        "L_EN shown as black", [](S s) -> double& { return s.display.lo_db; }));
@@ -353,6 +353,10 @@ void validate_scene(const SceneDesc& s, const std::string& file) {
         throw InputError(file, "sonar.range_min_m",
                          "range_min_m (" + fmt(s.sonar.range_min_m) + ") must be below range_max_m (" +
                              fmt(s.sonar.range_max_m) + ")");
+    if (s.sampling.normals == NormalSource::Paper && s.sampling.scheme == SamplingScheme::Adaptive)
+        throw InputError(file, "sampling.normals",
+                         "\"paper\" normals need the regular ray grid: use sampling.scheme \"uniform\" or "
+                         "\"spread\" with them");
     const double rays = double(s.sonar.beams) * s.sampling.azimuth_rays * s.sampling.elevation_rays;
     if (rays > kMaxRaysPerImage)
         throw InputError(file, "sampling.elevation_rays",

@@ -1,0 +1,7 @@
+// libFuzzer target: mesh files through load_mesh (OBJ, PLY, STL, OFF; the first byte picks; see README.md).
+#include "fuzz_targets.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    sonarsim::fuzz::mesh_input(data, size);
+    return 0;
+}

@@ -1,0 +1,7 @@
+// libFuzzer target: scene files, --set and --pose text (see README.md).
+#include "fuzz_targets.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    sonarsim::fuzz::scene_input(data, size);
+    return 0;
+}
