@@ -3,11 +3,16 @@
 #include "load.hpp"
 
 #include "core/errors.hpp"
+#include "core/output.hpp"
 #include "core/simulator.hpp"
 
 #include <filesystem>
 #include <iostream>
 #include <memory>
+
+#ifdef SONARSIM_HAVE_VIEWER
+#include "ui/view3d.hpp"
+#endif
 
 namespace sonarsim::app {
 namespace {
@@ -15,19 +20,43 @@ namespace {
 struct RenderOptions {
     SceneOptions scene;
     std::string out;
+    std::string view3d; ///< PNG of the 3D view (headless EGL)
 };
+
+/// The 3D view as PNG bytes, drawn without any display (EGL, Mesa surfaceless).
+std::vector<std::uint8_t> view3d_png(const SceneDesc& scene) {
+#ifdef SONARSIM_HAVE_VIEWER
+    return ui::view3d_png_headless(scene, 1024, 768);
+#else
+    (void)scene;
+    throw InputError("--view3d", "", "this build has no viewer (SONARSIM_BUILD_VIEWER=OFF)");
+#endif
+}
+
+void check_parent_dir(const std::string& path, const std::string& option) {
+    const std::filesystem::path p(path);
+    const auto dir = p.parent_path().empty() ? std::filesystem::path(".") : p.parent_path();
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec))
+        throw InputError(option, "", "directory \"" + dir.string() + "\" does not exist");
+}
 
 int run_render(const RenderOptions& o) {
     const SceneDesc scene = load_scene_from_options(o.scene);
-    const std::filesystem::path prefix(o.out);
-    const auto dir = prefix.parent_path().empty() ? std::filesystem::path(".") : prefix.parent_path();
-    std::error_code ec;
-    if (!std::filesystem::is_directory(dir, ec))
-        throw InputError("--out", "", "directory \"" + dir.string() + "\" does not exist");
+    if (!o.out.empty()) check_parent_dir(o.out, "--out");
+    if (!o.view3d.empty()) check_parent_dir(o.view3d, "--view3d");
+    std::vector<std::pair<std::string, std::vector<std::uint8_t>>> extra;
+    if (!o.view3d.empty()) extra.emplace_back(o.view3d, view3d_png(scene));
+    if (o.out.empty()) {
+        write_files_atomically(extra);
+        std::cout << "wrote " << o.view3d << " (3D view)\n";
+        return 0;
+    }
 
     Simulator sim(scene);
     const Frame& f = sim.render();
-    write_render_files(o.out, scene, f);
+    write_render_files(o.out, scene, f, std::move(extra));
+    if (!o.view3d.empty()) std::cout << "wrote " << o.view3d << " (3D view)\n";
     std::cout << "wrote " << o.out << ".png (sector image " << f.sector.width << "x" << f.sector.height
               << "), " << o.out << "_polar.png, " << o.out << ".npy (L_EN dB, " << f.polar.bins << " x "
               << f.polar.beams << "), " << o.out << ".json\n"
@@ -43,9 +72,14 @@ void register_render(CLI::App& app, std::function<int()>& run) {
     CLI::App* cmd = app.add_subcommand("render", "Render one sonar image headless (PNG, .npy, .json)");
     add_scene_options(*cmd, o->scene);
     cmd->add_option("--out", o->out,
-                    "Output prefix: writes PREFIX.png, PREFIX_polar.png, PREFIX.npy, PREFIX.json")
-        ->required();
-    cmd->callback([o, &run] { run = [o] { return run_render(*o); }; });
+                    "Output prefix: writes PREFIX.png, PREFIX_polar.png, PREFIX.npy, PREFIX.json");
+    cmd->add_option(
+        "--view3d", o->view3d,
+        "Also draw the 3D view (scene, sonar, field of view) into this PNG, with no display (EGL)");
+    cmd->callback([o, &run] {
+        if (o->out.empty() && o->view3d.empty()) throw CLI::RequiredError("--out");
+        run = [o] { return run_render(*o); };
+    });
 }
 
 } // namespace sonarsim::app

@@ -1,0 +1,23 @@
+// The controls panel (ImGui): sliders generated from core's parameter table, numeric pose, the material of
+// the selected object, files, snapshot, timings and errors.
+#pragma once
+#include "layout.hpp"
+#include "session.hpp"
+
+#include <string>
+
+namespace sonarsim::ui {
+
+struct ControlsUi {
+    int selected = 0;       ///< object whose material is edited; -1 = seafloor
+    bool show_hits = false; ///< draw every traced hit in the 3D view
+    std::string snapshot_dir = ".";
+    double frame_ms = 0; ///< shown on screen
+    // Requests raised by the panel, handled by the viewer.
+    bool want_snapshot = false, want_open = false, want_add_mesh = false, want_save = false;
+    bool want_reset_camera = false;
+};
+
+void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui);
+
+} // namespace sonarsim::ui

@@ -1,0 +1,23 @@
+// A small ImGui file chooser (modal): browse folders, pick or type a file name.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace sonarsim::ui {
+
+class FileDialog {
+  public:
+    /// Opens the dialog on the next draw(). `extensions` (lower case, with the dot) filter the listing.
+    void open(const std::string& title, bool save, std::vector<std::string> extensions,
+              const std::string& start_dir);
+    /// Draws it while open; returns true once, when the user confirms, with the chosen path in `path`.
+    bool draw(std::string& path);
+    bool is_open() const { return open_ || visible_; }
+
+  private:
+    std::string title_, dir_, name_;
+    std::vector<std::string> ext_;
+    bool save_ = false, open_ = false, visible_ = false;
+};
+
+} // namespace sonarsim::ui

@@ -1,0 +1,63 @@
+// Draws the 3D view with OpenGL 3.3 core: seafloor with a grid, object meshes with simple shading, the sonar
+// housing and its field-of-view shell (wireframe + translucent faces), and the teaching overlays (the
+// elevation arc of a hovered image pixel, the surface points that echoed into it, a hovered surface point).
+#pragma once
+#include "camera.hpp"
+#include "gl_util.hpp"
+
+#include "core/mesh.hpp"
+#include "core/scene.hpp"
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace sonarsim::ui {
+
+struct ViewOverlay {
+    std::vector<glm::dvec3> arc;        ///< elevation arc of the hovered pixel [world]
+    std::vector<glm::vec3> echo_points; ///< traced points that echo into the hovered pixel
+    std::optional<glm::dvec3> marker;   ///< hovered surface point
+    std::vector<glm::vec3> hit_points;  ///< optional: every traced hit (teaching: shadows)
+    bool sonar_hot = false;             ///< frustum under the mouse or being dragged
+    int selected_object = -1;
+};
+
+class SceneRenderer {
+  public:
+    /// Compiles the shaders; needs a current OpenGL 3.3 core context. Throws std::runtime_error.
+    SceneRenderer();
+    ~SceneRenderer();
+    SceneRenderer(const SceneRenderer&) = delete;
+    SceneRenderer& operator=(const SceneRenderer&) = delete;
+
+    /// World meshes of the objects (object i = element i); uploaded once per geometry change.
+    void set_meshes(const std::vector<TriMesh>& meshes);
+
+    /// Clears and draws into the viewport (x, y, w, h) of the bound framebuffer (GL: origin bottom-left).
+    void draw(const SceneDesc& scene, const OrbitCamera& camera, int x, int y, int w, int h,
+              const ViewOverlay& overlay);
+
+  private:
+    struct Program {
+        explicit Program(bool round_points);
+        ~Program();
+        Program(const Program&) = delete;
+        Program& operator=(const Program&) = delete;
+        GLuint id = 0;
+        GLint mvp = -1, light = -1, point = -1, tint = -1;
+    };
+    void use(const Program& p, const glm::mat4& mvp, const glm::vec3& light, float point_px);
+
+    Program surfaces_, points_;
+    GLint u_tint_ = -1;                           // tint uniform of the program in use
+    std::vector<size_t> mesh_first_, mesh_count_; // triangle vertex ranges per object
+    gl::VertexBuffer meshes_, floor_, grid_, footprint_, body_, shell_faces_, shell_lines_, overlay_lines_,
+        overlay_points_;
+};
+
+/// A camera behind and above the sonar that frames the sonar and where its field of view meets the floor
+/// (or the near half of the field of view), for a viewport of aspect w/h.
+OrbitCamera default_camera(const SceneDesc& scene, double aspect = 4.0 / 3.0);
+
+} // namespace sonarsim::ui

@@ -1,0 +1,86 @@
+// Non-GL state of a viewer session: the scene being edited, the last good scene and frame, the render worker,
+// errors, file operations and snapshots. A bad file or value leaves the last good scene and image in place
+// and sets error().
+#pragma once
+#include "render_worker.hpp"
+
+#include "core/geometry.hpp"
+#include "core/mesh.hpp"
+#include "core/output.hpp"
+#include "core/params.hpp"
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace sonarsim::ui {
+
+class Session {
+  public:
+    /// Starts the worker on `scene` (already validated). Throws InputError when a mesh cannot be loaded.
+    explicit Session(const SceneDesc& scene);
+
+    /// The scene as edited (what was last requested).
+    const SceneDesc& scene() const { return scene_; }
+    /// The traceable geometry of scene() (for picking), its world meshes (for drawing) and a counter that
+    /// changes when they do.
+    const SceneGeometry& geometry() const { return *geometry_; }
+    const std::vector<TriMesh>& meshes() const { return geometry_->meshes(); }
+    std::uint64_t meshes_version() const { return meshes_version_; }
+
+    /// Applies a change to a copy of the scene and validates it. On InputError: the scene stays, error() is
+    /// set, and false is returned. Returns true when accepted (whether or not anything changed).
+    bool edit(const std::function<void(SceneDesc&)>& change);
+    /// `key = value` through core's parameter table (apply_setting), then edit().
+    bool set(const std::string& key, const json& value);
+    /// Resets every non-pose parameter and all materials to the paper's values.
+    bool reset_to_paper();
+
+    bool open_scene(const std::string& path);
+    /// Adds a mesh file (OBJ/PLY/STL/OFF) as an object placed on the floor in front of the sonar.
+    bool add_mesh(const std::string& path);
+    /// Writes the edited scene as a scene file (atomically).
+    bool save_scene(const std::string& path);
+
+    /// Sends the scene to the worker if it changed since the last request. Returns the request id (0: none).
+    std::uint64_t submit();
+    /// Takes a finished result from the worker. Returns true when the shown frame changed.
+    bool poll();
+    /// Waits for the newest request to finish, then polls. False on timeout.
+    bool wait_latest(std::chrono::milliseconds timeout);
+    /// True while the worker has work queued or running, or the scene changed since the last request.
+    bool busy() const;
+    /// Called on the worker thread whenever a result is ready.
+    void set_notify(std::function<void()> notify) { worker_.set_notify(std::move(notify)); }
+
+    /// The frame on screen and the scene it was made from (null until the first image arrives).
+    const RenderResult* shown() const { return shown_ ? shown_.get() : nullptr; }
+    std::uint64_t shown_count() const { return shown_count_; }
+
+    const std::string& error() const { return error_; }
+    void set_error(const std::string& e) { error_ = e; }
+    void clear_error() { error_.clear(); }
+    const std::string& status() const { return status_; }
+    void set_status(const std::string& s) { status_ = s; }
+
+    /// Writes the sonar files of the shown frame, the 3D view PNG and the scene file (see snapshot.hpp).
+    /// Returns false (and sets error()) when there is nothing to save or writing fails.
+    bool snapshot(const std::string& prefix, const Bytes& view3d_png);
+
+  private:
+    void set_scene(SceneDesc next);
+
+    SceneDesc scene_, last_good_;
+    std::unique_ptr<SceneGeometry> geometry_;
+    std::uint64_t meshes_version_ = 0;
+    bool dirty_ = true;
+    std::uint64_t requested_id_ = 0, shown_count_ = 0;
+    std::shared_ptr<const RenderResult> shown_;
+    std::string error_, status_;
+    RenderWorker worker_;
+};
+
+} // namespace sonarsim::ui
