@@ -7,6 +7,7 @@
 #include "trace_detail.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <tbb/parallel_for.h>
 
@@ -26,9 +27,12 @@ struct Node {
     double e = 0, de = 0; ///< centre and width [rad]
     std::optional<Hit> hit;
     glm::dvec3 p{0};
-    double density_db = 0; ///< echo level per steradian (cell_echo_db with dOmega = 1)
-    double dr_de = 0;      ///< |d range / d elevation| on the hit plane [m/rad]
-    int group = 0;         ///< siblings of one split (or base triples) share a group
+    double density_db = 0;   ///< echo level per steradian (cell_echo_db with dOmega = 1)
+    double dr_de = 0;        ///< |d range / d elevation| on the hit plane [m/rad]
+    double footprint_m = 0;  ///< dr_de * de: the range the cell spans [m]
+    double per_metre_db = 0; ///< echo per metre of range when the footprint spans bins (see set_width)
+    bool fresh = true;       ///< created or resized since its neighbours were last compared
+    int group = 0;           ///< siblings of one split (or base triples) share a group
     bool refine = false;
     bool alone_checked = false; ///< needs_split_alone() depends on the node only: evaluate it once
     Angle angle;                ///< e with its sine and cosine
@@ -54,6 +58,13 @@ struct Context {
           range_jump_db(2 * scene.sampling.tolerance_db),
           bin_m((scene.sonar.range_max_m - scene.sonar.range_min_m) / scene.sonar.range_bins) {}
 
+    /// Sets the cell width and what follows from it for the neighbour comparisons.
+    void set_width(Node& n, double de) const {
+        n.de = de, n.fresh = true;
+        n.footprint_m = n.dr_de * de;
+        n.per_metre_db = n.density_db + 10 * std::log10(n.angle.c * de / std::max(n.footprint_m, bin_m));
+    }
+
     Node trace_node(const Angle& a, double e, double de, int group) const {
         Node n;
         n.e = e, n.de = de, n.group = group, n.angle = Angle(e);
@@ -66,6 +77,7 @@ struct Context {
             // On the hit plane r(e) = (n.(p - o)) / (n.d(e)), so dr/de = -r (n.d_e) / (n.d).
             const glm::dvec3 d_e = frame.R * glm::dvec3(-n.angle.s * a.c, -n.angle.s * a.s, n.angle.c);
             n.dr_de = std::abs(n.hit->t * glm::dot(n.hit->normal, d_e) / glm::dot(n.hit->normal, d));
+            set_width(n, de);
         }
         return n;
     }
@@ -77,11 +89,8 @@ struct Context {
         if (std::abs(x.density_db - y.density_db) > jump_db) return true;
         // Cells whose range footprint spans bins spread their echo evenly over it; where the echo per metre
         // of range changes between neighbours (grazing incidence), that spreading needs finer cells.
-        const double wx = x.dr_de * x.de, wy = y.dr_de * y.de;
-        if (!(std::max(wx, wy) > bin_m)) return false;
-        const double gx = x.density_db + 10 * std::log10(x.angle.c * x.de / std::max(wx, bin_m));
-        const double gy = y.density_db + 10 * std::log10(y.angle.c * y.de / std::max(wy, bin_m));
-        return std::abs(gx - gy) > range_jump_db;
+        if (!(std::max(x.footprint_m, y.footprint_m) > bin_m)) return false;
+        return std::abs(x.per_metre_db - y.per_metre_db) > range_jump_db;
     }
 
     /// Direction of normal incidence on the node's plane, in the sonar frame.
@@ -133,8 +142,12 @@ struct Context {
             auto mark = [&](Node& n) {
                 if (n.de > de_min) n.refine = any = true;
             };
+            // Pairs of unchanged neighbours were compared before and found smooth: compare only fresh pairs.
             for (size_t n = 0; n + 1 < col.nodes.size(); ++n)
-                if (discontinuous(col.nodes[n], col.nodes[n + 1])) mark(col.nodes[n]), mark(col.nodes[n + 1]);
+                if ((col.nodes[n].fresh || col.nodes[n + 1].fresh) &&
+                    discontinuous(col.nodes[n], col.nodes[n + 1]))
+                    mark(col.nodes[n]), mark(col.nodes[n + 1]);
+            for (auto& n : col.nodes) n.fresh = false;
             for (auto& n : col.nodes)
                 if (!n.refine && !n.alone_checked) {
                     n.alone_checked = true;
@@ -152,7 +165,11 @@ struct Context {
                 const int grp = next_group++;
                 next.push_back(trace_node(a, n.e + de, de, grp));
                 Node mid = n;
-                mid.de = de, mid.group = grp, mid.refine = false, mid.alone_checked = false;
+                mid.group = grp, mid.refine = false, mid.alone_checked = false;
+                if (mid.hit)
+                    set_width(mid, de);
+                else
+                    mid.de = de, mid.fresh = true;
                 next.push_back(mid);
                 next.push_back(trace_node(a, n.e - de, de, grp));
                 col.rays += 2;
@@ -165,10 +182,25 @@ struct Context {
     /// Cells of a column; `coarse` merges every complete sibling triple into its middle cell (one level up).
     void cells_of(const Column& c, bool coarse, double da, std::vector<Cell>& out) const {
         const Angle a(c.a), a_lo(c.a - da / 2), a_hi(c.a + da / 2);
+        // Cell widths come in a few sizes (de0 / 3^k): keep sin and cos of their halves.
+        std::array<std::pair<double, Angle>, 12> halves{};
+        size_t n_halves = 0;
+        auto half = [&](double de) -> const Angle& {
+            for (size_t k = 0; k < n_halves; ++k)
+                if (halves[k].first == de) return halves[k].second;
+            auto& slot = halves[std::min(n_halves, halves.size() - 1)];
+            n_halves = std::min(n_halves + 1, halves.size());
+            slot = {de, Angle(de / 2)};
+            return slot.second;
+        };
         auto emit = [&](const Node& n, double de) {
-            if (n.hit)
-                out.push_back(detail::make_cell(frame, *n.hit, a, n.angle, a_lo, a_hi, Angle(n.e - de / 2),
-                                                Angle(n.e + de / 2)));
+            if (!n.hit) return;
+            const Angle& h = half(de);
+            const Angle& e = n.angle;
+            Angle lo, hi; // e -+ de/2 by the angle-sum identities
+            lo.rad = e.rad - h.rad, lo.c = e.c * h.c + e.s * h.s, lo.s = e.s * h.c - e.c * h.s;
+            hi.rad = e.rad + h.rad, hi.c = e.c * h.c - e.s * h.s, hi.s = e.s * h.c + e.c * h.s;
+            out.push_back(detail::make_cell(frame, *n.hit, a, e, a_lo, a_hi, lo, hi));
         };
         for (size_t n = 0; n < c.nodes.size();) {
             if (coarse && n + 2 < c.nodes.size() && c.nodes[n].group == c.nodes[n + 1].group &&

@@ -78,7 +78,7 @@ TEST_CASE("translating keeps the grabbed point under the cursor", "[ui][drag]") 
     CHECK(p.orientation_deg == s.sonar.pose.orientation_deg);
 }
 
-TEST_CASE("vertical drags move only z; rotation drags turn by the mouse motion", "[ui][drag]") {
+TEST_CASE("vertical drags move only z, rotation drags turn by the mouse motion", "[ui][drag]") {
     const SceneDesc s = default_scene();
     const glm::dvec3 eye(-1, 4, 1);
     const glm::dvec3 grab = sonar_point(s.sonar, 1.0, 0, 0);
