@@ -41,7 +41,8 @@ SceneGeometry::SceneGeometry(const SceneDesc& s) {
             g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), m.triangles.size()));
         if (!vb || !ib) {
             rtcReleaseGeometry(g);
-            rtcReleaseScene(scene);
+            scene_ = scene;
+            release();
             throw std::runtime_error(embree_error_.empty() ? "Embree buffer allocation failed"
                                                            : embree_error_);
         }
@@ -60,12 +61,20 @@ SceneGeometry::SceneGeometry(const SceneDesc& s) {
     }
     rtcCommitScene(scene);
     scene_ = scene;
-    if (!embree_error_.empty()) throw std::runtime_error(embree_error_);
+    if (!embree_error_.empty()) {
+        release(); // a throwing constructor runs no destructor
+        throw std::runtime_error(embree_error_);
+    }
+}
+
+void SceneGeometry::release() {
+    if (scene_) rtcReleaseScene(static_cast<RTCScene>(scene_));
+    if (device_) rtcReleaseDevice(static_cast<RTCDevice>(device_));
+    scene_ = device_ = nullptr;
 }
 
 SceneGeometry::~SceneGeometry() {
-    if (scene_) rtcReleaseScene(static_cast<RTCScene>(scene_));
-    if (device_) rtcReleaseDevice(static_cast<RTCDevice>(device_));
+    release();
 }
 
 std::optional<Hit> SceneGeometry::intersect(const glm::dvec3& o, const glm::dvec3& d, double t_max) const {

@@ -44,6 +44,7 @@ class SceneGeometry {
     glm::dvec3 bounds_hi() const { return hi_; }
 
   private:
+    void release();
     std::string embree_error_; // first error reported by Embree's callback
     void* device_ = nullptr;   // RTCDevice
     void* scene_ = nullptr;    // RTCScene (null when there are no meshes)
