@@ -148,10 +148,10 @@ std::vector<ParamSpec> build_scene_params() {
         "the range interval its solid-angle cell covers; adaptive: spread, with elevation cells refined "
         "until sampling.tolerance_db is met",
         [](S s) -> SamplingScheme& { return s.sampling.scheme; }));
-    t.push_back(
-        number("sampling.tolerance_db", "dB", 0, 10, true, false, Stage::Trace,
-               "adaptive: target median |dB error| over echoing bins, as the sampler estimates it; it refines until met",
-               [](S s) -> double& { return s.sampling.tolerance_db; }));
+    t.push_back(number("sampling.tolerance_db", "dB", 0, 10, true, false, Stage::Trace,
+                       "adaptive: target median |dB error| over echoing bins, as the sampler estimates it; "
+                       "it refines until met",
+                       [](S s) -> double& { return s.sampling.tolerance_db; }));
     t.push_back(number("display.lo_db", "dB", -1000, 1000, false, false, Stage::Display,
                        "L_EN shown as black", [](S s) -> double& { return s.display.lo_db; }));
     t.push_back(number("display.hi_db", "dB", -1000, 1000, false, false, Stage::Display,
