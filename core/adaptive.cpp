@@ -240,7 +240,8 @@ TraceResult trace_pass(const Context& ctx, int M0, TraceResult::ErrorEstimate& e
     });
     // Columns that see different surfaces than their neighbours (within the beam or across its edges), or
     // that hold a specular lobe narrower than themselves, split in three (the middle one keeps its rays).
-    int next_group = 2 * K0 + 2;
+    int next_group =
+        3 * K0 + 3; // above every base group id (k / 3, or K0 + k + k / 3 for a last partial triple)
     for (int lv = 0; lv < kAzimuthLevels; ++lv) {
         std::vector<std::vector<char>> mark(static_cast<size_t>(N));
         tbb::parallel_for(0, N, [&](int i) {
