@@ -35,6 +35,9 @@ std::vector<std::uint8_t> view3d_png(const SceneDesc& scene) {
 
 void check_parent_dir(const std::string& path, const std::string& option) {
     const std::filesystem::path p(path);
+    if (p.filename().empty() || p.filename() == "." || p.filename() == "..")
+        throw InputError(option, "",
+                         "\"" + path + "\" names a directory; give a file name prefix, e.g. dir/image");
     const auto dir = p.parent_path().empty() ? std::filesystem::path(".") : p.parent_path();
     std::error_code ec;
     if (!std::filesystem::is_directory(dir, ec))

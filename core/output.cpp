@@ -1,5 +1,6 @@
 #include "output.hpp"
 
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -51,18 +52,24 @@ void write_files_atomically(const std::vector<std::pair<std::string, Bytes>>& fi
     for (auto& [path, bytes] : files) {
         const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
         temps.push_back(tmp);
+        errno = 0;
         std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-        if (f) f.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-        f.close();
-        if (!f) {
+        int err = f ? 0 : errno; // the reason the open failed, before anything else can change errno
+        if (f) {
+            f.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+            f.close();
+            if (!f) err = errno ? errno : EIO;
+        }
+        if (err || !f) {
             cleanup();
-            throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+            throw std::runtime_error("cannot write " + path + ": " + std::strerror(err ? err : EIO));
         }
     }
     for (size_t i = 0; i < files.size(); ++i)
         if (std::rename(temps[i].c_str(), files[i].first.c_str()) != 0) {
+            const int err = errno;
             cleanup();
-            throw std::runtime_error("cannot rename into " + files[i].first + ": " + std::strerror(errno));
+            throw std::runtime_error("cannot rename into " + files[i].first + ": " + std::strerror(err));
         }
 }
 
