@@ -5,16 +5,12 @@
 #include "scene_io.hpp"
 
 #include <algorithm>
+#include "timing.hpp"
+
 #include <chrono>
 
 namespace sonarsim {
-namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-} // namespace
+namespace {} // namespace
 
 Stage changed_stage(const SceneDesc& a, const SceneDesc& b) {
     Stage st = Stage::None;

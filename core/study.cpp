@@ -4,6 +4,8 @@
 #include "trace.hpp"
 
 #include <algorithm>
+#include "timing.hpp"
+
 #include <chrono>
 
 namespace sonarsim {
@@ -21,10 +23,6 @@ PolarImage render_raw(const SceneGeometry& g, const SceneDesc& s, TraceResult* h
     PolarImage img = t.shaded ? std::move(*t.shaded) : shade(t, s);
     if (hits) *hits = std::move(t);
     return img;
-}
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 } // namespace

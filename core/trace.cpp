@@ -1,5 +1,6 @@
 #include "trace.hpp"
 
+#include "timing.hpp"
 #include "trace_detail.hpp"
 
 #include <chrono>
@@ -9,11 +10,6 @@
 namespace sonarsim {
 
 using detail::Angle;
-
-double elevation_of_ray_rad(const SceneDesc& s, int j) {
-    const double phi = deg2rad(s.sonar.elevation_fov_deg);
-    return phi / 2 - (j + 0.5) * phi / s.sampling.elevation_rays;
-}
 
 namespace {
 
@@ -97,7 +93,7 @@ TraceResult trace(const SceneGeometry& g, const SceneDesc& s) {
     const auto t0 = std::chrono::steady_clock::now();
     TraceResult out =
         s.sampling.scheme == SamplingScheme::Adaptive ? trace_adaptive(g, s) : trace_uniform(g, s);
-    out.trace_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    out.trace_ms = ms_since(t0);
     return out;
 }
 

@@ -42,9 +42,6 @@ struct TraceResult {
     double trace_ms = 0;
 };
 
-/// Elevation of ray j's cell centre [rad]: midpoint rule, e_j = Phi/2 - (j + 1/2) Phi / M.
-double elevation_of_ray_rad(const SceneDesc& scene, int j);
-
 /// Traces the scene with the scheme it asks for (sampling.scheme).
 TraceResult trace(const SceneGeometry& geometry, const SceneDesc& scene);
 

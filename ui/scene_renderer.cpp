@@ -115,6 +115,15 @@ void SceneRenderer::use(const Program& p, const glm::mat4& mvp, const glm::vec3&
     u_tint_ = p.tint;
 }
 
+void SceneRenderer::draw_with_hidden(const gl::VertexBuffer& vb, GLenum mode, float hidden_alpha) {
+    vb.draw(mode);
+    glDepthFunc(GL_GREATER);
+    glUniform4f(u_tint_, 1, 1, 1, hidden_alpha);
+    vb.draw(mode);
+    glDepthFunc(GL_LESS);
+    glUniform4f(u_tint_, 1, 1, 1, 1);
+}
+
 void SceneRenderer::set_meshes(const std::vector<TriMesh>& meshes) {
     std::vector<gl::Vertex> vertices;
     mesh_first_.clear(), mesh_count_.clear();
@@ -211,12 +220,7 @@ void SceneRenderer::draw(const SceneDesc& scene, const OrbitCamera& cam, int x, 
     glDepthMask(GL_FALSE);
     shell_faces_.draw(GL_TRIANGLES);
     glUniform4f(u_tint_, 1, 1, 1, ov.sonar_hot ? 1.0f : 0.85f);
-    shell_lines_.draw(GL_LINES);
-    glDepthFunc(GL_GREATER);
-    glUniform4f(u_tint_, 1, 1, 1, 0.22f);
-    shell_lines_.draw(GL_LINES);
-    glDepthFunc(GL_LESS);
-    glUniform4f(u_tint_, 1, 1, 1, 1);
+    draw_with_hidden(shell_lines_, GL_LINES, 0.22f);
 
     // Teaching overlays: the arc bright where visible and faint where hidden (e.g. below the floor); the
     // points over everything.
@@ -225,12 +229,7 @@ void SceneRenderer::draw(const SceneDesc& scene, const OrbitCamera& cam, int x, 
         for (auto& p : ov.arc) v.push_back({glm::vec3(p), {}, kArc});
         overlay_lines_.upload(v);
         glLineWidth(2.5f);
-        overlay_lines_.draw(GL_LINE_STRIP);
-        glDepthFunc(GL_GREATER);
-        glUniform4f(u_tint_, 1, 1, 1, 0.35f);
-        overlay_lines_.draw(GL_LINE_STRIP);
-        glDepthFunc(GL_LESS);
-        glUniform4f(u_tint_, 1, 1, 1, 1);
+        draw_with_hidden(overlay_lines_, GL_LINE_STRIP, 0.35f);
         glLineWidth(1.0f);
     }
     glDisable(GL_DEPTH_TEST);

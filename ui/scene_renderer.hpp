@@ -48,6 +48,8 @@ class SceneRenderer {
         GLint mvp = -1, light = -1, point = -1, tint = -1;
     };
     void use(const Program& p, const glm::mat4& mvp, const glm::vec3& light, float point_px);
+    /// Draws `vb` where it is visible, then again with `hidden_alpha` where surfaces hide it.
+    void draw_with_hidden(const gl::VertexBuffer& vb, GLenum mode, float hidden_alpha);
 
     Program surfaces_, points_;
     GLint u_tint_ = -1;                           // tint uniform of the program in use
