@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <tbb/parallel_for.h>
 
@@ -49,14 +50,29 @@ struct Column {
 struct Context {
     const SceneGeometry& g;
     const SceneDesc& s;
+    const TraceControl& control;
     detail::RayFrame frame;
     ShadeConstants k;
-    double phi, jump_db, range_jump_db, bin_m;
-    Context(const SceneGeometry& geo, const SceneDesc& scene)
-        : g(geo), s(scene), frame(scene), k(shade_constants(scene)),
+    double phi, jump_db, range_jump_db, bin_m, gap_m;
+    int elevation_levels, azimuth_levels;
+    mutable std::atomic<std::uint64_t> rays{0}; ///< rays traced or reserved in this image, all passes
+    mutable std::atomic<bool> budget_hit{false};
+    Context(const SceneGeometry& geo, const SceneDesc& scene, const TraceControl& c)
+        : g(geo), s(scene), control(c), frame(scene), k(shade_constants(scene)),
           phi(deg2rad(scene.sonar.elevation_fov_deg)), jump_db(10 * scene.sampling.tolerance_db),
           range_jump_db(2 * scene.sampling.tolerance_db),
-          bin_m((scene.sonar.range_max_m - scene.sonar.range_min_m) / scene.sonar.range_bins) {}
+          bin_m((scene.sonar.range_max_m - scene.sonar.range_min_m) / scene.sonar.range_bins),
+          gap_m(0.5 * bin_m), elevation_levels(c.preview ? 0 : kElevationLevels),
+          azimuth_levels(c.preview ? 0 : kAzimuthLevels) {}
+
+    /// Takes n rays from the image's budget (sampling.max_rays); false (and nothing taken) when it is spent.
+    bool reserve(std::uint64_t n) const {
+        if (rays.fetch_add(n, std::memory_order_relaxed) + n <= std::uint64_t(s.sampling.max_rays))
+            return true;
+        rays.fetch_sub(n, std::memory_order_relaxed);
+        budget_hit.store(true, std::memory_order_relaxed);
+        return false;
+    }
 
     /// Sets the cell width and what follows from it for the neighbour comparisons.
     void set_width(Node& n, double de) const {
@@ -82,10 +98,24 @@ struct Context {
         return n;
     }
 
-    bool discontinuous(const Node& x, const Node& y) const {
+    /// True when a surface edge lies between the hits of x and y: another material, or, on one object, hits
+    /// on different triangles whose tangent planes disagree by more than half a range bin about where the
+    /// ray `d_edge` along the cells' shared edge meets the surface (a silhouette, an occlusion, a crease
+    /// that moves echo between bins). A finely tessellated smooth surface passes: its planes agree to second
+    /// order in the spacing, so the number of rays does not grow with the number of triangles.
+    bool surface_edge(const Hit& x, const glm::dvec3& px, const Hit& y, const glm::dvec3& py,
+                      const glm::dvec3& d_edge) const {
+        if (x.material != y.material) return true;
+        if (x.material == kFloorMaterial || x.prim == y.prim) return false;
+        const double rx = detail::plane_range(frame.origin, px, x.normal, d_edge);
+        const double ry = detail::plane_range(frame.origin, py, y.normal, d_edge);
+        return rx < 0 || ry < 0 || std::abs(rx - ry) > gap_m;
+    }
+
+    bool discontinuous(const Node& x, const Node& y, const glm::dvec3& d_edge) const {
         if (bool(x.hit) != bool(y.hit)) return true;
         if (!x.hit) return false;
-        if (detail::different_surface(*x.hit, x.p, *y.hit, y.p)) return true;
+        if (surface_edge(*x.hit, x.p, *y.hit, y.p, d_edge)) return true;
         if (std::abs(x.density_db - y.density_db) > jump_db) return true;
         // Cells whose range footprint spans bins spread their echo evenly over it; where the echo per metre
         // of range changes between neighbours (grazing incidence), that spreading needs finer cells.
@@ -131,29 +161,35 @@ struct Context {
         const Angle a(a_rad);
         const double de0 = phi / M0, de_min = de0 / std::pow(3.0, kElevationLevels) * 1.0001;
         int next_group = (M0 + 2) / 3;
-        for (int j = 0; j < M0; ++j)
+        col.nodes.reserve(size_t(M0));
+        for (int j = 0; j < M0; ++j) {
+            if ((j & 63) == 0 && control.cancelled()) return col;
             col.nodes.push_back(trace_node(a, phi / 2 - (j + 0.5) * de0, de0, j / 3));
+        }
         if (M0 % 3) // an incomplete last base triple is never merged
             for (int j = M0 - M0 % 3; j < M0; ++j) col.nodes[size_t(j)].group = next_group++;
         col.rays = std::uint64_t(M0);
-        col.base = col.nodes;
-        for (int level = 0; level < kElevationLevels; ++level) {
-            bool any = false;
+        if (azimuth_levels > 0) col.base = col.nodes;
+        for (int level = 0; level < elevation_levels; ++level) {
+            if (control.cancelled()) return col;
+            size_t marked = 0;
             auto mark = [&](Node& n) {
-                if (n.de > de_min) n.refine = any = true;
+                if (n.de > de_min && !n.refine) n.refine = true, ++marked;
             };
             // Pairs of unchanged neighbours were compared before and found smooth: compare only fresh pairs.
-            for (size_t n = 0; n + 1 < col.nodes.size(); ++n)
-                if ((col.nodes[n].fresh || col.nodes[n + 1].fresh) &&
-                    discontinuous(col.nodes[n], col.nodes[n + 1]))
+            for (size_t n = 0; n + 1 < col.nodes.size(); ++n) {
+                const Node &x = col.nodes[n], &y = col.nodes[n + 1];
+                if ((x.fresh || y.fresh) && discontinuous(x, y, frame.dir(a, Angle(x.e - x.de / 2))))
                     mark(col.nodes[n]), mark(col.nodes[n + 1]);
+            }
             for (auto& n : col.nodes) n.fresh = false;
             for (auto& n : col.nodes)
                 if (!n.refine && !n.alone_checked) {
                     n.alone_checked = true;
                     if (needs_split_alone(n, a)) mark(n);
                 }
-            if (!any) break;
+            if (marked == 0) break;
+            if (!reserve(2 * marked)) break; // budget spent: this column stays at its current level
             std::vector<Node> next;
             next.reserve(col.nodes.size() + 16);
             for (auto& n : col.nodes) {
@@ -222,8 +258,9 @@ double column_azimuth(const SceneDesc& s, int i, int k, int K) {
 }
 
 bool columns_disagree(const Context& ctx, const Column& x, const Column& y) {
+    const Angle a_edge(0.5 * (x.a + y.a)); // the columns' shared azimuth edge
     for (size_t j = 0; j < x.base.size() && j < y.base.size(); ++j)
-        if (ctx.discontinuous(x.base[j], y.base[j])) return true;
+        if (ctx.discontinuous(x.base[j], y.base[j], ctx.frame.dir(a_edge, x.base[j].angle))) return true;
     return false;
 }
 
@@ -232,6 +269,7 @@ TraceResult trace_pass(const Context& ctx, int M0, TraceResult::ErrorEstimate& e
     const int N = s.sonar.beams, K0 = s.sampling.azimuth_rays;
     const double w = deg2rad(s.sonar.azimuth_fov_deg) / N;
     std::vector<std::vector<Column>> beams(static_cast<size_t>(N));
+    ctx.rays.fetch_add(std::uint64_t(N) * K0 * M0); // the base grid is always traced
     tbb::parallel_for(0, N, [&](int i) {
         for (int k = 0; k < K0; ++k) {
             beams[size_t(i)].push_back(ctx.trace_column(column_azimuth(s, i, k, K0), w / K0, M0));
@@ -242,7 +280,8 @@ TraceResult trace_pass(const Context& ctx, int M0, TraceResult::ErrorEstimate& e
     // that hold a specular lobe narrower than themselves, split in three (the middle one keeps its rays).
     int next_group =
         3 * K0 + 3; // above every base group id (k / 3, or K0 + k + k / 3 for a last partial triple)
-    for (int lv = 0; lv < kAzimuthLevels; ++lv) {
+    for (int lv = 0; lv < ctx.azimuth_levels; ++lv) {
+        if (ctx.control.cancelled()) break;
         std::vector<std::vector<char>> mark(static_cast<size_t>(N));
         tbb::parallel_for(0, N, [&](int i) {
             const auto& cols = beams[size_t(i)];
@@ -280,7 +319,7 @@ TraceResult trace_pass(const Context& ctx, int M0, TraceResult::ErrorEstimate& e
             int grp = first_group[size_t(i)];
             std::vector<Column> next;
             for (size_t k = 0; k < cols.size(); ++k) {
-                if (!m[k]) {
+                if (!m[k] || !ctx.reserve(2 * std::uint64_t(M0))) {
                     next.push_back(std::move(cols[k]));
                     continue;
                 }
@@ -296,12 +335,14 @@ TraceResult trace_pass(const Context& ctx, int M0, TraceResult::ErrorEstimate& e
         });
     }
 
+    if (ctx.control.cancelled()) throw TraceCancelled();
     TraceResult fine, coarse;
     fine.beams = coarse.beams = N;
     fine.cells.resize(size_t(N)), coarse.cells.resize(size_t(N));
     tbb::parallel_for(0, N, [&](int i) {
         const auto& cols = beams[size_t(i)];
         for (auto& c : cols) ctx.cells_of(c, false, c.da, fine.cells[size_t(i)]);
+        if (ctx.control.preview) return;
         // One level coarser everywhere: sibling column triples -> the middle column (3 da), and within each
         // column sibling elevation triples -> the middle cell.
         for (size_t k = 0; k < cols.size();) {
@@ -317,7 +358,14 @@ TraceResult trace_pass(const Context& ctx, int M0, TraceResult::ErrorEstimate& e
     });
     for (auto& b : beams)
         for (auto& c : b) fine.rays_traced += c.rays;
+    beams.clear(); // the nodes are no longer needed: free them before shading
+    beams.shrink_to_fit();
     PolarImage fine_image = shade(fine, s);
+    if (ctx.control.preview) {
+        fine.shaded = std::move(fine_image);
+        fine.preview = true;
+        return fine;
+    }
     const ImageError e = compare_images(shade(coarse, s), fine_image);
     fine.shaded = std::move(fine_image); // the caller need not shade these cells again
     // The coarse image's error is taken as three times the fine one's (first order at discontinuities, the
@@ -329,8 +377,8 @@ TraceResult trace_pass(const Context& ctx, int M0, TraceResult::ErrorEstimate& e
 
 } // namespace
 
-TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s) {
-    const Context ctx(g, s);
+TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control) {
+    const Context ctx(g, s, control);
     std::uint64_t rays = 0;
     int M0 = s.sampling.elevation_rays;
     TraceResult out;
@@ -339,10 +387,18 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s) {
         out = trace_pass(ctx, M0, est);
         rays += out.rays_traced;
         est.passes = pass;
+        est.budget_reached = ctx.budget_hit.load();
         out.error_estimate = est;
-        if (est.median_abs_db <= s.sampling.tolerance_db || pass == kMaxPasses ||
-            double(M0) * 3 * s.sonar.beams * s.sampling.azimuth_rays > kMaxRaysPerImage / 9)
+        // A denser base grid must fit in what is left of the budget.
+        const double next_base = double(M0) * 3 * s.sonar.beams * s.sampling.azimuth_rays;
+        if (out.preview || est.median_abs_db <= s.sampling.tolerance_db || pass == kMaxPasses ||
+            est.budget_reached || next_base > kMaxRaysPerImage / 9 ||
+            double(ctx.rays.load()) + next_base > double(s.sampling.max_rays)) {
+            if (!out.preview && est.median_abs_db > s.sampling.tolerance_db && !est.budget_reached &&
+                pass<kMaxPasses&& double(ctx.rays.load()) + next_base> double(s.sampling.max_rays))
+                out.error_estimate.budget_reached = true; // the next pass would not fit
             break;
+        }
         M0 *= 3;
     }
     out.rays_traced = rays;

@@ -152,6 +152,10 @@ std::vector<ParamSpec> build_scene_params() {
                        "adaptive: target median |dB error| over echoing bins, as the sampler estimates it; "
                        "it refines until met",
                        [](S s) -> double& { return s.sampling.tolerance_db; }));
+    t.push_back(integer("sampling.max_rays", 1000, kMaxRaysPerImage, Stage::Trace,
+                        "adaptive: budget of rays per image, refinement and passes included; when reached, "
+                        "refinement stops and the metadata says so (about 300 bytes of memory per ray)",
+                        [](S s) -> int& { return s.sampling.max_rays; }));
     t.push_back(number("display.lo_db", "dB", -1000, 1000, false, false, Stage::Display,
                        "L_EN shown as black", [](S s) -> double& { return s.display.lo_db; }));
     t.push_back(number("display.hi_db", "dB", -1000, 1000, false, false, Stage::Display,

@@ -50,6 +50,7 @@ struct SamplingParams {
     NormalSource normals = NormalSource::Mesh;
     SamplingScheme scheme = SamplingScheme::Adaptive;
     double tolerance_db = 0.1; ///< adaptive scheme's target error [dB]
+    int max_rays = 2000000;    ///< adaptive scheme's budget of rays per image, refinement included
 };
 
 enum class Colormap { Gray, Viridis };

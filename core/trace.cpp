@@ -43,7 +43,7 @@ void apply_paper_normals(TraceResult& out, const SceneDesc& s, const std::vector
 
 } // namespace
 
-TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s) {
+TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control) {
     const int N = s.sonar.beams, K = s.sampling.azimuth_rays, M = s.sampling.elevation_rays;
     const double theta = deg2rad(s.sonar.azimuth_fov_deg), phi = deg2rad(s.sonar.elevation_fov_deg);
     const double da = theta / N / K, de = phi / M;
@@ -64,6 +64,7 @@ TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s) {
     out.beams = N;
     out.cells.resize(size_t(N));
     tbb::parallel_for(0, N, [&](int i) {
+        if (control.cancelled()) return;
         auto& cells = out.cells[size_t(i)];
         const double a_beam_lo = theta / 2 - (i + 1.0) * theta / N;
         for (int k = 0; k < K; ++k) {
@@ -84,15 +85,16 @@ TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s) {
             }
         }
     });
+    if (control.cancelled()) throw TraceCancelled();
     out.rays_traced = std::uint64_t(N) * K * M;
     if (paper) apply_paper_normals(out, s, grid_point, grid_hit);
     return out;
 }
 
-TraceResult trace(const SceneGeometry& g, const SceneDesc& s) {
+TraceResult trace(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control) {
     const auto t0 = std::chrono::steady_clock::now();
-    TraceResult out =
-        s.sampling.scheme == SamplingScheme::Adaptive ? trace_adaptive(g, s) : trace_uniform(g, s);
+    TraceResult out = s.sampling.scheme == SamplingScheme::Adaptive ? trace_adaptive(g, s, control)
+                                                                    : trace_uniform(g, s, control);
     out.trace_ms = ms_since(t0);
     return out;
 }

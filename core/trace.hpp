@@ -6,8 +6,10 @@
 
 #include "polar_image.hpp"
 
+#include <atomic>
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -38,20 +40,39 @@ struct TraceResult {
         bool valid = false;
         double rel_l1 = 0, median_abs_db = 0, p95_abs_db = 0;
         int passes = 0;
+        bool budget_reached = false; ///< refinement stopped at sampling.max_rays before the tolerance was met
     } error_estimate;
+    bool preview = false; ///< a coarse pass only (TraceControl::preview): no refinement, no error estimate
     double trace_ms = 0;
 };
 
+/// Control of one trace from outside: cancellation by another thread, and a coarse preview.
+struct TraceControl {
+    /// When another thread sets it, the trace stops within a few milliseconds and throws TraceCancelled.
+    const std::atomic<bool>* cancel = nullptr;
+    /// Adaptive scheme: the base grid only (no refinement, no error estimate), for an image within a
+    /// frame budget while the user drags; uniform and spread ignore it.
+    bool preview = false;
+    bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
+};
+
+/// Thrown by trace() when TraceControl::cancel was set.
+struct TraceCancelled : std::runtime_error {
+    TraceCancelled() : std::runtime_error("trace cancelled") {}
+};
+
 /// Traces the scene with the scheme it asks for (sampling.scheme).
-TraceResult trace(const SceneGeometry& geometry, const SceneDesc& scene);
+TraceResult trace(const SceneGeometry& geometry, const SceneDesc& scene, const TraceControl& control = {});
 
 /// The paper's regular grid: beams x azimuth_rays x elevation_rays rays at cell centres (midpoint rule).
-TraceResult trace_uniform(const SceneGeometry& geometry, const SceneDesc& scene);
+TraceResult trace_uniform(const SceneGeometry& geometry, const SceneDesc& scene,
+                          const TraceControl& control = {});
 
 /// Adaptive: starts from the regular grid and refines elevation cells (ternary splits) where neighbouring
 /// rays see different surfaces, the echo density jumps by more than sampling.tolerance_db, or a specular lobe
 /// or a plane's horizon falls inside a cell; beams whose columns disagree get more azimuth rays.
 /// Fills `error_estimate`.
-TraceResult trace_adaptive(const SceneGeometry& geometry, const SceneDesc& scene);
+TraceResult trace_adaptive(const SceneGeometry& geometry, const SceneDesc& scene,
+                           const TraceControl& control = {});
 
 } // namespace sonarsim

@@ -55,14 +55,4 @@ Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, 
     return c;
 }
 
-bool different_surface(const Hit& h1, const glm::dvec3& p1, const Hit& h2, const glm::dvec3& p2) {
-    if (h1.material != h2.material) return true;
-    if (h1.material == kFloorMaterial) return false;
-    if (h1.prim == h2.prim) return false;
-    // Different triangles: the same surface only if coplanar (flat faces split into triangles).
-    const double scale = std::max(1e-6, glm::length(p1 - p2));
-    return std::abs(glm::dot(h1.normal, h2.normal)) < 0.99999 ||
-           std::abs(glm::dot(h1.normal, p2 - p1)) > 1e-4 * scale;
-}
-
 } // namespace sonarsim::detail

@@ -39,7 +39,4 @@ std::optional<Hit> first_hit(const SceneGeometry& g, const SceneDesc& s, const g
 Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, const Angle& a_lo,
                const Angle& a_hi, const Angle& e_lo, const Angle& e_hi);
 
-/// True when two hits lie on different surfaces (material, or plane), i.e. a discontinuity lies between them.
-bool different_surface(const Hit& h1, const glm::dvec3& p1, const Hit& h2, const glm::dvec3& p2);
-
 } // namespace sonarsim::detail
