@@ -21,7 +21,10 @@ namespace {
 constexpr int kElevationLevels = 5; // ternary splits: cells down to 1/243 of the base width
 constexpr int kAzimuthLevels = 3; // columns split in three locally: down to 1/27 of the base width (specular)
 constexpr int kEdgeAzimuthLevels = 2; // ... and down to 1/9 where neighbouring columns see different surfaces
-constexpr int kMaxPasses = 3;         // base refinements (x3) when the error estimate misses the tolerance
+constexpr int kMaxPasses = 3;
+/// Cells whose errors may add up in one bin: a pair is worth refining when its possible error exceeds
+/// this fraction of what the tolerance allows the bin.
+constexpr double kErrorsPerBin = 3; // base refinements (x3) when the error estimate misses the tolerance
 
 /// One elevation cell of a column.
 struct Node {
@@ -41,6 +44,7 @@ struct Node {
 
 struct Column {
     double a = 0, da = 0;
+    int beam = 0;
     int group = 0;           ///< sibling columns of one split (or base triples) share a group
     std::vector<Node> nodes; ///< ordered by decreasing elevation
     std::vector<Node> base;  ///< the base grid as first traced (for comparing neighbouring columns)
@@ -54,16 +58,23 @@ struct Context {
     detail::RayFrame frame;
     ShadeConstants k;
     double phi, jump_db, range_jump_db, bin_m, gap_m;
+    double tol_rel_db; ///< 10 log10 of the relative error per bin that tolerance_db allows, 10^(tol/10) - 1
     int elevation_levels, azimuth_levels;
     mutable std::atomic<std::uint64_t> rays{0}; ///< rays traced or reserved in this image, all passes
     mutable std::atomic<bool> budget_hit{false};
+    mutable std::atomic<bool> refined{false}; ///< a cell or column of this pass was split
+    /// The base grid's image (L_EN per range bin and beam): the scale against which a neighbour pair's
+    /// possible error is judged. Empty: every flagged pair counts.
+    PolarImage base_image;
     Context(const SceneGeometry& geo, const SceneDesc& scene, const TraceControl& c)
         : g(geo), s(scene), control(c), frame(scene), k(shade_constants(scene)),
           phi(deg2rad(scene.sonar.elevation_fov_deg)), jump_db(10 * scene.sampling.tolerance_db),
           range_jump_db(2 * scene.sampling.tolerance_db),
           bin_m((scene.sonar.range_max_m - scene.sonar.range_min_m) / scene.sonar.range_bins),
-          gap_m(0.5 * bin_m), elevation_levels(c.preview ? 0 : kElevationLevels),
-          azimuth_levels(c.preview ? 0 : kAzimuthLevels) {}
+          gap_m(0.5 * bin_m),
+          tol_rel_db(10 * std::log10((std::pow(10.0, scene.sampling.tolerance_db / 10) - 1) / kErrorsPerBin)),
+          elevation_levels(c.preview ? 0 : kElevationLevels), azimuth_levels(c.preview ? 0 : kAzimuthLevels) {
+    }
 
     /// Takes n rays from the image's budget (sampling.max_rays); false (and nothing taken) when it is spent.
     bool reserve(std::uint64_t n) const {
@@ -112,14 +123,43 @@ struct Context {
         return rx < 0 || ry < 0 || std::abs(rx - ry) > gap_m;
     }
 
-    bool discontinuous(const Node& x, const Node& y, const glm::dvec3& d_edge) const {
-        if (bool(x.hit) != bool(y.hit)) return true;
+    /// Whether an error of a fraction `f` of the echo of node n's cell (in column c), spread over the
+    /// cell's range footprint, exceeds the relative error per bin that the tolerance allows in the base
+    /// image's bin of that range. Computed in dB, so that no level underflows.
+    bool significant(const Node& n, const Column& c, double f) const {
+        if (base_image.level_db.empty()) return true;
+        if (!n.hit || !(f > 0)) return false;
+        const double b = std::floor((n.hit->t - s.sonar.range_min_m) / bin_m);
+        if (!(b >= 0 && b < s.sonar.range_bins)) return false; // outside the window: no bin to spoil
+        const double bin_db = base_image.at(int(b), c.beam) + k.noise_level_db; // -inf: nothing there yet
+        const double error_db = n.density_db + 10 * std::log10(f * n.angle.c * n.de * c.da /
+                                                               std::max(1.0, n.footprint_m / bin_m));
+        return error_db > tol_rel_db + bin_db;
+    }
+
+    /// A pair whose cells disagree (see discontinuous) is refined only where the error it can cause is
+    /// significant against the image: half the echo of a cell at a surface edge, half the difference of the
+    /// two levels on one surface. Pairs on rough surfaces whose cells are a small part of their bins' echo
+    /// stay coarse; silhouettes, shadows and bright facets against their background do not.
+    bool worth_refining(const Node& x, const Column& cx, const Node& y, const Column& cy, bool edge) const {
+        const double f =
+            edge ? 0.5 : 0.5 * (1 - std::pow(10.0, -0.1 * std::abs(x.density_db - y.density_db)));
+        return significant(x, cx, f) || significant(y, cy, f);
+    }
+
+    /// Whether the cells of neighbours x (in column cx) and y (in cy) must be split: d_edge is the ray
+    /// along their shared edge.
+    bool discontinuous(const Node& x, const Column& cx, const Node& y, const Column& cy,
+                       const glm::dvec3& d_edge) const {
+        if (bool(x.hit) != bool(y.hit)) return worth_refining(x, cx, y, cy, true);
         if (!x.hit) return false;
-        if (surface_edge(*x.hit, x.p, *y.hit, y.p, d_edge)) return true;
-        if (std::abs(x.density_db - y.density_db) > jump_db) return true;
+        if (surface_edge(*x.hit, x.p, *y.hit, y.p, d_edge)) return worth_refining(x, cx, y, cy, true);
+        if (std::abs(x.density_db - y.density_db) > jump_db) return worth_refining(x, cx, y, cy, false);
         // Cells whose range footprint spans bins spread their echo evenly over it; where the echo per metre
-        // of range changes between neighbours (grazing incidence), that spreading needs finer cells.
-        if (!(std::max(x.footprint_m, y.footprint_m) > bin_m)) return false;
+        // of range changes between neighbours on one plane (grazing incidence: r(e) is far from linear over
+        // the cell), that spreading needs finer cells. Between the facets of a smooth tessellated surface
+        // the change is the facets' own (their normals step), and the density test above bounds it.
+        if (x.hit->prim != y.hit->prim || !(std::max(x.footprint_m, y.footprint_m) > bin_m)) return false;
         return std::abs(x.per_metre_db - y.per_metre_db) > range_jump_db;
     }
 
@@ -154,12 +194,12 @@ struct Context {
         return a_star > a_lo - 2 * h && a_star < a_hi + 2 * h;
     }
 
-    /// Base grid of M0 cells, then ternary refinement down to kElevationLevels.
-    Column trace_column(double a_rad, double da, int M0) const {
+    /// The base grid of M0 cells of one column.
+    Column trace_column(double a_rad, double da, int M0, int beam) const {
         Column col;
-        col.a = a_rad, col.da = da;
+        col.a = a_rad, col.da = da, col.beam = beam;
         const Angle a(a_rad);
-        const double de0 = phi / M0, de_min = de0 / std::pow(3.0, kElevationLevels) * 1.0001;
+        const double de0 = phi / M0;
         int next_group = (M0 + 2) / 3;
         col.nodes.reserve(size_t(M0));
         for (int j = 0; j < M0; ++j) {
@@ -170,8 +210,16 @@ struct Context {
             for (int j = M0 - M0 % 3; j < M0; ++j) col.nodes[size_t(j)].group = next_group++;
         col.rays = std::uint64_t(M0);
         if (azimuth_levels > 0) col.base = col.nodes;
+        return col;
+    }
+
+    /// Ternary refinement of a column's cells down to kElevationLevels.
+    void refine_column(Column& col, int M0) const {
+        const Angle a(col.a);
+        const double de0 = phi / M0, de_min = de0 / std::pow(3.0, kElevationLevels) * 1.0001;
+        int next_group = M0 + 3; // above every base group id (j / 3, then one per cell of a partial triple)
         for (int level = 0; level < elevation_levels; ++level) {
-            if (control.cancelled()) return col;
+            if (control.cancelled()) return;
             size_t marked = 0;
             auto mark = [&](Node& n) {
                 if (n.de > de_min && !n.refine) n.refine = true, ++marked;
@@ -179,7 +227,8 @@ struct Context {
             // Pairs of unchanged neighbours were compared before and found smooth: compare only fresh pairs.
             for (size_t n = 0; n + 1 < col.nodes.size(); ++n) {
                 const Node &x = col.nodes[n], &y = col.nodes[n + 1];
-                if ((x.fresh || y.fresh) && discontinuous(x, y, frame.dir(a, Angle(x.e - x.de / 2))))
+                if ((x.fresh || y.fresh) &&
+                    discontinuous(x, col, y, col, frame.dir(a, Angle(x.e - x.de / 2))))
                     mark(col.nodes[n]), mark(col.nodes[n + 1]);
             }
             for (auto& n : col.nodes) n.fresh = false;
@@ -190,6 +239,7 @@ struct Context {
                 }
             if (marked == 0) break;
             if (!reserve(2 * marked)) break; // budget spent: this column stays at its current level
+            refined.store(true, std::memory_order_relaxed);
             std::vector<Node> next;
             next.reserve(col.nodes.size() + 16);
             for (auto& n : col.nodes) {
@@ -212,7 +262,6 @@ struct Context {
             }
             col.nodes.swap(next);
         }
-        return col;
     }
 
     /// Cells of a column; `coarse` merges every complete sibling triple into its middle cell (one level up).
@@ -260,11 +309,12 @@ double column_azimuth(const SceneDesc& s, int i, int k, int K) {
 bool columns_disagree(const Context& ctx, const Column& x, const Column& y) {
     const Angle a_edge(0.5 * (x.a + y.a)); // the columns' shared azimuth edge
     for (size_t j = 0; j < x.base.size() && j < y.base.size(); ++j)
-        if (ctx.discontinuous(x.base[j], y.base[j], ctx.frame.dir(a_edge, x.base[j].angle))) return true;
+        if (ctx.discontinuous(x.base[j], x, y.base[j], y, ctx.frame.dir(a_edge, x.base[j].angle)))
+            return true;
     return false;
 }
 
-TraceResult trace_pass(const Context& ctx, int M0, TraceResult::ErrorEstimate& est) {
+TraceResult trace_pass(Context& ctx, int M0, TraceResult::ErrorEstimate& est) {
     const SceneDesc& s = ctx.s;
     const int N = s.sonar.beams, K0 = s.sampling.azimuth_rays;
     const double w = deg2rad(s.sonar.azimuth_fov_deg) / N;
@@ -272,9 +322,25 @@ TraceResult trace_pass(const Context& ctx, int M0, TraceResult::ErrorEstimate& e
     ctx.rays.fetch_add(std::uint64_t(N) * K0 * M0); // the base grid is always traced
     tbb::parallel_for(0, N, [&](int i) {
         for (int k = 0; k < K0; ++k) {
-            beams[size_t(i)].push_back(ctx.trace_column(column_azimuth(s, i, k, K0), w / K0, M0));
+            beams[size_t(i)].push_back(ctx.trace_column(column_azimuth(s, i, k, K0), w / K0, M0, i));
             beams[size_t(i)].back().group = k / 3 + (K0 % 3 && k >= K0 - K0 % 3 ? K0 + k : 0);
         }
+    });
+    // The base grid's image sets the scale of what is worth refining; then each column refines in
+    // elevation.
+    ctx.base_image = PolarImage{};
+    ctx.refined = false;
+    TraceResult base;
+    if (ctx.elevation_levels > 0 || ctx.azimuth_levels > 0) {
+        base.beams = N;
+        base.cells.resize(size_t(N));
+        tbb::parallel_for(0, N, [&](int i) {
+            for (auto& c : beams[size_t(i)]) ctx.cells_of(c, false, c.da, base.cells[size_t(i)]);
+        });
+        ctx.base_image = shade(base, s);
+    }
+    tbb::parallel_for(0, N, [&](int i) {
+        for (auto& c : beams[size_t(i)]) ctx.refine_column(c, M0);
     });
     // Columns that see different surfaces than their neighbours (within the beam or across its edges), or
     // that hold a specular lobe narrower than themselves, split in three (the middle one keeps its rays).
@@ -323,11 +389,14 @@ TraceResult trace_pass(const Context& ctx, int M0, TraceResult::ErrorEstimate& e
                     next.push_back(std::move(cols[k]));
                     continue;
                 }
+                ctx.refined.store(true, std::memory_order_relaxed);
                 const double a = cols[k].a, da = cols[k].da / 3;
-                next.push_back(ctx.trace_column(a + da, da, M0)); // port side first
+                next.push_back(ctx.trace_column(a + da, da, M0, i)); // port side first
+                ctx.refine_column(next.back(), M0);
                 next.push_back(std::move(cols[k]));
                 next.back().da = da;
-                next.push_back(ctx.trace_column(a - da, da, M0));
+                next.push_back(ctx.trace_column(a - da, da, M0, i));
+                ctx.refine_column(next.back(), M0);
                 for (size_t t = next.size() - 3; t < next.size(); ++t) next[t].group = grp;
                 ++grp;
             }
@@ -336,12 +405,19 @@ TraceResult trace_pass(const Context& ctx, int M0, TraceResult::ErrorEstimate& e
     }
 
     if (ctx.control.cancelled()) throw TraceCancelled();
+    // Nothing split: the fine cells and image are the base grid's, already made.
+    const bool reuse_base = !ctx.refined && !ctx.base_image.level_db.empty();
     TraceResult fine, coarse;
     fine.beams = coarse.beams = N;
-    fine.cells.resize(size_t(N)), coarse.cells.resize(size_t(N));
+    coarse.cells.resize(size_t(N));
+    if (reuse_base)
+        fine.cells = std::move(base.cells);
+    else
+        fine.cells.resize(size_t(N));
     tbb::parallel_for(0, N, [&](int i) {
         const auto& cols = beams[size_t(i)];
-        for (auto& c : cols) ctx.cells_of(c, false, c.da, fine.cells[size_t(i)]);
+        if (!reuse_base)
+            for (auto& c : cols) ctx.cells_of(c, false, c.da, fine.cells[size_t(i)]);
         if (ctx.control.preview) return;
         // One level coarser everywhere: sibling column triples -> the middle column (3 da), and within each
         // column sibling elevation triples -> the middle cell.
@@ -360,7 +436,8 @@ TraceResult trace_pass(const Context& ctx, int M0, TraceResult::ErrorEstimate& e
         for (auto& c : b) fine.rays_traced += c.rays;
     beams.clear(); // the nodes are no longer needed: free them before shading
     beams.shrink_to_fit();
-    PolarImage fine_image = shade(fine, s);
+    PolarImage fine_image = reuse_base ? std::move(ctx.base_image) : shade(fine, s);
+    ctx.base_image = PolarImage{};
     if (ctx.control.preview) {
         fine.shaded = std::move(fine_image);
         fine.preview = true;
@@ -378,7 +455,7 @@ TraceResult trace_pass(const Context& ctx, int M0, TraceResult::ErrorEstimate& e
 } // namespace
 
 TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control) {
-    const Context ctx(g, s, control);
+    Context ctx(g, s, control);
     std::uint64_t rays = 0;
     int M0 = s.sampling.elevation_rays;
     TraceResult out;

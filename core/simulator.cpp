@@ -16,8 +16,8 @@ Stage changed_stage(const SceneDesc& a, const SceneDesc& b) {
     Stage st = Stage::None;
     auto mark = [&](Stage s) { st = std::min(st, s); };
     // The adaptive scheme places its rays where the echo level varies, so the parameters that change how it
-    // varies over a surface (absorption, q, the specular lobe) re-trace; pure level offsets (L_S, L_N, nu)
-    // and display settings still only re-shade or re-map.
+    // varies over a surface or between materials (absorption, nu, q, the specular lobe) re-trace; pure
+    // level offsets of the whole image (L_S, L_N) and display settings still only re-shade or re-map.
     const bool adaptive = b.sampling.scheme == SamplingScheme::Adaptive;
     const Stage shaping = adaptive ? Stage::Trace : Stage::Shade;
     for (auto& p : scene_params())
@@ -27,7 +27,9 @@ Stage changed_stage(const SceneDesc& a, const SceneDesc& b) {
                      : p.stage);
     auto material_stage = [&](const Material& x, const Material& y) {
         if (x.q != y.q || x.mu != y.mu || x.h_deg != y.h_deg) mark(shaping);
-        if (x.nu_db != y.nu_db) mark(Stage::Shade);
+        // nu sets a material's level against the others', which decides where the adaptive sampler's
+        // refinement is worth its rays.
+        if (x.nu_db != y.nu_db) mark(shaping);
     };
     if (a.objects.size() != b.objects.size()) {
         mark(Stage::Geometry);
@@ -100,6 +102,8 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
             {"median_abs_db", est.median_abs_db},
             {"p95_abs_db", est.p95_abs_db},
             {"passes", est.passes},
+            {"budget_reached", est.budget_reached},
+            {"max_rays", s.sampling.max_rays},
             {"tolerance_met", est.median_abs_db <= s.sampling.tolerance_db},
             {"method",
              "half the difference to the same cells one refinement level coarser (bins echoing in both)"}};

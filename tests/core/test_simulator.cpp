@@ -20,8 +20,8 @@ TEST_CASE("incremental re-render equals a fresh render and starts at the right s
         {"source level", [](SceneDesc& s) { s.sonar.source_level_db = 220; }, Stage::Shade},
         {"temperature", [](SceneDesc& s) { s.water.temperature_c = 20; },
          Stage::Trace}, // adaptive: see below
-        {"floor material", [](SceneDesc& s) { s.seafloor->material.nu_db = -30; }, Stage::Shade},
-        {"object material", [](SceneDesc& s) { s.objects[0].material.nu_db = -40; }, Stage::Shade},
+        {"floor material", [](SceneDesc& s) { s.seafloor->material.nu_db = -30; }, Stage::Trace}, // adaptive
+        {"object material", [](SceneDesc& s) { s.objects[0].material.nu_db = -40; }, Stage::Trace},
         {"object specular lobe", [](SceneDesc& s) { s.objects[0].material.mu = 0.5; }, Stage::Trace},
         {"pose", [](SceneDesc& s) { s.sonar.pose.orientation_deg[2] = -35; }, Stage::Trace},
         {"range window", [](SceneDesc& s) { s.sonar.range_max_m = 3; }, Stage::Trace},
@@ -57,6 +57,7 @@ TEST_CASE("uniform and spread schemes re-shade on absorption and material change
         SceneDesc after = before;
         after.water.temperature_c = 20;
         after.objects[0].material.mu = 0.5;
+        after.seafloor->material.nu_db = -30;
         CHECK(changed_stage(before, after) == Stage::Shade);
         Simulator sim(before);
         sim.render();
