@@ -24,7 +24,10 @@ constexpr int kEdgeAzimuthLevels = 2; // ... and down to 1/9 where neighbouring 
 constexpr int kMaxPasses = 3;
 /// Cells whose errors may add up in one bin: a pair is worth refining when its possible error exceeds
 /// this fraction of what the tolerance allows the bin.
-constexpr double kErrorsPerBin = 3; // base refinements (x3) when the error estimate misses the tolerance
+constexpr double kErrorsPerBin = 3;
+/// An azimuth split covers the base cells where neighbouring columns disagree and this many on each side
+/// (what differs between columns often moves in elevation from one to the next).
+constexpr int kRunMargin = 1; // base refinements (x3) when the error estimate misses the tolerance
 
 /// One elevation cell of a column.
 struct Node {
@@ -37,6 +40,7 @@ struct Node {
     double per_metre_db = 0; ///< echo per metre of range when the footprint spans bins (see set_width)
     bool fresh = true;       ///< created or resized since its neighbours were last compared
     int group = 0;           ///< siblings of one split (or base triples) share a group
+    int j = 0;               ///< the base cell it lies in
     bool refine = false;
     bool alone_checked = false; ///< needs_split_alone() depends on the node only: evaluate it once
     Angle angle;                ///< e with its sine and cosine
@@ -45,6 +49,8 @@ struct Node {
 struct Column {
     double a = 0, da = 0;
     int beam = 0;
+    int j0 = 0, j1 = 0;      ///< the base cells [j0, j1) it covers (a split refines only where it is needed)
+    bool sibling = false;    ///< made by the last azimuth split, beside its siblings (same group)
     int group = 0;           ///< sibling columns of one split (or base triples) share a group
     std::vector<Node> nodes; ///< ordered by decreasing elevation
     std::vector<Node> base;  ///< the base grid as first traced (for comparing neighbouring columns)
@@ -172,6 +178,7 @@ struct Context {
     /// A specular lobe narrower than the cell, centred inside it, or a plane horizon inside the cell.
     bool needs_split_alone(const Node& n, const Angle& a) const {
         if (!n.hit) return false;
+        if (absorbed_across(n.footprint_m)) return true;
         const Material& m = material_of(s, n.hit->material);
         if (m.mu > 0 && n.de > deg2rad(m.h_deg) / 4) {
             const glm::dvec3 v = normal_direction_sonar(n);
@@ -184,6 +191,24 @@ struct Context {
         return false;
     }
 
+    /// Absorption alone changes the echo by more than the range-spreading threshold across a cell's range
+    /// footprint, which spreads its echo evenly (very high frequencies: at 10 MHz, 110 dB per metre of
+    /// range; where a bin holds few cells, at the aperture's edges, the split of a cell's echo between bins
+    /// must then follow the level within it).
+    bool absorbed_across(double footprint_m) const {
+        return 2 * k.alpha_db_per_m * footprint_m > range_jump_db;
+    }
+
+    /// The same across the column's azimuth width.
+    bool absorbed_across_azimuth(const Node& n, const Column& c) const {
+        if (!n.hit || !(k.alpha_db_per_m > 0)) return false;
+        const Angle a(c.a);
+        const glm::dvec3 d = frame.dir(a, n.angle);
+        const glm::dvec3 d_a = frame.R * glm::dvec3(-n.angle.c * a.s, n.angle.c * a.c, 0);
+        return absorbed_across(
+            std::abs(n.hit->t * glm::dot(n.hit->normal, d_a) / glm::dot(n.hit->normal, d)) * c.da);
+    }
+
     /// A specular lobe whose azimuth falls inside the beam [a_lo, a_hi] and is narrower than its columns.
     bool specular_in_azimuth(const Node& n, double a_lo, double a_hi, double da) const {
         if (!n.hit) return false;
@@ -194,21 +219,21 @@ struct Context {
         return a_star > a_lo - 2 * h && a_star < a_hi + 2 * h;
     }
 
-    /// The base grid of M0 cells of one column.
-    Column trace_column(double a_rad, double da, int M0, int beam) const {
+    /// The base grid of one column: base cells [j0, j1) of M0.
+    Column trace_column(double a_rad, double da, int M0, int beam, int j0, int j1) const {
         Column col;
-        col.a = a_rad, col.da = da, col.beam = beam;
+        col.a = a_rad, col.da = da, col.beam = beam, col.j0 = j0, col.j1 = j1;
         const Angle a(a_rad);
         const double de0 = phi / M0;
-        int next_group = (M0 + 2) / 3;
-        col.nodes.reserve(size_t(M0));
-        for (int j = 0; j < M0; ++j) {
-            if ((j & 63) == 0 && control.cancelled()) return col;
-            col.nodes.push_back(trace_node(a, phi / 2 - (j + 0.5) * de0, de0, j / 3));
+        col.nodes.reserve(size_t(j1 - j0));
+        for (int j = j0; j < j1; ++j) {
+            if (((j - j0) & 63) == 0 && control.cancelled()) return col;
+            // Base triples share a group; the cells of an incomplete last triple get one each (never merged).
+            const int group = j < M0 - M0 % 3 ? j / 3 : (M0 + 2) / 3 + j - (M0 - M0 % 3);
+            col.nodes.push_back(trace_node(a, phi / 2 - (j + 0.5) * de0, de0, group));
+            col.nodes.back().j = j;
         }
-        if (M0 % 3) // an incomplete last base triple is never merged
-            for (int j = M0 - M0 % 3; j < M0; ++j) col.nodes[size_t(j)].group = next_group++;
-        col.rays = std::uint64_t(M0);
+        col.rays = std::uint64_t(j1 - j0);
         if (azimuth_levels > 0) col.base = col.nodes;
         return col;
     }
@@ -250,6 +275,7 @@ struct Context {
                 const double de = n.de / 3;
                 const int grp = next_group++;
                 next.push_back(trace_node(a, n.e + de, de, grp));
+                next.back().j = n.j;
                 Node mid = n;
                 mid.group = grp, mid.refine = false, mid.alone_checked = false;
                 if (mid.hit)
@@ -258,6 +284,7 @@ struct Context {
                     mid.de = de, mid.fresh = true;
                 next.push_back(mid);
                 next.push_back(trace_node(a, n.e - de, de, grp));
+                next.back().j = n.j;
                 col.rays += 2;
             }
             col.nodes.swap(next);
@@ -306,12 +333,68 @@ double column_azimuth(const SceneDesc& s, int i, int k, int K) {
     return theta / 2 - i * w - (k + 0.5) * w / K;
 }
 
-bool columns_disagree(const Context& ctx, const Column& x, const Column& y) {
+/// Marks the base cells where neighbouring columns x and y (x to port) see different surfaces; mx and my
+/// hold one flag per base cell of each.
+void mark_disagreement(const Context& ctx, const Column& x, const Column& y, std::vector<char>& mx,
+                       std::vector<char>& my) {
     const Angle a_edge(0.5 * (x.a + y.a)); // the columns' shared azimuth edge
-    for (size_t j = 0; j < x.base.size() && j < y.base.size(); ++j)
-        if (ctx.discontinuous(x.base[j], x, y.base[j], y, ctx.frame.dir(a_edge, x.base[j].angle)))
-            return true;
-    return false;
+    for (int j = std::max(x.j0, y.j0); j < std::min(x.j1, y.j1); ++j) {
+        const Node &nx = x.base[size_t(j - x.j0)], &ny = y.base[size_t(j - y.j0)];
+        if (ctx.discontinuous(nx, x, ny, y, ctx.frame.dir(a_edge, nx.angle)))
+            mx[size_t(j - x.j0)] = my[size_t(j - y.j0)] = 1;
+    }
+}
+
+/// Splits column c in three over each run of marked base cells (widened by one cell each side): the
+/// middle takes c's rays there, two new columns are traced beside it over that run only. What c keeps
+/// outside the runs stays as it is. Appends the results to `out`.
+void split_column(const Context& ctx, Column&& c, const std::vector<char>& marked, int M0, int& next_group,
+                  std::vector<Column>& out) {
+    const int n = c.j1 - c.j0;
+    std::vector<std::pair<int, int>> runs; // [lo, hi) in base cells
+    for (int j = 0; j < n; ++j) {
+        bool m = false;
+        for (int d = -kRunMargin; d <= kRunMargin && !m; ++d)
+            m = j + d >= 0 && j + d < n && marked[size_t(j + d)];
+        if (!m) continue;
+        if (!runs.empty() && runs.back().second == c.j0 + j)
+            ++runs.back().second;
+        else
+            runs.emplace_back(c.j0 + j, c.j0 + j + 1);
+    }
+    std::vector<Column> triples;
+    std::vector<char> moved(c.nodes.size(), 0);
+    const double da = c.da / 3;
+    for (auto [lo, hi] : runs) {
+        if (!ctx.reserve(2 * std::uint64_t(hi - lo))) continue; // budget spent: this run stays as it is
+        ctx.refined.store(true, std::memory_order_relaxed);
+        Column mid;
+        mid.a = c.a, mid.da = da, mid.beam = c.beam, mid.j0 = lo, mid.j1 = hi;
+        for (size_t k = 0; k < c.nodes.size(); ++k)
+            if (c.nodes[k].j >= lo && c.nodes[k].j < hi) mid.nodes.push_back(c.nodes[k]), moved[k] = 1;
+        mid.base.assign(c.base.begin() + (lo - c.j0), c.base.begin() + (hi - c.j0));
+        Column port = ctx.trace_column(c.a + da, da, M0, c.beam, lo, hi); // port side first
+        ctx.refine_column(port, M0);
+        Column starboard = ctx.trace_column(c.a - da, da, M0, c.beam, lo, hi);
+        ctx.refine_column(starboard, M0);
+        const int g = next_group++;
+        for (Column* t : {&port, &mid, &starboard}) {
+            t->group = g, t->sibling = true;
+            triples.push_back(std::move(*t));
+        }
+    }
+    // What stays of c: its cells outside the runs, never merged with others in the coarse image.
+    Column rest = std::move(c);
+    std::vector<Node> kept;
+    for (size_t k = 0; k < rest.nodes.size(); ++k)
+        if (!moved[k]) kept.push_back(std::move(rest.nodes[k]));
+    rest.nodes.swap(kept);
+    rest.group = next_group++, rest.sibling = false;
+    if (rest.nodes.empty() && !triples.empty())
+        triples[1].rays += rest.rays; // the middle column of the first run took them all
+    else
+        out.push_back(std::move(rest));
+    for (auto& t : triples) out.push_back(std::move(t));
 }
 
 TraceResult trace_pass(Context& ctx, int M0, TraceResult::ErrorEstimate& est) {
@@ -322,7 +405,7 @@ TraceResult trace_pass(Context& ctx, int M0, TraceResult::ErrorEstimate& est) {
     ctx.rays.fetch_add(std::uint64_t(N) * K0 * M0); // the base grid is always traced
     tbb::parallel_for(0, N, [&](int i) {
         for (int k = 0; k < K0; ++k) {
-            beams[size_t(i)].push_back(ctx.trace_column(column_azimuth(s, i, k, K0), w / K0, M0, i));
+            beams[size_t(i)].push_back(ctx.trace_column(column_azimuth(s, i, k, K0), w / K0, M0, i, 0, M0));
             beams[size_t(i)].back().group = k / 3 + (K0 % 3 && k >= K0 - K0 % 3 ? K0 + k : 0);
         }
     });
@@ -343,62 +426,58 @@ TraceResult trace_pass(Context& ctx, int M0, TraceResult::ErrorEstimate& est) {
         for (auto& c : beams[size_t(i)]) ctx.refine_column(c, M0);
     });
     // Columns that see different surfaces than their neighbours (within the beam or across its edges), or
-    // that hold a specular lobe narrower than themselves, split in three (the middle one keeps its rays).
-    int next_group =
-        3 * K0 + 3; // above every base group id (k / 3, or K0 + k + k / 3 for a last partial triple)
+    // that hold a specular lobe narrower than themselves, split in three where they do (see split_column).
+    // After the first level, only the siblings of a split are compared with each other.
+    std::vector<int> next_group(static_cast<size_t>(N), 3 * K0 + 3); // above every base group id
     for (int lv = 0; lv < ctx.azimuth_levels; ++lv) {
         if (ctx.control.cancelled()) break;
-        std::vector<std::vector<char>> mark(static_cast<size_t>(N));
+        std::vector<std::vector<std::vector<char>>> mark(static_cast<size_t>(N));
+        std::atomic<bool> any{false};
         tbb::parallel_for(0, N, [&](int i) {
             const auto& cols = beams[size_t(i)];
             auto& m = mark[size_t(i)];
-            m.assign(cols.size(), 0);
+            m.resize(cols.size());
+            for (size_t k = 0; k < cols.size(); ++k) m[k].assign(size_t(cols[k].j1 - cols[k].j0), 0);
             const double min_da = w / K0 / std::pow(3.0, kAzimuthLevels) * 1.0001;
             if (lv < kEdgeAzimuthLevels) {
                 for (size_t k = 0; k + 1 < cols.size(); ++k)
-                    if (columns_disagree(ctx, cols[k], cols[k + 1])) m[k] = m[k + 1] = 1;
-                if (i > 0 && columns_disagree(ctx, beams[size_t(i) - 1].back(), cols.front())) m.front() = 1;
-                if (i + 1 < N && columns_disagree(ctx, cols.back(), beams[size_t(i) + 1].front()))
-                    m.back() = 1;
+                    if (lv == 0 ||
+                        (cols[k].sibling && cols[k + 1].sibling && cols[k].group == cols[k + 1].group))
+                        mark_disagreement(ctx, cols[k], cols[k + 1], m[k], m[k + 1]);
+                if (lv == 0) { // across the beam's edges: each beam marks only its own columns
+                    std::vector<char> other(static_cast<size_t>(M0));
+                    if (i > 0)
+                        mark_disagreement(ctx, beams[size_t(i) - 1].back(), cols.front(), other, m.front());
+                    if (i + 1 < N)
+                        mark_disagreement(ctx, cols.back(), beams[size_t(i) + 1].front(), m.back(), other);
+                }
             }
             for (size_t k = 0; k < cols.size(); ++k) {
-                if (!m[k])
-                    for (auto& n : cols[k].nodes)
-                        if ((m[k] = ctx.specular_in_azimuth(n, cols[k].a - cols[k].da / 2,
-                                                            cols[k].a + cols[k].da / 2, cols[k].da)))
-                            break;
-                if (cols[k].da <= min_da) m[k] = 0;
+                const Column& c = cols[k];
+                for (auto& n : c.nodes)
+                    if (ctx.specular_in_azimuth(n, c.a - c.da / 2, c.a + c.da / 2, c.da) ||
+                        ctx.absorbed_across_azimuth(n, c))
+                        m[k][size_t(n.j - c.j0)] = 1;
+                if (c.da <= min_da) std::fill(m[k].begin(), m[k].end(), 0);
+                for (char f : m[k])
+                    if (f) {
+                        any = true;
+                        break;
+                    }
             }
         });
-        bool any = false;
-        for (auto& m : mark)
-            for (char f : m) any |= f != 0;
         if (!any) break;
-        std::vector<int> first_group(static_cast<size_t>(N));
-        for (int i = 0; i < N; ++i) {
-            first_group[size_t(i)] = next_group;
-            for (char f : mark[size_t(i)]) next_group += f != 0;
-        }
         tbb::parallel_for(0, N, [&](int i) {
             auto& cols = beams[size_t(i)];
-            const auto& m = mark[size_t(i)];
-            int grp = first_group[size_t(i)];
             std::vector<Column> next;
             for (size_t k = 0; k < cols.size(); ++k) {
-                if (!m[k] || !ctx.reserve(2 * std::uint64_t(M0))) {
+                const auto& mk = mark[size_t(i)][k];
+                if (std::find(mk.begin(), mk.end(), 1) == mk.end()) {
+                    cols[k].sibling = false;
                     next.push_back(std::move(cols[k]));
-                    continue;
+                } else {
+                    split_column(ctx, std::move(cols[k]), mk, M0, next_group[size_t(i)], next);
                 }
-                ctx.refined.store(true, std::memory_order_relaxed);
-                const double a = cols[k].a, da = cols[k].da / 3;
-                next.push_back(ctx.trace_column(a + da, da, M0, i)); // port side first
-                ctx.refine_column(next.back(), M0);
-                next.push_back(std::move(cols[k]));
-                next.back().da = da;
-                next.push_back(ctx.trace_column(a - da, da, M0, i));
-                ctx.refine_column(next.back(), M0);
-                for (size_t t = next.size() - 3; t < next.size(); ++t) next[t].group = grp;
-                ++grp;
             }
             cols.swap(next);
         });
