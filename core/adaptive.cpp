@@ -75,7 +75,7 @@ struct Context {
     Context(const SceneGeometry& geo, const SceneDesc& scene, const TraceControl& c)
         : g(geo), s(scene), control(c), frame(scene), k(shade_constants(scene)),
           phi(deg2rad(scene.sonar.elevation_fov_deg)), jump_db(10 * scene.sampling.tolerance_db),
-          range_jump_db(2 * scene.sampling.tolerance_db),
+          range_jump_db(4 * scene.sampling.tolerance_db),
           bin_m((scene.sonar.range_max_m - scene.sonar.range_min_m) / scene.sonar.range_bins),
           gap_m(0.5 * bin_m),
           tol_rel_db(10 * std::log10((std::pow(10.0, scene.sampling.tolerance_db / 10) - 1) / kErrorsPerBin)),
@@ -98,9 +98,9 @@ struct Context {
         n.per_metre_db = n.density_db + 10 * std::log10(n.angle.c * de / std::max(n.footprint_m, bin_m));
     }
 
-    Node trace_node(const Angle& a, double e, double de, int group) const {
+    Node trace_node(const Angle& a, const Angle& e, double de, int group) const {
         Node n;
-        n.e = e, n.de = de, n.group = group, n.angle = Angle(e);
+        n.e = e.rad, n.de = de, n.group = group, n.angle = e;
         const glm::dvec3 d = frame.dir(a, n.angle);
         n.hit = detail::first_hit(g, s, frame.origin, d, frame.t_max);
         if (n.hit) {
@@ -120,10 +120,12 @@ struct Context {
     /// ray `d_edge` along the cells' shared edge meets the surface (a silhouette, an occlusion, a crease
     /// that moves echo between bins). A finely tessellated smooth surface passes: its planes agree to second
     /// order in the spacing, so the number of rays does not grow with the number of triangles.
+    template <class EdgeRay>
     bool surface_edge(const Hit& x, const glm::dvec3& px, const Hit& y, const glm::dvec3& py,
-                      const glm::dvec3& d_edge) const {
+                      EdgeRay&& edge_ray) const {
         if (x.material != y.material) return true;
         if (x.material == kFloorMaterial || x.prim == y.prim) return false;
+        const glm::dvec3 d_edge = edge_ray();
         const double rx = detail::plane_range(frame.origin, px, x.normal, d_edge);
         const double ry = detail::plane_range(frame.origin, py, y.normal, d_edge);
         return rx < 0 || ry < 0 || std::abs(rx - ry) > gap_m;
@@ -153,13 +155,14 @@ struct Context {
         return significant(x, cx, f) || significant(y, cy, f);
     }
 
-    /// Whether the cells of neighbours x (in column cx) and y (in cy) must be split: d_edge is the ray
-    /// along their shared edge.
+    /// Whether the cells of neighbours x (in column cx) and y (in cy) must be split: edge_ray() gives the
+    /// ray along their shared edge (computed only when needed).
+    template <class EdgeRay>
     bool discontinuous(const Node& x, const Column& cx, const Node& y, const Column& cy,
-                       const glm::dvec3& d_edge) const {
+                       EdgeRay&& edge_ray) const {
         if (bool(x.hit) != bool(y.hit)) return worth_refining(x, cx, y, cy, true);
         if (!x.hit) return false;
-        if (surface_edge(*x.hit, x.p, *y.hit, y.p, d_edge)) return worth_refining(x, cx, y, cy, true);
+        if (surface_edge(*x.hit, x.p, *y.hit, y.p, edge_ray)) return worth_refining(x, cx, y, cy, true);
         if (std::abs(x.density_db - y.density_db) > jump_db) return worth_refining(x, cx, y, cy, false);
         // Cells whose range footprint spans bins spread their echo evenly over it; where the echo per metre
         // of range changes between neighbours on one plane (grazing incidence: r(e) is far from linear over
@@ -230,7 +233,7 @@ struct Context {
             if (((j - j0) & 63) == 0 && control.cancelled()) return col;
             // Base triples share a group; the cells of an incomplete last triple get one each (never merged).
             const int group = j < M0 - M0 % 3 ? j / 3 : (M0 + 2) / 3 + j - (M0 - M0 % 3);
-            col.nodes.push_back(trace_node(a, phi / 2 - (j + 0.5) * de0, de0, group));
+            col.nodes.push_back(trace_node(a, Angle(phi / 2 - (j + 0.5) * de0), de0, group));
             col.nodes.back().j = j;
         }
         col.rays = std::uint64_t(j1 - j0);
@@ -253,7 +256,7 @@ struct Context {
             for (size_t n = 0; n + 1 < col.nodes.size(); ++n) {
                 const Node &x = col.nodes[n], &y = col.nodes[n + 1];
                 if ((x.fresh || y.fresh) &&
-                    discontinuous(x, col, y, col, frame.dir(a, Angle(x.e - x.de / 2))))
+                    discontinuous(x, col, y, col, [&] { return frame.dir(a, Angle(x.e - x.de / 2)); }))
                     mark(col.nodes[n]), mark(col.nodes[n + 1]);
             }
             for (auto& n : col.nodes) n.fresh = false;
@@ -266,7 +269,7 @@ struct Context {
             if (!reserve(2 * marked)) break; // budget spent: this column stays at its current level
             refined.store(true, std::memory_order_relaxed);
             std::vector<Node> next;
-            next.reserve(col.nodes.size() + 16);
+            next.reserve(col.nodes.size() + 2 * marked);
             for (auto& n : col.nodes) {
                 if (!n.refine) {
                     next.push_back(n);
@@ -274,7 +277,8 @@ struct Context {
                 }
                 const double de = n.de / 3;
                 const int grp = next_group++;
-                next.push_back(trace_node(a, n.e + de, de, grp));
+                const Angle h(de), up(n.e + de, n.angle, h, +1), down(n.e - de, n.angle, h, -1);
+                next.push_back(trace_node(a, up, de, grp));
                 next.back().j = n.j;
                 Node mid = n;
                 mid.group = grp, mid.refine = false, mid.alone_checked = false;
@@ -283,7 +287,7 @@ struct Context {
                 else
                     mid.de = de, mid.fresh = true;
                 next.push_back(mid);
-                next.push_back(trace_node(a, n.e - de, de, grp));
+                next.push_back(trace_node(a, down, de, grp));
                 next.back().j = n.j;
                 col.rays += 2;
             }
@@ -340,7 +344,7 @@ void mark_disagreement(const Context& ctx, const Column& x, const Column& y, std
     const Angle a_edge(0.5 * (x.a + y.a)); // the columns' shared azimuth edge
     for (int j = std::max(x.j0, y.j0); j < std::min(x.j1, y.j1); ++j) {
         const Node &nx = x.base[size_t(j - x.j0)], &ny = y.base[size_t(j - y.j0)];
-        if (ctx.discontinuous(nx, x, ny, y, ctx.frame.dir(a_edge, nx.angle)))
+        if (ctx.discontinuous(nx, x, ny, y, [&] { return ctx.frame.dir(a_edge, nx.angle); }))
             mx[size_t(j - x.j0)] = my[size_t(j - y.j0)] = 1;
     }
 }

@@ -14,6 +14,9 @@ struct Angle {
     double rad = 0, c = 1, s = 0;
     Angle() = default;
     explicit Angle(double r) : rad(r), c(std::cos(r)), s(std::sin(r)) {}
+    /// base + sign * step by the angle-sum identities (no sine or cosine evaluated); r is that angle [rad].
+    Angle(double r, const Angle& base, const Angle& step, int sign)
+        : rad(r), c(base.c * step.c - sign * base.s * step.s), s(base.s * step.c + sign * base.c * step.s) {}
 };
 
 /// The sonar's frame and the reach of its rays.
