@@ -107,8 +107,8 @@ ImageError compare_images(const PolarImage& img, const PolarImage& ref) {
     for (size_t n = 0; n < ref.level_db.size(); ++n) {
         const double a = img.level_db[n], b = ref.level_db[n];
         const bool ea = a > -INFINITY, eb = b > -INFINITY;
-        const double la = ea ? std::exp((a - peak) * kLn10Over10) : 0.0;
         const double lb = eb ? std::exp((b - peak) * kLn10Over10) : 0.0;
+        const double la = a == b ? lb : ea ? std::exp((a - peak) * kLn10Over10) : 0.0;
         num += std::abs(la - lb), den += lb;
         if (eb) ++e.echoing_ref;
         if (eb && !ea) ++e.holes;
