@@ -1,6 +1,7 @@
 #include "mesh.hpp"
 
 #include "errors.hpp"
+#include "mesh_cache.hpp"
 #include "pose.hpp"
 
 #include <OpenMesh/Core/IO/IOManager.hh>
@@ -783,7 +784,7 @@ TriMesh make_box(const Vec3d& s) {
 }
 
 TriMesh object_world_mesh(const ObjectDesc& o, const std::string& scene_file, const std::string& key) {
-    TriMesh m = o.box_m ? make_box(*o.box_m) : load_mesh(o.mesh_resolved, scene_file, key + ".mesh");
+    TriMesh m = o.box_m ? make_box(*o.box_m) : *cached_mesh(o.mesh_resolved, scene_file, key + ".mesh");
     const glm::dmat3 R = rotation_matrix(o.orientation_deg);
     const glm::dvec3 t = to_glm(o.position_m), s = to_glm(o.scale);
     for (auto& v : m.vertices) {
