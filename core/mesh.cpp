@@ -783,18 +783,38 @@ TriMesh make_box(const Vec3d& s) {
     return m;
 }
 
-TriMesh object_world_mesh(const ObjectDesc& o, const std::string& scene_file, const std::string& key) {
-    TriMesh m = o.box_m ? make_box(*o.box_m) : *cached_mesh(o.mesh_resolved, scene_file, key + ".mesh");
-    const glm::dmat3 R = rotation_matrix(o.orientation_deg);
-    const glm::dvec3 t = to_glm(o.position_m), s = to_glm(o.scale);
+glm::dmat4 object_transform(const ObjectDesc& o) {
+    glm::dmat3 S(1.0);
+    for (int k = 0; k < 3; ++k) S[k][k] = o.scale[size_t(k)];
+    glm::dmat4 m(rotation_matrix(o.orientation_deg) * S);
+    m[3] = glm::dvec4(to_glm(o.position_m), 1.0);
+    return m;
+}
+
+void check_single_precision(const glm::dvec3& world, const std::string& scene_file, const std::string& key) {
+    const glm::vec3 v(world);
+    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+        throw InputError(scene_file, key + ".scale",
+                         "scaled and placed, the object's coordinates exceed single precision; use a smaller "
+                         "scale");
+}
+
+TriMesh transformed_mesh(const TriMesh& mesh, const glm::dmat4& transform, const std::string& scene_file,
+                         const std::string& key) {
+    TriMesh m = mesh;
     for (auto& v : m.vertices) {
-        v = glm::vec3(R * (s * glm::dvec3(v)) + t);
-        if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
-            throw InputError(scene_file, key + ".scale",
-                             "scaled and placed, the object's coordinates exceed single precision; use a "
-                             "smaller scale");
+        const glm::dvec3 w(transform * glm::dvec4(glm::dvec3(v), 1.0));
+        check_single_precision(w, scene_file, key);
+        v = glm::vec3(w);
     }
     return m;
+}
+
+TriMesh object_world_mesh(const ObjectDesc& o, const std::string& scene_file, const std::string& key) {
+    const std::shared_ptr<const TriMesh> local =
+        o.box_m ? std::make_shared<const TriMesh>(make_box(*o.box_m))
+                : cached_mesh(o.mesh_resolved, scene_file, key + ".mesh");
+    return transformed_mesh(*local, object_transform(o), scene_file, key);
 }
 
 bool mesh_bounds(const TriMesh& m, glm::vec3& lo, glm::vec3& hi) {
