@@ -94,10 +94,10 @@ std::shared_ptr<const Blas> build_blas(std::shared_ptr<const TriMesh> mesh) {
     rtcCommitGeometry(g);
     rtcAttachGeometryByID(b->scene, g, 0);
     rtcReleaseGeometry(g);
-    // High quality (spatial splits) traces faster but builds ~3x slower: above a million triangles the
-    // build would take seconds.
-    rtcSetSceneBuildQuality(b->scene, m.triangles.size() <= 1000000 ? RTC_BUILD_QUALITY_HIGH
-                                                                    : RTC_BUILD_QUALITY_MEDIUM);
+    // High quality (spatial splits) traced ~5% faster here but builds ~4x slower (a 1.1M-triangle mesh: ~3 s
+    // instead of ~0.9 s on 2 cores): worth it only while the build stays short.
+    rtcSetSceneBuildQuality(b->scene,
+                            m.triangles.size() <= 250000 ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
     rtcCommitScene(b->scene);
     check_embree();
     return b;

@@ -21,6 +21,7 @@
 #include <mutex>
 #include <set>
 #include <sstream>
+#include <streambuf>
 
 namespace sonarsim {
 namespace {
@@ -685,6 +686,29 @@ class OpenMeshLog {
 };
 thread_local std::string* OpenMeshLog::capture_ = nullptr;
 
+/// A read-only stream over bytes in memory (seekable: OpenMesh's PLY reader seeks back after the header).
+class MemoryBuffer : public std::streambuf {
+  public:
+    explicit MemoryBuffer(const std::string& bytes) {
+        char* p = const_cast<char*>(bytes.data()); // never written: no put area, no putback
+        setg(p, p, p + bytes.size());
+    }
+
+  protected:
+    pos_type seekoff(off_type off, std::ios_base::seekdir dir, std::ios_base::openmode) override {
+        const off_type size = egptr() - eback();
+        const off_type pos = dir == std::ios_base::beg   ? off
+                             : dir == std::ios_base::cur ? gptr() - eback() + off
+                                                         : size + off;
+        if (pos < 0 || pos > size) return pos_type(off_type(-1));
+        setg(eback(), eback() + pos, egptr());
+        return pos_type(pos);
+    }
+    pos_type seekpos(pos_type pos, std::ios_base::openmode mode) override {
+        return seekoff(off_type(pos), std::ios_base::beg, mode);
+    }
+};
+
 /// The whole file (fopen/fread: istreambuf_iterator takes ~10x longer on large files).
 std::string read_all(const std::string& path, std::uintmax_t size_hint) {
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
@@ -716,7 +740,13 @@ TriMesh read_with_openmesh(const std::string& path, const std::string& bytes, co
         OpenMeshLog::install();
         const OpenMeshLog::Scope capture(said);
         OpenMesh::IO::Options opt;
-        ok = OpenMesh::IO::IOManager().read(path, importer, opt);
+        if (ext == ".ply") { // from the bytes already read: ~20% faster than OpenMesh's own file stream
+            MemoryBuffer buffer(bytes);
+            std::istream in(&buffer);
+            ok = OpenMesh::IO::IOManager().read(in, ext, importer, opt);
+        } else { // by name: OBJ material files are found next to it, STL is told binary from ASCII
+            ok = OpenMesh::IO::IOManager().read(path, importer, opt);
+        }
     }
     // OpenMesh also logs harmless things (skipped zero-area faces, unknown PLY elements): its words explain a
     // failure but decide nothing. Everything it would misread is caught by the checks.
