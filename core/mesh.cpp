@@ -356,6 +356,11 @@ Expect check_ply(const std::string& bytes) {
                          line);
                 if (indices && p.real)
                     fail("header: face vertex indices must be integers, got " + show(t[3]), line);
+                // OpenMesh forgets face properties declared before the indices and reads out of step.
+                if (indices && !elements.back().properties.empty())
+                    fail("header: the face list " + show(t[4]) +
+                             " must come first (OpenMesh cannot read face properties before it)",
+                         line);
                 p.as_int = indices;
             } else if (t.size() == 3) {
                 p.size = ply_type_size(t[1], is_signed);
