@@ -654,27 +654,22 @@ class FlatImporter : public OpenMesh::IO::BaseImporter {
 };
 
 /// Where OpenMesh's own log streams (omerr, omlog, omout: process-wide, by default copied to std::cerr,
-/// std::clog and std::cout) now go: to the text of the load running on the writing thread, never to the
-/// terminal. Nothing here touches std::cerr or std::cout, which other threads may be writing to.
-class OpenMeshLog {
+/// std::clog and std::cout) now write: the text of the load running on the writing thread, never the
+/// terminal. Installed once as those streams' buffer; std::cerr and std::cout, which other threads may be
+/// writing to, are never touched. (Not through mostream::connect/disconnect: disconnect leaks the old
+/// target, which LeakSanitizer reports.)
+class OpenMeshLog : public std::streambuf {
   public:
-    /// Called by OpenMesh's multiplexing stream buffer for every line.
-    void operator<<(const std::string& text) {
-        if (capture_) capture_->append(text);
-    }
-
-    /// Connects the sink, once per process (the connection is never undone).
+    /// Sends omerr(), omlog() and omout() here, once per process (never undone).
     static void install() {
         static std::once_flag once;
         std::call_once(once, [] {
-            static OpenMeshLog* const sink = new OpenMeshLog; // outlives OpenMesh's static streams
-            omerr().disconnect(std::cerr), omlog().disconnect(std::clog), omout().disconnect(std::cout);
-            omerr().connect(*sink), omlog().connect(*sink), omout().connect(*sink);
-            omerr().enable(), omlog().enable(), omout().enable();
+            static OpenMeshLog* const log = new OpenMeshLog; // outlives OpenMesh's static streams
+            omerr().rdbuf(log), omlog().rdbuf(log), omout().rdbuf(log);
         });
     }
 
-    /// Collects what OpenMesh says on this thread while it lives.
+    /// Collects what OpenMesh writes on this thread while it lives.
     class Scope {
       public:
         explicit Scope(std::string& text) : old_(capture_) { capture_ = &text; }
@@ -686,10 +681,28 @@ class OpenMeshLog {
         std::string* old_;
     };
 
+  protected:
+    int overflow(int c) override {
+        if (capture_ && c != traits_type::eof()) capture_->push_back(char(c));
+        return traits_type::not_eof(c);
+    }
+    std::streamsize xsputn(const char* s, std::streamsize n) override {
+        if (capture_) capture_->append(s, size_t(n));
+        return n;
+    }
+
   private:
     static thread_local std::string* capture_;
 };
 thread_local std::string* OpenMeshLog::capture_ = nullptr;
+
+/// The last non-empty line of `text` (what OpenMesh said last before it gave up).
+std::string last_line(const std::string& text) {
+    const size_t end = text.find_last_not_of("\r\n");
+    if (end == std::string::npos) return "";
+    const size_t nl = text.rfind('\n', end), begin = nl == std::string::npos ? 0 : nl + 1;
+    return text.substr(begin, end + 1 - begin);
+}
 
 /// A read-only stream over bytes in memory (seekable: OpenMesh's PLY reader seeks back after the header).
 class MemoryBuffer : public std::streambuf {
@@ -753,13 +766,12 @@ TriMesh read_with_openmesh(const std::string& path, const std::string& bytes, co
             ok = OpenMesh::IO::IOManager().read(path, importer, opt);
         }
     }
-    // OpenMesh also logs harmless things (skipped zero-area faces, unknown PLY elements): its words explain a
-    // failure but decide nothing. Everything it would misread is caught by the checks.
+    // OpenMesh also logs harmless things (skipped zero-area faces, unknown PLY elements): its last words
+    // explain a failure but decide nothing. Everything it would misread is caught by the checks.
     if (!ok)
         fail("not a valid " + ext.substr(1) + " mesh" +
-             (!expect.hint.empty() || said.empty()
-                  ? expect.hint
-                  : " (OpenMesh: " + show(said.substr(0, said.find('\n'))) + ")"));
+             (!expect.hint.empty() || said.empty() ? expect.hint
+                                                   : " (OpenMesh: " + show(last_line(said)) + ")"));
     if (!importer.problem.empty()) fail(importer.problem);
     const long long read = expect.all_faces ? importer.faces_seen : importer.faces_with_area;
     if (expect.faces >= 0 && read != expect.faces)

@@ -43,7 +43,7 @@ TEST_CASE("a bad value or file shows an error and keeps the last good scene and 
     CHECK(session.shown_count() == shown);
 }
 
-TEST_CASE("moving an object updates the session's geometry in place; a new shape rebuilds it",
+TEST_CASE("moving an object updates the session geometry in place, a new shape rebuilds it",
           "[ui][session]") {
     ui::Session session(default_scene());
     const std::uint64_t version = session.meshes_version();
