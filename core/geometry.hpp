@@ -1,5 +1,5 @@
-// The traceable scene: triangle meshes in one Embree scene (built once per geometry change) plus an analytic
-// seafloor plane. First-hit queries against both; shadows come from the first hit.
+// The traceable scene: every object an Embree instance of its mesh's shared BVH, plus an analytic seafloor
+// plane. First-hit queries against both; shadows come from the first hit.
 #pragma once
 #include "mesh.hpp"
 #include "scene.hpp"
@@ -20,36 +20,56 @@ constexpr unsigned kFloorMaterial = 0;
 
 struct Hit {
     double t = 0;          ///< range along the unit ray [m]
-    glm::dvec3 normal{0};  ///< unit geometric normal (either side)
+    glm::dvec3 normal{0};  ///< unit geometric normal in world space (either side)
     unsigned material = 0; ///< kFloorMaterial or object index + 1
     unsigned prim = 0;     ///< triangle index within its object (floor: 0)
 };
 
+/// Objects as Embree instances. Each distinct mesh (one mesh cache entry; boxes by size) has one bottom-level
+/// BVH, built once and shared by every object, SceneGeometry and thread that uses it; each object is an
+/// instance of it with its own transform. Moving, turning or scaling objects only updates the instances'
+/// transforms and re-commits the small top-level scene. One Embree device per process, created on first use.
+/// Not thread-safe for writing: intersect() may run on many threads, but not during update_transforms().
 class SceneGeometry {
   public:
-    /// Loads and places every object and builds the Embree scene. Throws InputError for bad meshes.
+    /// Gets every object's mesh from the mesh cache (only files not cached are read), builds the BVHs not
+    /// built yet and the top-level scene. Throws InputError for a bad mesh or a placement beyond single
+    /// precision.
     explicit SceneGeometry(const SceneDesc& scene);
     ~SceneGeometry();
     SceneGeometry(const SceneGeometry&) = delete;
     SceneGeometry& operator=(const SceneGeometry&) = delete;
 
+    /// True when `scene` has the same shapes: as many objects, each with the same mesh file (resolved path)
+    /// or box size. Then only poses differ, and update_transforms() can take them.
+    bool same_shapes(const SceneDesc& scene) const;
+    /// Places the objects as in `scene` (position, orientation, scale): new instance transforms and a
+    /// re-commit of the top-level scene; no file is read and no mesh BVH rebuilt. Returns false, changing
+    /// nothing, when the shapes differ (same_shapes()). Throws InputError, changing nothing, when an object
+    /// would leave single precision.
+    bool update_transforms(const SceneDesc& scene);
+
     /// First hit of the ray o + t d, t in (0, t_max]; d must be unit length.
     std::optional<Hit> intersect(const glm::dvec3& origin, const glm::dvec3& dir, double t_max) const;
 
-    /// World-space meshes (for drawing and for tests).
-    const std::vector<TriMesh>& meshes() const { return meshes_; }
-    bool has_meshes() const { return scene_ != nullptr; }
-    /// Bounds of all meshes (valid when has_meshes()).
-    glm::dvec3 bounds_lo() const { return lo_; }
-    glm::dvec3 bounds_hi() const { return hi_; }
+    size_t object_count() const;
+    /// Object i's mesh in its own coordinates (shared with the mesh cache and other scenes).
+    const std::shared_ptr<const TriMesh>& local_mesh(size_t i) const;
+    /// Object i's placement: world = transform * (local, 1) (translate * rotate * scale).
+    const glm::dmat4& object_transform(size_t i) const;
+    /// Object i in world coordinates, computed on each call (for tests and tools; drawing uses
+    /// local_mesh() and object_transform()).
+    TriMesh world_mesh(size_t i) const;
+
+    bool has_meshes() const;
+    /// Bounds of all objects in world space (valid when has_meshes()): the placed boxes of their local
+    /// bounds, so they may be a little larger than the meshes.
+    glm::dvec3 bounds_lo() const;
+    glm::dvec3 bounds_hi() const;
 
   private:
-    void release();
-    std::string embree_error_; // first error reported by Embree's callback
-    void* device_ = nullptr;   // RTCDevice
-    void* scene_ = nullptr;    // RTCScene (null when there are no meshes)
-    std::vector<TriMesh> meshes_;
-    glm::dvec3 lo_{0}, hi_{0};
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
 };
 
 /// First hit on the seafloor plane z = height (seen from either side), t in (0, t_max].

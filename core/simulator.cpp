@@ -56,8 +56,10 @@ Simulator::Simulator(const SceneDesc& scene)
 
 void Simulator::set_scene(const SceneDesc& scene) {
     const Stage s = changed_stage(scene_, scene);
-    if (s == Stage::Geometry)
-        geometry_ = std::make_unique<SceneGeometry>(scene); // may throw: keep the old one
+    // Objects only moved, turned or scaled: new instance transforms, no mesh read and no BVH rebuilt.
+    // Otherwise a new geometry from the mesh cache. Either may throw, keeping the old geometry.
+    if (s == Stage::Geometry && !geometry_->update_transforms(scene))
+        geometry_ = std::make_unique<SceneGeometry>(scene);
     scene_ = scene;
     dirty_ = std::min(dirty_, s == Stage::Geometry ? Stage::Trace : s);
 }

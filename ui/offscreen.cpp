@@ -89,7 +89,7 @@ Image8 render_view_image(SceneRenderer& renderer, const SceneDesc& scene, const 
 }
 
 std::vector<std::uint8_t> view3d_png_headless(const SceneDesc& scene, int w, int h) {
-    const std::vector<TriMesh> meshes = world_meshes(scene); // InputError for a bad mesh, before any GL
+    const auto meshes = object_meshes(scene); // InputError for a bad mesh, before any GL
     HeadlessGLContext context;
     SceneRenderer renderer;
     renderer.set_meshes(meshes);

@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <map>
 
 namespace sonarsim::ui {
 namespace {
@@ -17,13 +19,15 @@ layout(location = 0) in vec3 a_pos;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec4 a_color;
 uniform mat4 u_mvp;
+uniform mat4 u_model;  // object meshes: local -> world; identity for everything else
+uniform mat3 u_normal; // inverse transpose of u_model's linear part
 uniform float u_point;
 out vec3 v_normal;
 out vec4 v_color;
 void main() {
-    gl_Position = u_mvp * vec4(a_pos, 1.0);
+    gl_Position = u_mvp * (u_model * vec4(a_pos, 1.0));
     gl_PointSize = max(u_point, 1.0);
-    v_normal = a_normal;
+    v_normal = u_normal * a_normal;
     v_color = a_color;
 }
 )";
@@ -93,6 +97,8 @@ SceneRenderer::Program::Program(bool round_points) {
         std::string("#version 330 core\n") + (round_points ? "#define ROUND_POINTS\n" : "") + kFragment;
     id = gl::compile_program(kVertex, fs.c_str());
     mvp = glGetUniformLocation(id, "u_mvp");
+    model = glGetUniformLocation(id, "u_model");
+    normal = glGetUniformLocation(id, "u_normal");
     light = glGetUniformLocation(id, "u_light");
     point = glGetUniformLocation(id, "u_point");
     tint = glGetUniformLocation(id, "u_tint");
@@ -109,10 +115,18 @@ SceneRenderer::~SceneRenderer() = default;
 void SceneRenderer::use(const Program& p, const glm::mat4& mvp, const glm::vec3& light, float point_px) {
     glUseProgram(p.id);
     glUniformMatrix4fv(p.mvp, 1, GL_FALSE, glm::value_ptr(mvp));
+    set_model(p, glm::dmat4(1.0));
     glUniform3fv(p.light, 1, glm::value_ptr(light));
     glUniform1f(p.point, point_px);
     glUniform4f(p.tint, 1, 1, 1, 1);
     u_tint_ = p.tint;
+}
+
+void SceneRenderer::set_model(const Program& p, const glm::dmat4& model) {
+    const glm::mat4 m(model);
+    const glm::mat3 n(glm::inverseTranspose(glm::dmat3(model)));
+    glUniformMatrix4fv(p.model, 1, GL_FALSE, glm::value_ptr(m));
+    glUniformMatrix3fv(p.normal, 1, GL_FALSE, glm::value_ptr(n));
 }
 
 void SceneRenderer::draw_with_hidden(const gl::VertexBuffer& vb, GLenum mode, float hidden_alpha) {
@@ -124,13 +138,19 @@ void SceneRenderer::draw_with_hidden(const gl::VertexBuffer& vb, GLenum mode, fl
     glUniform4f(u_tint_, 1, 1, 1, 1);
 }
 
-void SceneRenderer::set_meshes(const std::vector<TriMesh>& meshes) {
+void SceneRenderer::set_meshes(const std::vector<std::shared_ptr<const TriMesh>>& meshes) {
     std::vector<gl::Vertex> vertices;
+    std::map<const TriMesh*, std::pair<size_t, size_t>> uploaded; // each distinct mesh once
     mesh_first_.clear(), mesh_count_.clear();
-    for (size_t i = 0; i < meshes.size(); ++i) {
-        mesh_first_.push_back(vertices.size());
-        push_triangles(vertices, meshes[i], object_color(i));
-        mesh_count_.push_back(vertices.size() - mesh_first_.back());
+    for (const auto& m : meshes) {
+        auto it = uploaded.find(m.get());
+        if (it == uploaded.end()) {
+            const size_t first = vertices.size();
+            push_triangles(vertices, *m, glm::vec4(1)); // white: each object's colour is its tint
+            it = uploaded.emplace(m.get(), std::make_pair(first, vertices.size() - first)).first;
+        }
+        mesh_first_.push_back(it->second.first);
+        mesh_count_.push_back(it->second.second);
     }
     meshes_.upload(vertices);
 }
@@ -195,11 +215,14 @@ void SceneRenderer::draw(const SceneDesc& scene, const OrbitCamera& cam, int x, 
     }
 
     // Objects (the selected one brightened) and the sonar housing.
-    for (size_t i = 0; i < mesh_first_.size(); ++i) {
+    for (size_t i = 0; i < mesh_first_.size() && i < scene.objects.size(); ++i) {
         const float k = int(i) == ov.selected_object ? 1.3f : 1.0f;
-        glUniform4f(u_tint_, k, k, k, 1);
+        const glm::vec4 c = object_color(i);
+        glUniform4f(u_tint_, k * c.r, k * c.g, k * c.b, 1);
+        set_model(surfaces_, object_transform(scene.objects[i]));
         meshes_.draw_range(GL_TRIANGLES, GLint(mesh_first_[i]), GLsizei(mesh_count_[i]));
     }
+    set_model(surfaces_, glm::dmat4(1.0));
     glUniform4f(u_tint_, 1, 1, 1, 1);
     v.clear();
     push_triangles(v, sonar_body(s), kBody);

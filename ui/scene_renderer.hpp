@@ -31,8 +31,10 @@ class SceneRenderer {
     SceneRenderer(const SceneRenderer&) = delete;
     SceneRenderer& operator=(const SceneRenderer&) = delete;
 
-    /// World meshes of the objects (object i = element i); uploaded once per geometry change.
-    void set_meshes(const std::vector<TriMesh>& meshes);
+    /// The objects' meshes in their own coordinates (object i = element i; shared meshes are uploaded once),
+    /// once per change of meshes. draw() places object i by object_transform(scene.objects[i]), so moving
+    /// objects needs no new upload.
+    void set_meshes(const std::vector<std::shared_ptr<const TriMesh>>& meshes);
 
     /// Clears and draws into the viewport (x, y, w, h) of the bound framebuffer (GL: origin bottom-left).
     void draw(const SceneDesc& scene, const OrbitCamera& camera, int x, int y, int w, int h,
@@ -45,9 +47,11 @@ class SceneRenderer {
         Program(const Program&) = delete;
         Program& operator=(const Program&) = delete;
         GLuint id = 0;
-        GLint mvp = -1, light = -1, point = -1, tint = -1;
+        GLint mvp = -1, model = -1, normal = -1, light = -1, point = -1, tint = -1;
     };
     void use(const Program& p, const glm::mat4& mvp, const glm::vec3& light, float point_px);
+    /// Places what is drawn next (object meshes); everything else is drawn with the identity.
+    void set_model(const Program& p, const glm::dmat4& model);
     /// Draws `vb` where it is visible, then again with `hidden_alpha` where surfaces hide it.
     void draw_with_hidden(const gl::VertexBuffer& vb, GLenum mode, float hidden_alpha);
 

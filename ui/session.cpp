@@ -4,6 +4,7 @@
 #include "sonar_geometry.hpp"
 
 #include "core/errors.hpp"
+#include "core/mesh_cache.hpp"
 #include "core/pose.hpp"
 #include "core/scene_io.hpp"
 
@@ -15,13 +16,22 @@ Session::Session(const SceneDesc& scene)
     : scene_(scene), last_good_(scene), geometry_(std::make_unique<SceneGeometry>(scene)),
       meshes_version_(1) {}
 
+std::vector<std::shared_ptr<const TriMesh>> Session::local_meshes() const {
+    std::vector<std::shared_ptr<const TriMesh>> out;
+    for (size_t i = 0; i < geometry_->object_count(); ++i) out.push_back(geometry_->local_mesh(i));
+    return out;
+}
+
+void Session::update_geometry(const SceneDesc& scene) {
+    if (geometry_->update_transforms(scene)) return; // only poses changed: milliseconds, on this thread
+    geometry_ = std::make_unique<SceneGeometry>(scene);
+    ++meshes_version_;
+}
+
 void Session::set_scene(SceneDesc next) {
     const Stage st = changed_stage(scene_, next);
     if (st == Stage::None && next.source_file == scene_.source_file) return;
-    if (st == Stage::Geometry) {
-        geometry_ = std::make_unique<SceneGeometry>(next); // throws InputError: caller keeps the old scene
-        ++meshes_version_;
-    }
+    if (st == Stage::Geometry) update_geometry(next); // throws InputError: caller keeps the old scene
     scene_ = std::move(next);
     dirty_ = true;
 }
@@ -76,9 +86,9 @@ bool Session::add_mesh(const std::string& path) {
         ObjectDesc o;
         o.mesh = std::filesystem::absolute(path, ec).lexically_normal().string();
         o.mesh_resolved = o.mesh;
-        const TriMesh m = load_mesh(o.mesh, path, "mesh");
+        const std::shared_ptr<const TriMesh> m = cached_mesh(o.mesh, path, "mesh"); // the geometry reuses it
         glm::vec3 lo, hi;
-        mesh_bounds(m, lo, hi);
+        mesh_bounds(*m, lo, hi);
         // Stand it on the floor where the boresight meets it (or 1.5 m ahead), centred in x and y.
         const SonarParams& s = scene_.sonar;
         const glm::dvec3 bore = rotation_matrix(s.pose.orientation_deg) * glm::dvec3(1, 0, 0);
@@ -124,8 +134,7 @@ bool Session::poll() {
         if (r->id == requested_id_ && !dirty_) {
             scene_ = last_good_;
             try {
-                geometry_ = std::make_unique<SceneGeometry>(scene_);
-                ++meshes_version_;
+                update_geometry(scene_);
             } catch (const InputError&) {
             }
         }

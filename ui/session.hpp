@@ -25,10 +25,11 @@ class Session {
 
     /// The scene as edited (what was last requested).
     const SceneDesc& scene() const { return scene_; }
-    /// The traceable geometry of scene() (for picking), its world meshes (for drawing) and a counter that
-    /// changes when they do.
+    /// The traceable geometry of scene() (for picking), its objects' meshes in their own coordinates (for
+    /// drawing, placed by each object's transform) and a counter that changes when the meshes do (not when
+    /// objects only move: that updates the geometry in place).
     const SceneGeometry& geometry() const { return *geometry_; }
-    const std::vector<TriMesh>& meshes() const { return geometry_->meshes(); }
+    std::vector<std::shared_ptr<const TriMesh>> local_meshes() const;
     std::uint64_t meshes_version() const { return meshes_version_; }
 
     /// Applies a change to a copy of the scene and validates it. On InputError: the scene stays, error() is
@@ -72,6 +73,9 @@ class Session {
 
   private:
     void set_scene(SceneDesc next);
+    /// Makes geometry_ match `scene`: new transforms when only poses differ, else a new SceneGeometry (meshes
+    /// from the cache). Throws InputError, keeping the old geometry.
+    void update_geometry(const SceneDesc& scene);
 
     SceneDesc scene_, last_good_;
     std::unique_ptr<SceneGeometry> geometry_;

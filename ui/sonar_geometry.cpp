@@ -1,5 +1,6 @@
 #include "sonar_geometry.hpp"
 
+#include "core/mesh_cache.hpp"
 #include "core/pose.hpp"
 #include "core/shade.hpp"
 
@@ -168,10 +169,21 @@ std::vector<glm::vec3> echoing_points(const TraceResult& hits, const SceneDesc& 
     return out;
 }
 
-std::vector<TriMesh> world_meshes(const SceneDesc& s) {
-    std::vector<TriMesh> out;
-    for (size_t i = 0; i < s.objects.size(); ++i)
-        out.push_back(object_world_mesh(s.objects[i], s.source_file, "objects[" + std::to_string(i) + "]"));
+std::vector<std::shared_ptr<const TriMesh>> object_meshes(const SceneDesc& s) {
+    std::vector<std::shared_ptr<const TriMesh>> out;
+    for (size_t i = 0; i < s.objects.size(); ++i) {
+        const ObjectDesc& o = s.objects[i];
+        const std::string key = "objects[" + std::to_string(i) + "]";
+        out.push_back(o.box_m ? std::make_shared<const TriMesh>(make_box(*o.box_m))
+                              : cached_mesh(o.mesh_resolved, s.source_file, key + ".mesh"));
+        glm::vec3 lo, hi;
+        mesh_bounds(*out.back(), lo, hi);
+        const glm::dmat4 m = object_transform(o);
+        for (int c = 0; c < 8; ++c)
+            check_single_precision(glm::dvec3(m * glm::dvec4(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y,
+                                                             c & 4 ? hi.z : lo.z, 1.0)),
+                                   s.source_file, key);
+    }
     return out;
 }
 

@@ -8,6 +8,7 @@
 
 #include <glm/glm.hpp>
 #include <optional>
+#include <memory>
 #include <vector>
 
 namespace sonarsim::ui {
@@ -58,7 +59,9 @@ PointInImage locate_world_point(const SonarParams& sonar, const SectorLayout& la
 /// Hit points of the traced cells whose echo lands (at least partly) in (bin, beam).
 std::vector<glm::vec3> echoing_points(const TraceResult& hits, const SceneDesc& scene, int bin, int beam);
 
-/// World meshes of every object (object i -> element i). Throws InputError for a bad mesh.
-std::vector<TriMesh> world_meshes(const SceneDesc& scene);
+/// Every object's mesh in its own coordinates (object i -> element i; meshes from the mesh cache, boxes
+/// built), for SceneRenderer::set_meshes. Throws InputError for a bad mesh or a placement beyond single
+/// precision.
+std::vector<std::shared_ptr<const TriMesh>> object_meshes(const SceneDesc& scene);
 
 } // namespace sonarsim::ui

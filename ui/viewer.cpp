@@ -257,7 +257,7 @@ void Viewer::frame(int index) {
     if (frustum_drag_ || camera_drag_ != CameraDrag::None) extra_frames_ = 2;
 
     if (meshes_uploaded_ != session_.meshes_version()) {
-        renderer_->set_meshes(session_.meshes());
+        renderer_->set_meshes(session_.local_meshes());
         meshes_uploaded_ = session_.meshes_version();
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -468,7 +468,7 @@ void Viewer::take_snapshot(const Rect& view, const std::string& prefix) {
     }
     Bytes png;
     try {
-        const auto meshes = world_meshes(shown->scene);
+        const auto meshes = object_meshes(shown->scene);
         SceneRenderer r;
         r.set_meshes(meshes);
         png = encode_png(render_view_image(r, shown->scene, camera_, std::max(16, int(view.w)),

@@ -1,8 +1,11 @@
-// Embree first hits against a brute-force Moller-Trumbore reference in double over all triangles.
+// Embree first hits against a brute-force Moller-Trumbore reference in double over all triangles, with
+// objects placed as instances (rotated, non-uniformly scaled, moved in place).
 #include "support.hpp"
 
+#include "core/errors.hpp"
 #include "core/geometry.hpp"
 #include "core/mesh.hpp"
+#include "core/mesh_cache.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -115,9 +118,9 @@ TEST_CASE("Embree first hits equal a brute-force ray-triangle reference", "[geom
         }
         const SceneGeometry g(s);
         REQUIRE(g.has_meshes());
-        REQUIRE(g.meshes().size() == set.triangles_per_object.size());
-        for (size_t m = 0; m < g.meshes().size(); ++m)
-            REQUIRE(g.meshes()[m].triangles.size() == size_t(set.triangles_per_object[m]));
+        REQUIRE(g.object_count() == set.triangles_per_object.size());
+        for (size_t m = 0; m < g.object_count(); ++m)
+            REQUIRE(g.local_mesh(m)->triangles.size() == size_t(set.triangles_per_object[m]));
 
         std::uniform_real_distribution<double> u(-1, 1), box(-4, 4), tm(0.5, 12);
         std::uniform_int_distribution<size_t> pick(0, tris.size() - 1);
@@ -203,4 +206,152 @@ TEST_CASE("a placed box is hit where its rotated, scaled faces are", "[geometry]
     CHECK(side->t == Approx(9.0).epsilon(1e-6)); // long side: 2 m along y
     CHECK_FALSE(g.intersect({0, 0, 0}, {1, 0, 0}, 4.4));
     CHECK_FALSE(g.intersect({0, 0, 2}, {1, 0, 0}, 100)); // passes above it
+}
+
+namespace {
+
+/// The world triangles of every object of `g` (object i -> material i + 1), for the brute-force reference.
+std::vector<Tri> world_triangles(const SceneGeometry& g) {
+    std::vector<Tri> tris;
+    for (size_t i = 0; i < g.object_count(); ++i) {
+        const TriMesh w = g.world_mesh(i);
+        for (size_t t = 0; t < w.triangles.size(); ++t)
+            tris.push_back({glm::dvec3(w.vertices[w.triangles[t].x]),
+                            glm::dvec3(w.vertices[w.triangles[t].y]),
+                            glm::dvec3(w.vertices[w.triangles[t].z]), unsigned(i) + 1, unsigned(t)});
+    }
+    return tris;
+}
+
+/// Compares g's first hits with the brute-force reference on its world triangles for `rays` random rays;
+/// returns the number of hits compared.
+int compare_with_brute_force(const SceneGeometry& g, std::mt19937& rng, int rays) {
+    const std::vector<Tri> tris = world_triangles(g);
+    std::uniform_real_distribution<double> u(-1, 1), box(-8, 8);
+    std::uniform_int_distribution<size_t> pick(0, tris.size() - 1);
+    int hits = 0, skipped = 0;
+    for (int r = 0; r < rays; ++r) {
+        const glm::dvec3 o(box(rng), box(rng), box(rng));
+        glm::dvec3 d;
+        if (r % 2 == 0) {
+            const Tri& tr = tris[pick(rng)];
+            double a = 0.5 * (u(rng) + 1), b = 0.5 * (u(rng) + 1);
+            if (a + b > 1) a = 1 - a, b = 1 - b;
+            d = tr.v0 + a * (tr.v1 - tr.v0) + b * (tr.v2 - tr.v0) - o;
+        } else {
+            do d = glm::dvec3(u(rng), u(rng), u(rng));
+            while (glm::length(d) < 0.1 || glm::length(d) > 1);
+        }
+        d = glm::normalize(d);
+        const BruteHit ref = brute_force(tris, o, d, 100.0);
+        if (ref.ambiguous) {
+            ++skipped;
+            continue;
+        }
+        const std::optional<Hit> h = g.intersect(o, d, 100.0);
+        INFO("ray " << r);
+        REQUIRE(bool(h) == ref.hit);
+        if (!ref.hit) continue;
+        ++hits;
+        CHECK(h->t == Approx(ref.t).epsilon(1e-5));
+        CHECK(h->material == ref.tri->object);
+        CHECK(h->prim == ref.tri->prim);
+        const glm::dvec3 n = glm::normalize(glm::cross(ref.tri->v1 - ref.tri->v0, ref.tri->v2 - ref.tri->v0));
+        CHECK(glm::dot(h->normal, n) == Approx(1.0).margin(1e-5)); // same side as the world triangle's
+        CHECK(glm::length(h->normal) == Approx(1.0).margin(1e-9));
+    }
+    CHECK(skipped < rays / 25);
+    return hits;
+}
+
+/// Random placements: rotations all round, non-uniform scales from 0.3 to 3, positions within 3 m.
+void place_randomly(SceneDesc& s, std::mt19937& rng) {
+    std::uniform_real_distribution<double> angle(-180, 180), scale(0.3, 3), pos(-3, 3);
+    for (ObjectDesc& o : s.objects) {
+        o.orientation_deg = {angle(rng), angle(rng) / 2, angle(rng)};
+        o.scale = {scale(rng), scale(rng), scale(rng)};
+        o.position_m = {pos(rng), pos(rng), pos(rng)};
+    }
+}
+
+} // namespace
+
+TEST_CASE("instanced objects, rotated and non-uniformly scaled, hit like their world meshes", "[geometry]") {
+    std::mt19937 rng(99);
+    const std::string a = test::out_path("instanced_a.obj"), b = test::out_path("instanced_b.obj");
+    write_random_obj(a, rng, 80, -1, 1);
+    write_random_obj(b, rng, 40, -1, 1);
+    SceneDesc s;
+    s.seafloor.reset();
+    for (const std::string* path : {&a, &b, &a}) { // a twice: two instances of one mesh
+        ObjectDesc o;
+        o.mesh = o.mesh_resolved = *path;
+        s.objects.push_back(o);
+    }
+    ObjectDesc box;
+    box.box_m = Vec3d{0.5, 1.0, 0.25};
+    s.objects.push_back(box);
+    int hits = 0;
+    for (int placement = 0; placement < 4; ++placement) {
+        place_randomly(s, rng);
+        const SceneGeometry g(s);
+        REQUIRE(g.object_count() == 4);
+        CHECK(g.local_mesh(0).get() == g.local_mesh(2).get()); // one mesh, one BVH, two instances
+        CHECK(g.local_mesh(0)->triangles.size() == 80);
+        hits += compare_with_brute_force(g, rng, 1500);
+        // The slab-test bounds hold every world vertex.
+        for (size_t i = 0; i < g.object_count(); ++i)
+            for (const glm::vec3& v : g.world_mesh(i).vertices)
+                for (int k = 0; k < 3; ++k) {
+                    CHECK(v[k] >= g.bounds_lo()[k]);
+                    CHECK(v[k] <= g.bounds_hi()[k]);
+                }
+    }
+    CHECK(hits > 2000);
+}
+
+TEST_CASE("update_transforms moves the instances: hits follow the new pose, nothing is reloaded",
+          "[geometry]") {
+    std::mt19937 rng(7);
+    const std::string a = test::out_path("moved_a.obj");
+    write_random_obj(a, rng, 60, -1, 1);
+    SceneDesc s;
+    s.seafloor.reset();
+    ObjectDesc o;
+    o.mesh = o.mesh_resolved = a;
+    s.objects = {o, o};
+    place_randomly(s, rng);
+    SceneGeometry g(s);
+    const TriMesh* mesh = g.local_mesh(0).get();
+    const auto reads = MeshCache::global().files_read();
+
+    SceneDesc moved = s;
+    place_randomly(moved, rng);
+    REQUIRE(g.update_transforms(moved));
+    CHECK(g.local_mesh(0).get() == mesh);
+    CHECK(MeshCache::global().files_read() == reads);
+    CHECK(g.object_transform(1) == object_transform(moved.objects[1]));
+    CHECK(compare_with_brute_force(g, rng, 2000) > 500);
+    const SceneGeometry fresh(moved); // the same hits as a geometry built for the new pose
+    for (int r = 0; r < 500; ++r) {
+        std::uniform_real_distribution<double> u(-1, 1), box(-8, 8);
+        const glm::dvec3 org(box(rng), box(rng), box(rng));
+        const glm::dvec3 d = glm::normalize(glm::dvec3(u(rng), u(rng), u(rng)) - org / 8.0);
+        const auto h1 = g.intersect(org, d, 100), h2 = fresh.intersect(org, d, 100);
+        REQUIRE(bool(h1) == bool(h2));
+        if (h1) CHECK((h1->t == h2->t && h1->prim == h2->prim && h1->material == h2->material));
+    }
+
+    // Other shapes: not an update; a placement beyond single precision: an error that changes nothing.
+    SceneDesc other = moved;
+    other.objects[1].box_m = Vec3d{1, 1, 1};
+    CHECK_FALSE(g.update_transforms(other));
+    other = moved;
+    other.objects.pop_back();
+    CHECK_FALSE(g.update_transforms(other));
+    other = moved;
+    other.objects[0].scale = {1e39, 1, 1};
+    CHECK_THROWS_AS(g.update_transforms(other), InputError);
+    CHECK(g.object_transform(0) == object_transform(moved.objects[0]));
+    CHECK(compare_with_brute_force(g, rng, 500) > 100);
 }

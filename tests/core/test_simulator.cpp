@@ -28,6 +28,13 @@ TEST_CASE("incremental re-render equals a fresh render and starts at the right s
         {"floor height", [](SceneDesc& s) { s.seafloor->height_m = -0.1; }, Stage::Trace},
         {"no floor", [](SceneDesc& s) { s.seafloor.reset(); }, Stage::Trace},
         {"object position", [](SceneDesc& s) { s.objects[0].position_m[0] = 1.45; }, Stage::Geometry},
+        {"object turned and scaled", // in place: new instance transform
+         [](SceneDesc& s) {
+             s.objects[0].orientation_deg = {10, -5, 30}, s.objects[0].scale = {1.5, 1, 0.8};
+         },
+         Stage::Geometry},
+        {"object shape", [](SceneDesc& s) { (*s.objects[0].box_m)[1] *= 1.5; },
+         Stage::Geometry}, // new geometry
         {"nothing", [](SceneDesc&) {}, Stage::None},
     };
     for (const Change& c : changes) {

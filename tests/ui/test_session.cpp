@@ -43,6 +43,29 @@ TEST_CASE("a bad value or file shows an error and keeps the last good scene and 
     CHECK(session.shown_count() == shown);
 }
 
+TEST_CASE("moving an object updates the session geometry in place, a new shape rebuilds it",
+          "[ui][session]") {
+    ui::Session session(default_scene());
+    const std::uint64_t version = session.meshes_version();
+    const auto mesh = session.geometry().local_mesh(0);
+    REQUIRE(session.set("objects.0.position", json::array({2.0, 1.0, 0.11})));
+    CHECK(session.meshes_version() == version); // nothing to upload again: the view places it
+    CHECK(session.geometry().local_mesh(0).get() == mesh.get());
+    CHECK(session.geometry().object_transform(0)[3][0] == 2.0);
+    // Picking sees the object where it now is: straight down onto its top face (0.11 + 0.22 / 2 high).
+    const auto hit = session.geometry().intersect({2.0, 1.0, 1.0}, {0, 0, -1}, 10);
+    REQUIRE(hit);
+    CHECK(hit->t == Approx(1.0 - 0.22).epsilon(1e-6));
+    CHECK(hit->material == 1);
+    REQUIRE(session.edit([](SceneDesc& s) { (*s.objects[0].box_m)[2] = 0.3; }));
+    CHECK(session.meshes_version() != version);
+    CHECK(session.geometry().local_mesh(0).get() != mesh.get());
+    session.submit();
+    REQUIRE(session.wait_latest(60s));
+    REQUIRE(session.shown());
+    CHECK(session.error().empty());
+}
+
 TEST_CASE("the newest request supersedes older ones", "[ui][worker]") {
     ui::RenderWorker worker;
     SceneDesc s = default_scene();
