@@ -464,6 +464,19 @@ Expect check_ply(const std::string& bytes) {
                 pos += size_t(e.count) * row;
                 continue;
             }
+            // The usual face element, one list with a one-byte length per row: a tight loop.
+            if (e.properties.size() == 1 && e.properties[0].count_size == 1) {
+                const size_t item = size_t(e.properties[0].size);
+                for (long long i = 0; i < e.count; ++i) {
+                    if (pos >= size) truncated(e, i);
+                    const size_t items = data[pos];
+                    if (e.properties[0].count_signed && items > 127)
+                        fail(e.name + " " + std::to_string(i) + ": negative list length");
+                    if ((size - pos - 1) / item < items) truncated(e, i);
+                    pos += 1 + items * item;
+                }
+                continue;
+            }
             for (long long i = 0; i < e.count; ++i)
                 for (const auto& p : e.properties) {
                     if (p.count_size) {
