@@ -69,7 +69,8 @@ int run_study(const StudyOptions& o) {
               << fmt("%.2e", ref.convergence.rel_l1) << ", median "
               << fmt("%.2e", ref.convergence.median_abs_db) << " dB, p95 "
               << fmt("%.2e", ref.convergence.p95_abs_db) << " dB; echoing bins "
-              << ref.convergence.echoing_ref << "\n";
+              << ref.convergence.echoing_ref << "\n  peak memory so far: " << fmt("%.0f", peak_rss_mb())
+              << " MB\n";
 
     std::vector<Sampling> ladder = default_ladder(o.quick);
     ladder.push_back({scene.sampling.scheme, scene.sampling.elevation_rays, scene.sampling.azimuth_rays});

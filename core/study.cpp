@@ -97,7 +97,8 @@ PolarImage render_in_chunks(const SceneGeometry& g, const SceneDesc& scene, cons
     return out;
 }
 
-StudyReference make_reference(const SceneGeometry& g, const SceneDesc& s, const Progress& progress) {
+StudyReference make_reference(const SceneGeometry& g, const SceneDesc& s, const Progress& progress,
+                              const Sampling& d) {
     StudyReference ref;
     const auto t0 = std::chrono::steady_clock::now();
     if (has_floor_reference(s)) {
@@ -113,13 +114,16 @@ StudyReference make_reference(const SceneGeometry& g, const SceneDesc& s, const 
     // Far denser than any ladder setting; true normals; its convergence is shown against a 3x coarser run.
     SceneDesc dense = s;
     dense.sampling.normals = NormalSource::Mesh;
-    const Sampling& d = kReferenceSampling;
-    const Sampling& c = kReferenceCoarserSampling;
+    const Sampling c{SamplingScheme::Spread, std::max(1, d.elevation_rays / 3),
+                     std::max(1, d.azimuth_rays / 3)};
     // Progress: the dense run costs (3 x 3) times the coarser one.
     const double share = 9.0 / 10.0;
     ref.kind = "dense spread run, streamed";
-    ref.description = "spread, " + std::to_string(d.elevation_rays) + " x " + std::to_string(d.azimuth_rays) +
-                      " rays per beam, true normals, traced and shaded a chunk of beams at a time";
+    ref.description =
+        "spread, " + std::to_string(d.elevation_rays) + " x " + std::to_string(d.azimuth_rays) +
+        " rays per beam, true normals, traced and shaded a chunk of beams at a time; convergence "
+        "against " +
+        std::to_string(c.elevation_rays) + " x " + std::to_string(c.azimuth_rays);
     ref.image = render_in_chunks(
         g, dense, d, 0,
         [&](double f) {

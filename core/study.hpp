@@ -40,20 +40,20 @@ struct StudyReference {
     std::uint64_t rays = 0; ///< rays traced for the reference image (0 for the floor integral)
 };
 
-/// Dense sampling of the non-floor reference, and the 3x coarser run its convergence is measured against.
+/// Dense sampling of the non-floor reference.
 /// Cells of about 0.01 x 0.01 deg for the usual fans (14-20 deg elevation, 0.25-0.35 deg beams): against a
 /// 6561 x 81 run on the Fig. 9 scene, 2187 x 27 is 5x closer (6e-5 rel L1) than 6561 x 9 (3e-4) at the same
 /// ray count, because edges that cut a beam in azimuth dominate the error.
 constexpr Sampling kReferenceSampling{SamplingScheme::Spread, 2187, 27};
-constexpr Sampling kReferenceCoarserSampling{SamplingScheme::Spread, 729, 9};
 
 /// Cells (one per ray that hits) a streamed render keeps in memory at once, about 48 bytes each.
 constexpr std::size_t kChunkCells = std::size_t(1) << 20;
 
-/// A bare flat floor: the semi-analytic integral. Otherwise a dense `spread` run (kReferenceSampling, true
-/// normals) traced and shaded a chunk of beams at a time, so its memory stays bounded whatever the scene;
-/// its convergence is measured against a 3x coarser run (kReferenceCoarserSampling).
-StudyReference make_reference(const SceneGeometry& g, const SceneDesc& scene, const Progress& progress = {});
+/// A bare flat floor: the semi-analytic integral. Otherwise a dense `spread` run (`dense`, true normals)
+/// traced and shaded a chunk of beams at a time, so its memory stays bounded whatever the scene; its
+/// convergence is measured against a run 3x coarser in both directions.
+StudyReference make_reference(const SceneGeometry& g, const SceneDesc& scene, const Progress& progress = {},
+                              const Sampling& dense = kReferenceSampling);
 
 /// The scene restricted to beams [first_beam, last_beam) of `scene`: same position, a fan of
 /// last_beam - first_beam beams whose azimuths are exactly those beams' azimuths (its fov is
