@@ -53,7 +53,8 @@ const json* find_default(const json& scene) {
 }
 
 /// The default setting against the cheapest measured setting (any scheme) whose rel L1 is at most the
-/// default's, and the spread ladder interpolated (log-log) to the default's error.
+/// default's, and against the spread ladder interpolated (log-log) to the default's error; the ratio to the
+/// cheaper of the two.
 json summarise(const json& scene) {
     const json* d = find_default(scene);
     if (!d) return nullptr;
@@ -67,8 +68,6 @@ json summarise(const json& scene) {
     if (best) {
         s["cheapest_label"] = (*best)["label"];
         s["cheapest_ms"] = (*best)["warm_ms"];
-        s["default_over_cheapest"] = d_ms / (*best)["warm_ms"].get<double>();
-        s["within_2x"] = d_ms <= 2 * (*best)["warm_ms"].get<double>();
     }
     std::vector<const json*> spread;
     for (const json& r : scene["rows"])
@@ -88,6 +87,16 @@ json summarise(const json& scene) {
                                            (*spread[k])["label"].get<std::string>();
         }
         break;
+    }
+    // The target compares the default with the cheaper of the two ways of reaching its error.
+    double best_ms = INFINITY;
+    if (s.contains("cheapest_ms")) best_ms = s["cheapest_ms"].get<double>();
+    if (s.contains("spread_equal_error_ms"))
+        best_ms = std::min(best_ms, s["spread_equal_error_ms"].get<double>());
+    if (std::isfinite(best_ms)) {
+        s["best_equal_error_ms"] = best_ms;
+        s["default_over_best"] = d_ms / best_ms;
+        s["within_2x"] = d_ms <= 2 * best_ms;
     }
     return s;
 }
@@ -128,15 +137,16 @@ std::string write_reports(const json& input, const std::string& dir) {
 
     md << "## Summary: the default sampling against the cheapest setting that reaches its error\n\n"
        << "| scene | triangles | beams × bins | default | rays | warm ms | first image ms | render peak MB | "
-          "rel L1 | median dB | sampler's estimate (rel L1) | cheapest setting with rel L1 ≤ default's | its "
-          "warm ms | default / cheapest | spread at equal error, ms | within 2× |\n"
-       << "|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---|\n";
+          "rel L1 | median dB | sampler's estimate (rel L1) | cheapest measured setting with rel L1 ≤ "
+          "default's | spread interpolated to the default's rel L1, ms | default / the cheaper of the two | "
+          "within 2× |\n"
+       << "|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---|\n";
     for (const json& sc : results["scenes"]) {
         const std::string name = sc["name"];
         if (!sc.contains("rows")) {
             md << "| " << name << " | " << count(get(sc, "triangles")) << " | | *"
                << md_escape(sc.value("skip", sc.value("error", std::string("not run"))))
-               << "* |||||||||||||\n";
+               << "* ||||||||||||\n";
             continue;
         }
         const json* d = find_default(sc);
@@ -148,17 +158,16 @@ std::string write_reports(const json& input, const std::string& dir) {
            << sig(get(*d, "first_image_ms")) << " | " << sig(get(*d, "render_peak_mb")) << " | "
            << pct(get((*d)["error"], "rel_l1")) << " | " << db(get((*d)["error"], "median_abs_db")) << " | "
            << (est.is_object() ? pct(get(est, "rel_l1")) : "–") << " | "
-           << s.value("cheapest_label", std::string("–")) << " | " << sig(get(s, "cheapest_ms")) << " | "
-           << sig(get(s, "default_over_cheapest"), 2) << " | " << sig(get(s, "spread_equal_error_ms"))
-           << " | " << (s.contains("within_2x") ? (s["within_2x"].get<bool>() ? "yes" : "**no**") : "–")
-           << " |\n";
+           << s.value("cheapest_label", std::string("–")) << " (" << sig(get(s, "cheapest_ms")) << " ms) | "
+           << sig(get(s, "spread_equal_error_ms")) << " | " << sig(get(s, "default_over_best"), 2) << " | "
+           << (s.contains("within_2x") ? (s["within_2x"].get<bool>() ? "yes" : "**no**") : "–") << " |\n";
     }
-    md << "\n*cheapest setting*: among all settings measured on that scene (any scheme, including the "
-          "default "
-          "itself), the one with the smallest warm time whose rel L1 is at most the default's. *spread at "
-          "equal error*: the spread ladder's warm time interpolated (log-log, between the two settings that "
-          "bracket the default's rel L1) to the default's error; – when no spread setting reaches it. The "
-          "issue's target is *default / cheapest ≤ 2*.\n\n";
+    md << "\n*cheapest measured setting*: among all settings measured on that scene (any scheme, including "
+          "the default itself), the one with the smallest warm time whose rel L1 is at most the default's. "
+          "*spread interpolated*: the spread ladder's warm time interpolated (log-log, between the two "
+          "settings that bracket the default's rel L1) to the default's error, since the ladder's steps are "
+          "coarse; – when no spread setting reaches it. The issue's target is that the default takes at most "
+          "2× the cheaper of the two.\n\n";
 
     md << "## Per scene\n\n";
     for (const json& sc : results["scenes"]) {
@@ -206,11 +215,13 @@ std::string write_reports(const json& input, const std::string& dir) {
         if (sc.contains("summary") && sc["summary"].contains("cheapest_label"))
             md << "\nCheapest setting with rel L1 ≤ the default's: "
                << sc["summary"]["cheapest_label"].get<std::string>() << " ("
-               << sig(get(sc["summary"], "cheapest_ms"))
-               << " ms); default / cheapest = " << sig(get(sc["summary"], "default_over_cheapest"), 2) << ".";
+               << sig(get(sc["summary"], "cheapest_ms")) << " ms).";
         if (sc.contains("summary") && sc["summary"].contains("spread_equal_error_ms"))
             md << " Spread at the default's error: " << sig(get(sc["summary"], "spread_equal_error_ms"))
                << " ms (" << sc["summary"]["spread_equal_error_note"].get<std::string>() << ").";
+        if (sc.contains("summary") && sc["summary"].contains("default_over_best"))
+            md << " Default / the cheaper of the two: " << sig(get(sc["summary"], "default_over_best"), 2)
+               << ".";
         md << "\n\n";
     }
 

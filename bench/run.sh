@@ -17,4 +17,4 @@ else
   SONARSIM_BUILD_DIR="$build_dir" ./.ci/setup.sh
 fi
 
-exec "$build_dir/sonarsim_bench" --repo "$repo" --sonarsim "$build_dir/sonarsim" --work "$build_dir/bench" "$@"
+SONARSIM_BENCH_COMMAND="bench/run.sh${*:+ $*}" exec "$build_dir/sonarsim_bench" --repo "$repo" --sonarsim "$build_dir/sonarsim" --work "$build_dir/bench" "$@"

@@ -176,8 +176,8 @@ std::vector<BenchScene> prepare_scenes(const Paths& p, const std::function<bool(
         s.sonar.range_min_m = 1;
         s.sonar.range_max_m = 120;
         s.sonar.range_bins = 1500;
-        s.display.lo_db = 50;
-        s.display.hi_db = 110;
+        s.display.lo_db = 25;
+        s.display.hi_db = 100;
         return write_scene(p, "oculus", s);
     });
 

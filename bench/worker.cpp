@@ -49,6 +49,7 @@ std::vector<Setting> settings(const SceneDesc& s, bool quick) {
     if (!quick) {
         ladder.push_back({S::Spread, 1001, 1});
         ladder.push_back({S::Spread, 1001, 3});
+        ladder.push_back({S::Spread, 3001, 3});
         ladder.push_back({S::Spread, 3001, 9});
     }
     for (const Sampling& m : ladder) add(m, "spread");
