@@ -167,6 +167,7 @@ int run_worker(const WorkerOptions& o) {
                         {"rays", first.rays},
                         {"repeats", repeats},
                         {"warm_ms", median(total)},
+                        {"warm_min_ms", *std::min_element(total.begin(), total.end())},
                         {"trace_ms", median(tr)},
                         {"shade_ms", median(sh)},
                         {"image_ms", median(im)},
