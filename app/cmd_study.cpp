@@ -12,6 +12,8 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <sys/resource.h>
+#include <unistd.h>
 
 namespace sonarsim::app {
 namespace {
@@ -29,16 +31,46 @@ std::string fmt(const char* f, double v) {
     return b;
 }
 
+/// One overwritten status line on stderr, only when stderr is a terminal (logs and pipes stay clean).
+class StatusLine {
+  public:
+    StatusLine() : tty_(isatty(fileno(stderr)) != 0) {}
+    void show(const std::string& text) {
+        if (!tty_) return;
+        std::fprintf(stderr, "\r\033[K%s", text.c_str());
+        std::fflush(stderr);
+    }
+    void clear() { show(""); }
+
+  private:
+    bool tty_;
+};
+
+/// Peak resident set size of this process so far [MB].
+double peak_rss_mb() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_maxrss) / 1024.0; // Linux: kilobytes
+}
+
 int run_study(const StudyOptions& o) {
     const SceneDesc scene = load_scene_from_options(o.scene);
+    StatusLine status;
+    status.show("loading the scene and building the BVH...");
     const SceneGeometry geometry(scene);
-    const StudyReference ref = make_reference(geometry, scene);
+    const StudyReference ref = make_reference(geometry, scene, [&](double f) {
+        status.show("reference: " + fmt("%.0f", 100 * f) + " % (then " +
+                    std::to_string(default_ladder(o.quick).size() + 1) + " sampling settings)");
+    });
+    status.clear();
     std::cout << "reference: " << ref.kind << " (" << ref.description << "), " << fmt("%.0f", ref.time_ms)
-              << " ms\n  its own convergence (coarser version vs reference): rel L1 "
+              << " ms" << (ref.rays ? ", " + fmt("%.0f", double(ref.rays)) + " rays" : std::string())
+              << "\n  its own convergence (coarser version vs reference): rel L1 "
               << fmt("%.2e", ref.convergence.rel_l1) << ", median "
               << fmt("%.2e", ref.convergence.median_abs_db) << " dB, p95 "
               << fmt("%.2e", ref.convergence.p95_abs_db) << " dB; echoing bins "
-              << ref.convergence.echoing_ref << "\n";
+              << ref.convergence.echoing_ref << "\n  peak memory so far: " << fmt("%.0f", peak_rss_mb())
+              << " MB\n";
 
     std::vector<Sampling> ladder = default_ladder(o.quick);
     ladder.push_back({scene.sampling.scheme, scene.sampling.elevation_rays, scene.sampling.azimuth_rays});
@@ -53,7 +85,10 @@ int run_study(const StudyOptions& o) {
                                   {"scene setting", {0, 0, 0}, {}}};
     for (size_t n = 0; n < ladder.size(); ++n) {
         const bool is_default = n + 1 == ladder.size();
+        status.show("[" + std::to_string(n + 1) + "/" + std::to_string(ladder.size()) + "] " +
+                    ladder[n].label() + " x " + std::to_string(o.repeats) + " repeats...");
         const StudyRow r = measure(geometry, scene, ladder[n], o.repeats, ref.image);
+        status.clear();
         const std::string label = (is_default ? "scene: " : "") + r.sampling.label();
         std::printf("%-22s %10.0f %9.2f %10.4f %9.4f %9.4f %7ld %10s\n", label.c_str(), r.rays, r.time_ms,
                     100 * r.error.rel_l1, r.error.median_abs_db, r.error.p95_abs_db, r.error.holes,
@@ -72,7 +107,9 @@ int run_study(const StudyOptions& o) {
     const Image8 plot =
         loglog_plot(series, title, "time per image [ms] (trace + shade, median)", "relative L1 error [%]");
     write_files_atomically({{o.out + ".csv", to_bytes(csv.str())}, {o.out + ".png", encode_png(plot)}});
-    std::cout << "wrote " << o.out << ".csv and " << o.out << ".png\n";
+    std::cout << "wrote " << o.out << ".csv and " << o.out << ".png\n"
+              << "peak memory (max resident set size of this process): " << fmt("%.0f", peak_rss_mb())
+              << " MB\n";
     return 0;
 }
 

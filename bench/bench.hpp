@@ -1,0 +1,56 @@
+// sonarsim_bench: the benchmark suite (see bench/README.md). Shared declarations of its parts:
+// scenes.cpp (the scene table), worker.cpp (one scene measured in its own process), report.cpp (RESULTS.md,
+// CSV, JSON), main.cpp (command line and the driver that runs every scene and subprocess).
+#pragma once
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace sonarsim::bench {
+
+using json = nlohmann::json;
+
+/// Where things are.
+struct Paths {
+    std::string repo;     ///< source checkout (assets/scenes, bench/results)
+    std::string shared;   ///< the shared mesh collection (the bunny); may be absent
+    std::string work;     ///< generated terrains, scene files, render outputs, logs
+    std::string sonarsim; ///< the sonarsim executable (first-image renders, the viewer)
+};
+
+struct BenchScene {
+    std::string name;  ///< short id, used in file names and --scenes
+    std::string title; ///< what it is, for the report
+    std::string file;  ///< scene file (JSON) that both the worker and `sonarsim render` load
+    long triangles = 0;
+    bool heavy = false; ///< left out of --quick
+    bool view = false;  ///< also timed in the viewer (`sonarsim view --orbit` under xvfb-run)
+    std::string skip;   ///< non-empty: why it is skipped
+};
+
+/// The benchmark scenes in report order. For the scenes `wanted` accepts, generates what is missing
+/// (procedural terrains, scene files) in paths.work; `log` receives one line per file generated. The others
+/// come back with an empty `file`.
+std::vector<BenchScene> prepare_scenes(const Paths& paths,
+                                       const std::function<bool(const BenchScene&)>& wanted,
+                                       const std::function<void(const std::string&)>& log);
+
+/// One scene measured in this process: the reference, then every sampling setting. Writes JSON to
+/// `json_out`. Returns the exit status.
+struct WorkerOptions {
+    std::string name, scene_file, json_out;
+    bool quick = false;
+};
+int run_worker(const WorkerOptions& options);
+
+/// Writes RESULTS.md, results.csv and results.json into `out_dir`; returns the Markdown text.
+std::string write_reports(const json& results, const std::string& out_dir);
+
+/// Peak resident set size of this process so far [MB] (getrusage ru_maxrss).
+double self_peak_rss_mb();
+
+/// A one-line status on stderr, overwritten in place, only when stderr is a terminal.
+void status_line(const std::string& text);
+
+} // namespace sonarsim::bench

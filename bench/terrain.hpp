@@ -1,0 +1,24 @@
+// Procedural benchmark terrain: a smooth, deterministic height field written as a binary PLY grid.
+#pragma once
+#include <string>
+
+namespace sonarsim::bench {
+
+/// Side of the square terrain [m]; it spans [-kTerrainSize_m / 2, kTerrainSize_m / 2] in x and y.
+constexpr double kTerrainSize_m = 40.0;
+
+/// Height [m] of the terrain at (x, y) [m]: a sum of a few sinusoids and Gaussian bumps with fixed
+/// parameters (relief of about +-3 m), so that a scene can put its sonar a given height above the ground.
+double terrain_height_m(double x_m, double y_m);
+
+/// Writes an n x n vertex grid of the terrain over the square (2 (n - 1)^2 triangles, normals +z) as a
+/// binary little-endian PLY: `float x y z`, `list uchar int vertex_indices`. Throws std::runtime_error when
+/// the file cannot be written. The bytes depend only on n.
+void write_terrain_ply(const std::string& path, int n);
+
+/// Triangles of the n x n grid.
+inline long terrain_triangles(int n) {
+    return 2L * (n - 1) * (n - 1);
+}
+
+} // namespace sonarsim::bench
