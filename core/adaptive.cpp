@@ -10,6 +10,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <tbb/parallel_for.h>
 
 namespace sonarsim {
@@ -25,6 +26,9 @@ constexpr int kMaxPasses = 3;
 /// Cells whose errors may add up in one bin: a pair is worth refining when its possible error exceeds
 /// this fraction of what the tolerance allows the bin.
 constexpr double kErrorsPerBin = 3;
+/// The error estimate looks at every kEstimateStride-th beam of images with 8 x that many beams or more.
+constexpr int kEstimateStride = 4;
+constexpr double kLn10Over10 = 0.23025850929940458;
 /// An azimuth split covers the base cells where neighbouring columns disagree and this many on each side
 /// (what differs between columns often moves in elevation from one to the next).
 constexpr int kRunMargin = 1; // base refinements (x3) when the error estimate misses the tolerance
@@ -68,10 +72,9 @@ struct Context {
     int elevation_levels, azimuth_levels;
     mutable std::atomic<std::uint64_t> rays{0}; ///< rays traced or reserved in this image, all passes
     mutable std::atomic<bool> budget_hit{false};
-    mutable std::atomic<bool> refined{false}; ///< a cell or column of this pass was split
     /// The base grid's image (L_EN per range bin and beam): the scale against which a neighbour pair's
     /// possible error is judged. Empty: every flagged pair counts.
-    PolarImage base_image;
+    std::vector<float> base_db; ///< [beam * range_bins + bin]: echo [dB, as cell_echo_db] of the base grid
     Context(const SceneGeometry& geo, const SceneDesc& scene, const TraceControl& c)
         : g(geo), s(scene), control(c), frame(scene), k(shade_constants(scene)),
           phi(deg2rad(scene.sonar.elevation_fov_deg)), jump_db(10 * scene.sampling.tolerance_db),
@@ -135,11 +138,11 @@ struct Context {
     /// cell's range footprint, exceeds the relative error per bin that the tolerance allows in the base
     /// image's bin of that range. Computed in dB, so that no level underflows.
     bool significant(const Node& n, const Column& c, double f) const {
-        if (base_image.level_db.empty()) return true;
+        if (base_db.empty()) return true;
         if (!n.hit || !(f > 0)) return false;
         const double b = std::floor((n.hit->t - s.sonar.range_min_m) / bin_m);
         if (!(b >= 0 && b < s.sonar.range_bins)) return false; // outside the window: no bin to spoil
-        const double bin_db = base_image.at(int(b), c.beam) + k.noise_level_db; // -inf: nothing there yet
+        const double bin_db = base_db[size_t(c.beam) * size_t(s.sonar.range_bins) + size_t(b)]; // may be -inf
         const double error_db = n.density_db + 10 * std::log10(f * n.angle.c * n.de * c.da /
                                                                std::max(1.0, n.footprint_m / bin_m));
         return error_db > tol_rel_db + bin_db;
@@ -149,9 +152,10 @@ struct Context {
     /// significant against the image: half the echo of a cell at a surface edge, half the difference of the
     /// two levels on one surface. Pairs on rough surfaces whose cells are a small part of their bins' echo
     /// stay coarse; silhouettes, shadows and bright facets against their background do not.
-    bool worth_refining(const Node& x, const Column& cx, const Node& y, const Column& cy, bool edge) const {
-        const double f =
-            edge ? 0.5 : 0.5 * (1 - std::pow(10.0, -0.1 * std::abs(x.density_db - y.density_db)));
+    /// step_db: the difference of the two levels (a negative value: an edge).
+    bool worth_refining(const Node& x, const Column& cx, const Node& y, const Column& cy,
+                        double step_db) const {
+        const double f = step_db < 0 ? 0.5 : 0.5 * (1 - std::pow(10.0, -0.1 * step_db));
         return significant(x, cx, f) || significant(y, cy, f);
     }
 
@@ -160,16 +164,18 @@ struct Context {
     template <class EdgeRay>
     bool discontinuous(const Node& x, const Column& cx, const Node& y, const Column& cy,
                        EdgeRay&& edge_ray) const {
-        if (bool(x.hit) != bool(y.hit)) return worth_refining(x, cx, y, cy, true);
+        if (bool(x.hit) != bool(y.hit)) return worth_refining(x, cx, y, cy, -1);
         if (!x.hit) return false;
-        if (surface_edge(*x.hit, x.p, *y.hit, y.p, edge_ray)) return worth_refining(x, cx, y, cy, true);
-        if (std::abs(x.density_db - y.density_db) > jump_db) return worth_refining(x, cx, y, cy, false);
+        if (surface_edge(*x.hit, x.p, *y.hit, y.p, edge_ray)) return worth_refining(x, cx, y, cy, -1);
+        const double density_step_db = std::abs(x.density_db - y.density_db);
+        if (density_step_db > jump_db) return worth_refining(x, cx, y, cy, density_step_db);
         // Cells whose range footprint spans bins spread their echo evenly over it; where the echo per metre
         // of range changes between neighbours on one plane (grazing incidence: r(e) is far from linear over
         // the cell), that spreading needs finer cells. Between the facets of a smooth tessellated surface
         // the change is the facets' own (their normals step), and the density test above bounds it.
         if (x.hit->prim != y.hit->prim || !(std::max(x.footprint_m, y.footprint_m) > bin_m)) return false;
-        return std::abs(x.per_metre_db - y.per_metre_db) > range_jump_db;
+        const double per_metre_step_db = std::abs(x.per_metre_db - y.per_metre_db);
+        return per_metre_step_db > range_jump_db && worth_refining(x, cx, y, cy, per_metre_step_db);
     }
 
     /// Direction of normal incidence on the node's plane, in the sonar frame.
@@ -222,6 +228,33 @@ struct Context {
         return a_star > a_lo - 2 * h && a_star < a_hi + 2 * h;
     }
 
+    /// The base grid's echo per bin of one beam, for significant(): each cell's echo spread evenly over its
+    /// range footprint (a cheap stand-in for shading the base cells), summed relative to the beam's peak.
+    void base_echo(const std::vector<Column>& cols, int beam) {
+        const int K = s.sonar.range_bins;
+        double peak = -std::numeric_limits<double>::infinity();
+        for (const auto& c : cols)
+            for (const auto& n : c.nodes)
+                if (n.hit) peak = std::max(peak, n.density_db); // a scale only: cells are below 1 sr
+        if (!std::isfinite(peak)) return;
+        std::vector<double> lin(static_cast<size_t>(K), 0.0);
+        for (const auto& c : cols)
+            for (const auto& n : c.nodes) {
+                if (!n.hit) continue;
+                const double e = std::exp(kLn10Over10 * (n.density_db - peak)) * n.angle.c * n.de * c.da;
+                const double r0 = n.hit->t - 0.5 * n.footprint_m, r1 = n.hit->t + 0.5 * n.footprint_m;
+                const double b0 = std::floor((r0 - s.sonar.range_min_m) / bin_m);
+                const double b1 = std::floor((r1 - s.sonar.range_min_m) / bin_m);
+                if (b1 < 0 || b0 >= K) continue;
+                const int lo = int(std::max(0.0, b0)), hi = int(std::min(double(K - 1), b1));
+                const double share = e / (hi - lo + 1);
+                for (int b = lo; b <= hi; ++b) lin[size_t(b)] += share;
+            }
+        float* out = base_db.data() + size_t(beam) * size_t(K);
+        for (int b = 0; b < K; ++b)
+            if (lin[size_t(b)] > 0) out[b] = float(peak + 10 * std::log10(lin[size_t(b)]));
+    }
+
     /// The base grid of one column: base cells [j0, j1) of M0.
     Column trace_column(double a_rad, double da, int M0, int beam, int j0, int j1) const {
         Column col;
@@ -267,7 +300,6 @@ struct Context {
                 }
             if (marked == 0) break;
             if (!reserve(2 * marked)) break; // budget spent: this column stays at its current level
-            refined.store(true, std::memory_order_relaxed);
             std::vector<Node> next;
             next.reserve(col.nodes.size() + 2 * marked);
             for (auto& n : col.nodes) {
@@ -371,7 +403,6 @@ void split_column(const Context& ctx, Column&& c, const std::vector<char>& marke
     const double da = c.da / 3;
     for (auto [lo, hi] : runs) {
         if (!ctx.reserve(2 * std::uint64_t(hi - lo))) continue; // budget spent: this run stays as it is
-        ctx.refined.store(true, std::memory_order_relaxed);
         Column mid;
         mid.a = c.a, mid.da = da, mid.beam = c.beam, mid.j0 = lo, mid.j1 = hi;
         for (size_t k = 0; k < c.nodes.size(); ++k)
@@ -413,18 +444,12 @@ TraceResult trace_pass(Context& ctx, int M0, TraceResult::ErrorEstimate& est) {
             beams[size_t(i)].back().group = k / 3 + (K0 % 3 && k >= K0 - K0 % 3 ? K0 + k : 0);
         }
     });
-    // The base grid's image sets the scale of what is worth refining; then each column refines in
+    // The base grid's echo per bin sets the scale of what is worth refining; then each column refines in
     // elevation.
-    ctx.base_image = PolarImage{};
-    ctx.refined = false;
-    TraceResult base;
+    ctx.base_db.clear();
     if (ctx.elevation_levels > 0 || ctx.azimuth_levels > 0) {
-        base.beams = N;
-        base.cells.resize(size_t(N));
-        tbb::parallel_for(0, N, [&](int i) {
-            for (auto& c : beams[size_t(i)]) ctx.cells_of(c, false, c.da, base.cells[size_t(i)]);
-        });
-        ctx.base_image = shade(base, s);
+        ctx.base_db.assign(size_t(N) * size_t(s.sonar.range_bins), -std::numeric_limits<float>::infinity());
+        tbb::parallel_for(0, N, [&](int i) { ctx.base_echo(beams[size_t(i)], i); });
     }
     tbb::parallel_for(0, N, [&](int i) {
         for (auto& c : beams[size_t(i)]) ctx.refine_column(c, M0);
@@ -488,29 +513,26 @@ TraceResult trace_pass(Context& ctx, int M0, TraceResult::ErrorEstimate& est) {
     }
 
     if (ctx.control.cancelled()) throw TraceCancelled();
-    // Nothing split: the fine cells and image are the base grid's, already made.
-    const bool reuse_base = !ctx.refined && !ctx.base_image.level_db.empty();
+    // The error estimate compares the image with the same cells one level coarser on every
+    // kEstimateStride-th beam (all beams of narrow images): a sample of the image, at a quarter of the cost.
+    const int stride = N >= 8 * kEstimateStride ? kEstimateStride : 1, sampled = (N + stride - 1) / stride;
     TraceResult fine, coarse;
-    fine.beams = coarse.beams = N;
-    coarse.cells.resize(size_t(N));
-    if (reuse_base)
-        fine.cells = std::move(base.cells);
-    else
-        fine.cells.resize(size_t(N));
+    fine.beams = N, coarse.beams = sampled;
+    coarse.cells.resize(size_t(sampled)), fine.cells.resize(size_t(N));
     tbb::parallel_for(0, N, [&](int i) {
         const auto& cols = beams[size_t(i)];
-        if (!reuse_base)
-            for (auto& c : cols) ctx.cells_of(c, false, c.da, fine.cells[size_t(i)]);
-        if (ctx.control.preview) return;
+        for (auto& c : cols) ctx.cells_of(c, false, c.da, fine.cells[size_t(i)]);
+        if (ctx.control.preview || i % stride) return;
+        auto& coarse_cells = coarse.cells[size_t(i / stride)];
         // One level coarser everywhere: sibling column triples -> the middle column (3 da), and within each
         // column sibling elevation triples -> the middle cell.
         for (size_t k = 0; k < cols.size();) {
             if (k + 2 < cols.size() && cols[k].group == cols[k + 1].group &&
                 cols[k].group == cols[k + 2].group) {
-                ctx.cells_of(cols[k + 1], true, 3 * cols[k + 1].da, coarse.cells[size_t(i)]);
+                ctx.cells_of(cols[k + 1], true, 3 * cols[k + 1].da, coarse_cells);
                 k += 3;
             } else {
-                ctx.cells_of(cols[k], true, cols[k].da, coarse.cells[size_t(i)]);
+                ctx.cells_of(cols[k], true, cols[k].da, coarse_cells);
                 ++k;
             }
         }
@@ -519,14 +541,23 @@ TraceResult trace_pass(Context& ctx, int M0, TraceResult::ErrorEstimate& est) {
         for (auto& c : b) fine.rays_traced += c.rays;
     beams.clear(); // the nodes are no longer needed: free them before shading
     beams.shrink_to_fit();
-    PolarImage fine_image = reuse_base ? std::move(ctx.base_image) : shade(fine, s);
-    ctx.base_image = PolarImage{};
+    PolarImage fine_image = shade(fine, s);
     if (ctx.control.preview) {
         fine.shaded = std::move(fine_image);
         fine.preview = true;
         return fine;
     }
-    const ImageError e = compare_images(shade(coarse, s), fine_image);
+    // The sampled beams as an image of their own (shade() sums beam by beam, so a beam's image does not
+    // depend on the others).
+    SceneDesc sampled_scene = s;
+    sampled_scene.sonar.beams = sampled;
+    PolarImage fine_sampled;
+    fine_sampled.bins = fine_image.bins, fine_sampled.beams = sampled;
+    fine_sampled.level_db.resize(size_t(fine_image.bins) * size_t(sampled));
+    for (int b = 0; b < fine_image.bins; ++b)
+        for (int i = 0; i < sampled; ++i)
+            fine_sampled.level_db[size_t(b) * size_t(sampled) + size_t(i)] = fine_image.at(b, i * stride);
+    const ImageError e = compare_images(shade(coarse, sampled_scene), fine_sampled);
     fine.shaded = std::move(fine_image); // the caller need not shade these cells again
     // The coarse image's error is taken as three times the fine one's (first order at discontinuities, the
     // slowest case): fine error ~ |fine - coarse| / 2.
