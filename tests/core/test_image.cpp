@@ -3,7 +3,11 @@
 #include "core/pose.hpp"
 
 #include <catch2/catch.hpp>
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <memory>
 #include <limits>
 
 using namespace sonarsim;
@@ -127,4 +131,43 @@ TEST_CASE("sector and raw images put beam 0 (port) on the left, near range at th
     CHECK(int(g.pixels[31]) == 0);                    // top row, column 31
     CHECK(int(g.pixels[size_t(63) * 32 + 5]) == 128); // bottom row = bin 0
     CHECK(int(g.pixels[5]) == 0);                     // top row = last bin
+}
+
+// Speed of forming the fan of wide sonars (hidden: `test_core "[.bench]"`). Prints the median of repeats.
+TEST_CASE("SectorResampler speed on wide sonars", "[.bench]") {
+    struct Case {
+        int beams, bins;
+    };
+    for (const Case c : {Case{512, 1500}, Case{1024, 4096}}) {
+        SonarParams s;
+        s.beams = c.beams, s.range_bins = c.bins;
+        s.azimuth_fov_deg = 130, s.range_min_m = 1, s.range_max_m = 120;
+        PolarImage img;
+        img.bins = s.range_bins, img.beams = s.beams;
+        img.level_db.resize(size_t(img.bins) * img.beams);
+        for (size_t n = 0; n < img.level_db.size(); ++n)
+            img.level_db[n] =
+                n % 7 == 0 ? -std::numeric_limits<float>::infinity() : float(70 + (n * 37) % 60);
+        auto median_ms = [](int repeats, const auto& f) {
+            std::vector<double> t;
+            for (int k = 0; k < repeats; ++k) {
+                const auto t0 = std::chrono::steady_clock::now();
+                f();
+                t.push_back(
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+            }
+            std::sort(t.begin(), t.end());
+            return t[t.size() / 2];
+        };
+        std::unique_ptr<SectorResampler> r;
+        const double build_ms = median_ms(5, [&] { r = std::make_unique<SectorResampler>(s, 0); });
+        DisplayParams d;
+        size_t sink = 0;
+        const double gray_ms = median_ms(11, [&] { sink += r->apply(img, d).pixels[0]; });
+        d.colormap = Colormap::Viridis;
+        const double viridis_ms = median_ms(11, [&] { sink += r->apply(img, d).pixels[0]; });
+        std::printf(
+            "%d beams x %d bins -> %dx%d px: taps %.1f ms, apply gray %.1f ms, viridis %.1f ms (%zu)\n",
+            c.beams, c.bins, r->layout().width(), r->layout().height(), build_ms, gray_ms, viridis_ms, sink);
+    }
 }
