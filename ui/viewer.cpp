@@ -4,6 +4,7 @@
 #include "viewer.hpp"
 
 #include "controls_panel.hpp"
+#include "display_mesh.hpp"
 #include "file_dialog.hpp"
 #include "interaction.hpp"
 #include "layout.hpp"
@@ -265,7 +266,24 @@ void Viewer::frame(int index) {
     if (frustum_drag_ || camera_drag_ != CameraDrag::None || session_.full_pending()) extra_frames_ = 2;
 
     if (meshes_uploaded_ != session_.meshes_version()) {
-        renderer_->set_meshes(session_.meshes());
+        // Once per geometry change. Software OpenGL takes a few hundred thousand triangles per frame, not
+        // millions: above kDisplayTriangles the view draws vertex-clustered copies (tracing keeps the full
+        // meshes).
+        const std::vector<TriMesh>& meshes = session_.meshes();
+        size_t triangles = 0;
+        for (const TriMesh& m : meshes) triangles += m.triangles.size();
+        if (triangles > kDisplayTriangles) {
+            const Clock::time_point t0 = Clock::now();
+            const std::vector<TriMesh> simple = simplify_for_display(meshes, kDisplayTriangles);
+            const double ms = ms_between(t0, Clock::now());
+            size_t drawn = 0;
+            for (const TriMesh& m : simple) drawn += m.triangles.size();
+            renderer_->set_meshes(simple);
+            std::fprintf(stderr, "3D view: %zu triangles drawn as %zu (simplified in %.0f ms)\n", triangles,
+                         drawn, ms);
+        } else {
+            renderer_->set_meshes(meshes);
+        }
         meshes_uploaded_ = session_.meshes_version();
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
