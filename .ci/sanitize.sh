@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# AddressSanitizer + UndefinedBehaviorSanitizer: builds everything but the viewer with SONARSIM_SANITIZE=ON and
-# runs the whole ctest suite under it. Any sanitizer report fails the test that triggered it.
+# AddressSanitizer + UndefinedBehaviorSanitizer: builds everything but the viewer's GL part with
+# SONARSIM_SANITIZE=ON (the viewer's non-GL library ui_core and its tests test_ui included: render worker,
+# session, snapshots, display meshes) and runs the whole ctest suite under it. Any sanitizer report fails the
+# test that triggered it.
 # Usage: .ci/sanitize.sh [ctest args...]
 # Env:   SONARSIM_ASAN_DIR=build-asan  SONARSIM_JOBS=$(nproc)
 set -euo pipefail

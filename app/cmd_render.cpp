@@ -57,14 +57,14 @@ int run_render(const RenderOptions& o) {
     }
 
     Simulator sim(scene);
-    const Frame& f = sim.render();
-    write_render_files(o.out, scene, f, std::move(extra));
+    const auto f = sim.render();
+    write_render_files(o.out, scene, *f, std::move(extra));
     if (!o.view3d.empty()) std::cout << "wrote " << o.view3d << " (3D view)\n";
-    std::cout << "wrote " << o.out << ".png (sector image " << f.sector.width << "x" << f.sector.height
-              << "), " << o.out << "_polar.png, " << o.out << ".npy (L_EN dB, " << f.polar.bins << " x "
-              << f.polar.beams << "), " << o.out << ".json\n"
-              << "rays " << f.hits.rays_traced << ", trace " << f.trace_ms << " ms, shade " << f.shade_ms
-              << " ms, image " << f.image_ms << " ms\n";
+    std::cout << "wrote " << o.out << ".png (sector image " << f->sector().width << "x" << f->sector().height
+              << "), " << o.out << "_polar.png, " << o.out << ".npy (L_EN dB, " << f->polar().bins << " x "
+              << f->polar().beams << "), " << o.out << ".json\n"
+              << "rays " << f->hits().rays_traced << ", trace " << f->trace_ms << " ms, shade " << f->shade_ms
+              << " ms, image " << f->image_ms << " ms\n";
     return 0;
 }
 

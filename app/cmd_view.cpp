@@ -18,7 +18,7 @@ struct ViewOptions {
     SceneOptions scene;
     int frames = 0;
     std::string screenshot;
-    bool orbit = false, orbit_pipelined = false;
+    bool orbit = false, orbit_pipelined = false, orbit_preview = false;
     int width = 1280, height = 800;
     std::string snapshot;
     std::vector<double> mouse, drag;
@@ -30,7 +30,8 @@ int run_view(const ViewOptions& o) {
     v.scene = load_scene_from_options(o.scene);
     v.frames = o.frames;
     v.screenshot = o.screenshot;
-    v.orbit = o.orbit;
+    v.orbit = o.orbit || o.orbit_preview;
+    v.orbit_preview = o.orbit_preview;
     v.orbit_pipelined = o.orbit_pipelined;
     v.width = o.width;
     v.height = o.height;
@@ -60,6 +61,9 @@ void register_view(CLI::App& app, std::function<int()>& run) {
         "--orbit", o->orbit,
         "Move the sonar every frame (forces a retrace) and show each frame with its new image; print frame "
         "timings as JSON at exit");
+    cmd->add_flag("--orbit-preview", o->orbit_preview,
+                  "As --orbit, but request each pose as a drag does: the adaptive sampler's base grid only "
+                  "(the preview shown while dragging)");
     cmd->add_flag(
         "--orbit-pipelined", o->orbit_pipelined,
         "With --orbit: show the previous pose's image while the next one is traced (default: every frame "

@@ -4,6 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace sonarsim {
 
@@ -41,8 +45,24 @@ Image8 polar_gray_image(const PolarImage& img, const DisplayParams& d) {
     return out;
 }
 
+namespace {
+
+/// std::lround for v >= 0 (halves away from zero), without a library call: v - trunc(v) is exact.
+inline int round_half_up(float v) {
+    const int i = int(v);
+    return v - float(i) >= 0.5f ? i + 1 : i;
+}
+
+} // namespace
+
 int default_sector_height(const SonarParams& s) {
-    return std::clamp(s.range_bins, 256, 2048);
+    int h = std::clamp(s.range_bins, 256, 2048);
+    // Width per height of the layout (see SectorLayout): 2 r_max sin(half) / (r_max - r_min cos(half)).
+    const double half = deg2rad(s.azimuth_fov_deg / 2);
+    const double ratio =
+        2 * s.range_max_m * std::sin(half) / (s.range_max_m - s.range_min_m * std::cos(half));
+    if (std::ceil(h * ratio) > kMaxSectorWidth) h = std::max(16, int(std::floor(kMaxSectorWidth / ratio)));
+    return h;
 }
 
 SectorLayout::SectorLayout(const SonarParams& s, int height_px) : s_(s) {
@@ -74,19 +94,74 @@ void SectorLayout::polar_to_index(double r, double a_deg, double& bin, double& b
 SectorResampler::SectorResampler(const SonarParams& s, int height_px)
     : sonar_(s), height_px_(height_px), layout_(s, height_px > 0 ? height_px : default_sector_height(s)) {
     const int W = layout_.width(), H = layout_.height(), K = s.range_bins, N = s.beams;
-    taps_.resize(size_t(W) * H);
-    for (int py = 0; py < H; ++py)
-        for (int px = 0; px < W; ++px) {
-            double r, a, fb, fi;
-            if (!layout_.pixel_to_polar(px + 0.5, py + 0.5, r, a)) continue;
-            layout_.polar_to_index(r, a, fb, fi);
-            fb = std::clamp(fb, 0.0, K - 1.0), fi = std::clamp(fi, 0.0, N - 1.0);
-            const int b0 = std::min(int(fb), K - 1), i0 = std::min(int(fi), N - 1);
-            Tap& t = taps_[size_t(py) * W + px];
-            t.index = b0 * N + i0;
-            t.step_bin = b0 + 1 < K ? N : 0, t.step_beam = i0 + 1 < N ? 1 : 0;
-            t.tb = float(fb - b0), t.ti = float(fi - i0);
+    const double m = layout_.metres_per_pixel(), half = deg2rad(s.azimuth_fov_deg / 2);
+    // SectorLayout::polar_to_index with its divisors computed once (the same operations, the same doubles).
+    const double dr = (s.range_max_m - s.range_min_m) / K, da = s.azimuth_fov_deg / N;
+    const double r0 = s.range_min_m, a0 = s.azimuth_fov_deg / 2;
+    // x >= 0: x * 2^15 + 1/2 is exact, so its floor is std::lround(x * 2^15) (no library call).
+    auto weight = [](double x) { return std::uint16_t(x * kWeightOne + 0.5); };
+    auto tap = [=](double r, double a) {
+        double fb = (r - r0) / dr - 0.5, fi = (a0 - a) / da - 0.5;
+        fb = std::clamp(fb, 0.0, K - 1.0), fi = std::clamp(fi, 0.0, N - 1.0);
+        const int b0 = std::min(int(fb), K - 1), i0 = std::min(int(fi), N - 1);
+        return Tap{b0 * (N + 1) + i0, weight(fb - b0), weight(fi - i0)};
+    };
+    // Each row (in parallel) finds its pixels inside the fan and their taps, then the rows are concatenated.
+    // The two transcendental functions per pixel are the cost: a row visits only the pixels near the fan
+    // (two pixels of margin on its analytic bounds), and only its left half: pixel W-1-px lies at -x, the
+    // same range and the opposite azimuth (exactly: x is negated exactly, hypot and atan2 are symmetric).
+    std::vector<std::vector<Tap>> row_taps(static_cast<size_t>(H));
+    std::vector<std::vector<Run>> row_runs(static_cast<size_t>(H));
+    tbb::parallel_for(tbb::blocked_range<int>(0, H, 8), [&](const tbb::blocked_range<int>& rows) {
+        struct Inside {
+            int px;
+            double r, a;
+        };
+        std::vector<Inside> left;
+        for (int py = rows.begin(); py < rows.end(); ++py) {
+            const double y = (H - (py + 0.5)) * m + s.range_min_m * std::cos(half); // as in SectorLayout
+            if (y > s.range_max_m + m || (half < kPi / 2 && y < -m)) continue;
+            double x_max = std::sqrt(std::max(0.0, s.range_max_m * s.range_max_m - y * y));
+            if (half < kPi / 2) x_max = std::min(x_max, std::max(0.0, y) * std::tan(half));
+            const int px_begin = std::max(0, int(std::floor(W / 2.0 - 0.5 - x_max / m)) - 2);
+            left.clear();
+            double r, a;
+            for (int px = px_begin; px < (W + 1) / 2; ++px)
+                if (layout_.pixel_to_polar(px + 0.5, py + 0.5, r, a)) left.push_back({px, r, a});
+            std::vector<Tap>& taps = row_taps[size_t(py)];
+            std::vector<Run>& runs = row_runs[size_t(py)];
+            auto add = [&](int px, const Tap& t) {
+                if (runs.empty() || runs.back().x1 != px)
+                    runs.push_back({px, px, std::uint32_t(taps.size())});
+                ++runs.back().x1;
+                taps.push_back(t);
+            };
+            taps.reserve(2 * left.size());
+            for (const Inside& p : left) add(p.px, tap(p.r, p.a));
+            for (auto p = left.rbegin(); p != left.rend(); ++p)
+                if (W - 1 - p->px != p->px) add(W - 1 - p->px, tap(p->r, -p->a));
         }
+    });
+    row_runs_.assign(size_t(H) + 1, 0);
+    std::vector<size_t> row_first(size_t(H) + 1, 0);
+    for (int y = 0; y < H; ++y) {
+        row_runs_[size_t(y) + 1] = row_runs_[size_t(y)] + std::uint32_t(row_runs[size_t(y)].size());
+        row_first[size_t(y) + 1] = row_first[size_t(y)] + row_taps[size_t(y)].size();
+    }
+    tap_index_.resize(row_first[size_t(H)]);
+    tap_wb_.resize(row_first[size_t(H)]);
+    tap_wi_.resize(row_first[size_t(H)]);
+    runs_.resize(row_runs_[size_t(H)]);
+    tbb::parallel_for(0, H, [&](int y) {
+        size_t n = row_first[size_t(y)];
+        for (const Tap& t : row_taps[size_t(y)])
+            tap_index_[n] = t.index, tap_wb_[n] = t.wb, tap_wi_[n++] = t.wi;
+        Run* out = runs_.data() + row_runs_[size_t(y)];
+        for (Run run : row_runs[size_t(y)]) {
+            run.first += std::uint32_t(row_first[size_t(y)]);
+            *out++ = run;
+        }
+    });
 }
 
 bool SectorResampler::matches(const SonarParams& s, int height_px) const {
@@ -96,25 +171,94 @@ bool SectorResampler::matches(const SonarParams& s, int height_px) const {
 }
 
 Image8 SectorResampler::apply(const PolarImage& img, const DisplayParams& d) const {
-    std::vector<float> gray(img.level_db.size());
-    for (size_t n = 0; n < gray.size(); ++n) gray[n] = gray_level(img.level_db[n], d.lo_db, d.hi_db);
-    std::array<std::array<std::uint8_t, 3>, 256> lut;
-    for (int g = 0; g < 256; ++g) lut[size_t(g)] = colormap_rgb(d.colormap, g / 255.0);
+    const int K = img.bins, N = img.beams;
+    if (K != sonar_.range_bins || N != sonar_.beams)
+        throw std::invalid_argument("SectorResampler: the image is not of the sonar it was built for");
+    // Gray level of every sample once, padded with a copy of the last bin and of the last beam.
+    std::vector<float> gray(size_t(K + 1) * size_t(N + 1));
+    tbb::parallel_for(tbb::blocked_range<int>(0, K + 1, 64), [&](const tbb::blocked_range<int>& bins) {
+        for (int b = bins.begin(); b < bins.end(); ++b) {
+            const float* in = img.level_db.data() + size_t(std::min(b, K - 1)) * size_t(N);
+            float* out = gray.data() + size_t(b) * size_t(N + 1);
+            for (int i = 0; i < N; ++i) out[i] = gray_level(in[i], d.lo_db, d.hi_db);
+            out[N] = out[N - 1];
+        }
+    });
+    // RGB of each gray level in the low three bytes (little-endian order of the bytes in memory).
+    std::array<std::uint32_t, 256> lut;
+    for (int g = 0; g < 256; ++g) {
+        const auto c = colormap_rgb(d.colormap, g / 255.0);
+        std::uint8_t rgba[4] = {c[0], c[1], c[2], 0};
+        std::memcpy(&lut[size_t(g)], rgba, 4);
+    }
 
     Image8 out;
     out.width = layout_.width(), out.height = layout_.height(), out.channels = 3;
-    out.pixels.resize(taps_.size() * 3);
-    for (size_t p = 0; p < taps_.size(); ++p) {
-        const Tap& t = taps_[p];
-        std::array<std::uint8_t, 3> c = kFanBackground;
-        if (t.index >= 0) {
-            const float* g = gray.data() + t.index;
-            const float v = (1 - t.tb) * ((1 - t.ti) * g[0] + t.ti * g[t.step_beam]) +
-                            t.tb * ((1 - t.ti) * g[t.step_bin] + t.ti * g[t.step_bin + t.step_beam]);
-            c = lut[size_t(std::clamp(int(std::lround(v)), 0, 255))];
+    out.pixels.resize(size_t(out.width) * size_t(out.height) * 3);
+    const float* const G = gray.data();
+    const std::int32_t* const I = tap_index_.data();
+    const std::uint16_t *const WB = tap_wb_.data(), *const WI = tap_wi_.data();
+    const Run* const R = runs_.data();
+    const std::uint32_t* const row_runs = row_runs_.data();
+    const std::uint32_t* const C = lut.data();
+    std::uint8_t* const P = out.pixels.data();
+    const int W = out.width;
+    const std::ptrdiff_t up = N + 1; // next bin in the padded image
+    constexpr float unit = 1.0f / kWeightOne;
+    // One pixel, and four at a time with the same operations in the same order (so the same floats).
+    auto pixel = [=](std::uint32_t k) {
+        const float* g = G + I[k];
+        const float tb = float(WB[k]) * unit, ti = float(WI[k]) * unit;
+        const float v = (1 - tb) * ((1 - ti) * g[0] + ti * g[1]) + tb * ((1 - ti) * g[up] + ti * g[up + 1]);
+        return C[std::min(round_half_up(v), 255)];
+    };
+    using F4 = float __attribute__((vector_size(16)));
+    using I4 = std::int32_t __attribute__((vector_size(16)));
+    using U4 = std::uint16_t __attribute__((vector_size(8)));
+    auto pixels4 = [=](std::uint32_t k, std::uint8_t* dst) {
+        I4 idx;
+        U4 wb, wi;
+        std::memcpy(&idx, I + k, sizeof idx);
+        std::memcpy(&wb, WB + k, sizeof wb);
+        std::memcpy(&wi, WI + k, sizeof wi);
+        const F4 tb = __builtin_convertvector(wb, F4) * unit, ti = __builtin_convertvector(wi, F4) * unit;
+        const float *g0 = G + idx[0], *g1 = G + idx[1], *g2 = G + idx[2], *g3 = G + idx[3];
+        const F4 g00 = {g0[0], g1[0], g2[0], g3[0]}, g01 = {g0[1], g1[1], g2[1], g3[1]};
+        const F4 g10 = {g0[up], g1[up], g2[up], g3[up]},
+                 g11 = {g0[up + 1], g1[up + 1], g2[up + 1], g3[up + 1]};
+        const F4 v = (1 - tb) * ((1 - ti) * g00 + ti * g01) + tb * ((1 - ti) * g10 + ti * g11);
+        // round_half_up: truncate, then add one where the remainder is at least one half (v >= 0).
+        const I4 t = __builtin_convertvector(v, I4);
+        const I4 g = t - (v - __builtin_convertvector(t, F4) >= 0.5f);
+        for (int j = 0; j < 4; ++j) std::memcpy(dst + 3 * j, &C[std::min(g[j], 255)], 4);
+    };
+    tbb::parallel_for(tbb::blocked_range<int>(0, out.height, 16), [=](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y < rows.end(); ++y) {
+            std::uint8_t* const row = P + size_t(y) * size_t(W) * 3;
+            auto background = [row](int x0, int x1) {
+                for (int x = x0; x < x1; ++x)
+                    row[3 * x] = kFanBackground[0], row[3 * x + 1] = kFanBackground[1],
+                            row[3 * x + 2] = kFanBackground[2];
+            };
+            int x = 0;
+            for (std::uint32_t r = row_runs[y]; r < row_runs[y + 1]; ++r) {
+                const Run run = R[r];
+                background(x, run.x0);
+                // Each pixel is a 4-byte store whose fourth byte the next pixel overwrites; the run's last
+                // pixel stores three bytes.
+                std::uint32_t k = run.first;
+                for (x = run.x0; x + 4 < run.x1; x += 4, k += 4) pixels4(k, row + 3 * x);
+                for (; x + 1 < run.x1; ++x, ++k) {
+                    const std::uint32_t c = pixel(k);
+                    std::memcpy(row + 3 * x, &c, 4);
+                }
+                const std::uint32_t c = pixel(k);
+                std::memcpy(row + 3 * x, &c, 3);
+                ++x;
+            }
+            background(x, W);
         }
-        std::copy(c.begin(), c.end(), out.pixels.begin() + long(p) * 3);
-    }
+    });
     return out;
 }
 

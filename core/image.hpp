@@ -44,28 +44,49 @@ class SectorLayout {
     double m_per_px_ = 0, y0_m_ = 0;
 };
 
-/// Default height of the sector image [px]: the number of range bins, kept within [256, 2048].
+/// Default height of the sector image [px]: the number of range bins, kept within [256, 2048] (one pixel row
+/// per bin up to 2048 bins), and lowered where needed so that the width stays within kMaxSectorWidth. A
+/// 130 deg fan is about 1.8x as wide as high: 512 beams x 1500 bins give 2729 x 1500 px, where the beams at
+/// r_max are 5 px apart.
 int default_sector_height(const SonarParams& sonar);
 
-/// Precomputed pixel -> (bin, beam) bilinear weights of a sector layout: forming an image is then a gather.
+/// Widest default sector image [px]: a texture width every OpenGL implementation takes.
+constexpr int kMaxSectorWidth = 4096;
+
+/// Precomputed pixel -> (bin, beam) bilinear weights of a sector layout: forming an image is then a gather,
+/// parallel over rows (TBB), that visits only the pixels inside the fan. Building it is parallel too.
 class SectorResampler {
   public:
     SectorResampler(const SonarParams& sonar, int height_px);
     /// True when it was built for the same image geometry.
     bool matches(const SonarParams& sonar, int height_px) const;
+    /// The RGB fan: per pixel inside it, the bilinear interpolation in (bin, beam) of the gray levels
+    /// (gray_level) of its four nearest samples, rounded, through the colour map; kFanBackground outside.
+    /// The interpolation weights are kept to 1/kWeightOne (15 bits).
     Image8 apply(const PolarImage& img, const DisplayParams& display) const;
     const SectorLayout& layout() const { return layout_; }
+    static constexpr int kWeightOne = 1 << 15;
 
   private:
+    /// One pixel inside the fan. The gray levels are gathered from a copy of the image padded with one more
+    /// bin and beam (repeating the last), so every tap reads the same four neighbours.
     struct Tap {
-        std::int32_t index = -1; ///< bin * beams + beam of the lower-left sample; -1 outside the fan
-        std::int32_t step_bin = 0, step_beam = 0;
-        float tb = 0, ti = 0;
+        std::int32_t index;   ///< bin * (beams + 1) + beam of the lower-left sample in the padded image
+        std::uint16_t wb, wi; ///< weights of the next bin and of the next beam [1 / kWeightOne]
+    };
+    /// Consecutive pixels of one row inside the fan; their taps are at [first, first + x1 - x0).
+    struct Run {
+        std::int32_t x0, x1;
+        std::uint32_t first;
     };
     SonarParams sonar_;
     int height_px_;
     SectorLayout layout_;
-    std::vector<Tap> taps_;
+    // The taps, one array per field (apply reads four at a time).
+    std::vector<std::int32_t> tap_index_;
+    std::vector<std::uint16_t> tap_wb_, tap_wi_;
+    std::vector<Run> runs_;
+    std::vector<std::uint32_t> row_runs_; ///< runs of row y: runs_[row_runs_[y], row_runs_[y + 1])
 };
 
 /// The sector-formed image (RGB): bilinear in (bin, beam) of the gray levels, then the colour map.

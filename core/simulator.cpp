@@ -64,31 +64,41 @@ void Simulator::set_scene(const SceneDesc& scene) {
     dirty_ = std::min(dirty_, s == Stage::Geometry ? Stage::Trace : s);
 }
 
-const Frame& Simulator::render() {
-    if (dirty_ <= Stage::Trace) {
-        frame_.hits = trace(*geometry_, scene_);
-        frame_.trace_ms = frame_.hits.trace_ms;
+std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
+    // frame_ holds the newest stage results; a stage recomputed here gets a new object, the others are
+    // shared.
+    Frame next = frame_;
+    const bool retrace = dirty_ <= Stage::Trace || !next.hits_ptr || (next.preview() && !control.preview);
+    const Stage from = retrace ? Stage::Trace : dirty_;
+    bool shaded = false;
+    if (retrace) {
+        TraceResult t = trace(*geometry_, scene_, control); // TraceCancelled: nothing has changed yet
+        next.trace_ms = t.trace_ms;
+        if (t.shaded) { // the tracer shaded its cells with this very scene
+            next.polar_ptr = std::make_shared<const PolarImage>(std::move(*t.shaded));
+            t.shaded.reset();
+            next.alpha_db_per_m = shade_constants(scene_).alpha_db_per_m;
+            next.shade_ms = 0;
+            shaded = true;
+        }
+        next.hits_ptr = std::make_shared<const TraceResult>(std::move(t));
     }
-    if (dirty_ <= Stage::Trace && frame_.hits.shaded) { // the tracer shaded its cells with this very scene
-        frame_.polar = std::move(*frame_.hits.shaded);
-        frame_.hits.shaded.reset();
-        frame_.alpha_db_per_m = shade_constants(scene_).alpha_db_per_m;
-        frame_.shade_ms = 0;
-    } else if (dirty_ <= Stage::Shade) {
+    if (from <= Stage::Shade && !shaded) {
         const auto t0 = std::chrono::steady_clock::now();
-        frame_.polar = shade(frame_.hits, scene_);
-        frame_.alpha_db_per_m = shade_constants(scene_).alpha_db_per_m;
-        frame_.shade_ms = ms_since(t0);
+        next.polar_ptr = std::make_shared<const PolarImage>(shade(*next.hits_ptr, scene_));
+        next.alpha_db_per_m = shade_constants(scene_).alpha_db_per_m;
+        next.shade_ms = ms_since(t0);
     }
-    if (dirty_ <= Stage::Display) {
+    if (from <= Stage::Display) {
         const auto t0 = std::chrono::steady_clock::now();
         if (!resampler_ || !resampler_->matches(scene_.sonar, 0))
             resampler_ = std::make_unique<SectorResampler>(scene_.sonar, 0);
-        frame_.sector = resampler_->apply(frame_.polar, scene_.display);
-        frame_.image_ms = ms_since(t0);
+        next.sector_ptr = std::make_shared<const Image8>(resampler_->apply(*next.polar_ptr, scene_.display));
+        next.image_ms = ms_since(t0);
     }
+    frame_ = std::move(next);
     dirty_ = Stage::None;
-    return frame_;
+    return std::make_shared<const Frame>(frame_); // a few pointers: the stages themselves are shared
 }
 
 json frame_metadata(const SceneDesc& s, const Frame& f) {
@@ -96,8 +106,8 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
     j["alpha_db_per_m"] = f.alpha_db_per_m;
     j["beam_azimuths_deg"] = beam_azimuths_deg(s.sonar);
     j["range_bin_edges_m"] = range_bin_edges_m(s.sonar);
-    j["rays_traced"] = f.hits.rays_traced;
-    const auto& est = f.hits.error_estimate;
+    j["rays_traced"] = f.hits().rays_traced;
+    const auto& est = f.hits().error_estimate;
     if (est.valid)
         j["sampling_error_estimate"] = {
             {"rel_l1", est.rel_l1},
@@ -125,9 +135,9 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
 void write_render_files(const std::string& prefix, const SceneDesc& scene, const Frame& f,
                         std::vector<std::pair<std::string, std::vector<std::uint8_t>>> extra) {
     std::vector<std::pair<std::string, Bytes>> files = {
-        {prefix + ".png", encode_png(f.sector)},
-        {prefix + "_polar.png", encode_png(polar_gray_image(f.polar, scene.display))},
-        {prefix + ".npy", encode_npy(f.polar)},
+        {prefix + ".png", encode_png(f.sector())},
+        {prefix + "_polar.png", encode_png(polar_gray_image(f.polar(), scene.display))},
+        {prefix + ".npy", encode_npy(f.polar())},
         {prefix + ".json", to_bytes(frame_metadata(scene, f).dump(2) + "\n")}};
     for (auto& e : extra) files.push_back(std::move(e));
     write_files_atomically(files);

@@ -17,12 +17,21 @@
 
 namespace sonarsim {
 
+/// A finished image. Its stage results are immutable and shared, never copied: a later frame whose display
+/// changed shares this one's trace and polar image, a re-shaded one shares its trace. Safe to read from any
+/// thread while the Simulator renders the next frame.
 struct Frame {
-    TraceResult hits;
-    PolarImage polar; ///< L_EN [dB]
-    Image8 sector;    ///< RGB fan
+    std::shared_ptr<const TraceResult> hits_ptr;
+    std::shared_ptr<const PolarImage> polar_ptr; ///< L_EN [dB]
+    std::shared_ptr<const Image8> sector_ptr;    ///< RGB fan
     double alpha_db_per_m = 0;
-    double trace_ms = 0, shade_ms = 0, image_ms = 0;
+    double trace_ms = 0, shade_ms = 0, image_ms = 0; ///< each stage's latest run
+
+    const TraceResult& hits() const { return *hits_ptr; }
+    const PolarImage& polar() const { return *polar_ptr; }
+    const Image8& sector() const { return *sector_ptr; }
+    /// A coarse preview (TraceControl::preview): never to be taken for the full-quality image.
+    bool preview() const { return hits_ptr && hits_ptr->preview; }
 };
 
 /// Earliest stage at which two scenes differ (Stage::None if they render identically). Under the adaptive
@@ -36,8 +45,11 @@ class Simulator {
     void set_scene(const SceneDesc& scene);
     const SceneDesc& scene() const { return scene_; }
     const SceneGeometry& geometry() const { return *geometry_; }
-    /// Recomputes what is stale and returns the frame.
-    const Frame& render();
+    /// Recomputes what is stale and returns the frame, which shares the unchanged stages with earlier ones.
+    /// `control.cancel` stops the trace within milliseconds: render() then throws TraceCancelled and the
+    /// simulator is as before the call (its stale stages stay stale). `control.preview` (adaptive scheme)
+    /// traces the base grid only; the next render() without it re-traces, even if the scene is unchanged.
+    std::shared_ptr<const Frame> render(const TraceControl& control = {});
     /// Stage that the next render() starts at.
     Stage pending() const { return dirty_; }
 

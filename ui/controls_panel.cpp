@@ -138,9 +138,9 @@ void stats_section(Session& session, const ControlsUi& ui) {
     if (const RenderResult* r = session.shown()) {
         const Frame& f = *r->frame;
         ImGui::SameLine();
-        ImGui::Text("  image %.1f ms", r->wall_ms);
+        ImGui::Text("  image %.1f ms%s", r->wall_ms, f.preview() ? " (preview)" : "");
         ImGui::TextDisabled("trace %.1f  shade %.1f  map %.1f ms", f.trace_ms, f.shade_ms, f.image_ms);
-        ImGui::TextDisabled("%llu rays", static_cast<unsigned long long>(f.hits.rays_traced));
+        ImGui::TextDisabled("%llu rays", static_cast<unsigned long long>(f.hits().rays_traced));
     } else {
         ImGui::SameLine();
         ImGui::TextDisabled("  image: rendering...");

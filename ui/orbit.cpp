@@ -34,14 +34,15 @@ std::string FrameStats::json_line(size_t skip) const {
     auto mean = [](const std::vector<double>& v) {
         return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
     };
-    std::vector<double> sorted = f;
-    std::sort(sorted.begin(), sorted.end());
-    // Nearest-rank 95th percentile.
-    const double p95 = sorted.empty() ? 0.0 : sorted[size_t(std::ceil(0.95 * double(sorted.size()))) - 1];
-    char buf[200];
+    auto p95 = [](std::vector<double> v) { // nearest rank
+        std::sort(v.begin(), v.end());
+        return v.empty() ? 0.0 : v[size_t(std::ceil(0.95 * double(v.size()))) - 1];
+    };
+    char buf[256];
     std::snprintf(buf, sizeof buf,
-                  "{\"frames\":%zu,\"frame_ms_mean\":%.2f,\"frame_ms_p95\":%.2f,\"image_ms_mean\":%.2f}",
-                  f.size(), mean(f), p95, mean(image_ms));
+                  "{\"frames\":%zu,\"frame_ms_mean\":%.2f,\"frame_ms_p95\":%.2f,\"image_ms_mean\":%.2f,"
+                  "\"image_ms_p95\":%.2f,\"images\":\"%s\"}",
+                  f.size(), mean(f), p95(f), mean(image_ms), p95(image_ms), preview ? "preview" : "full");
     return buf;
 }
 

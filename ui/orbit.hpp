@@ -26,8 +26,10 @@ class Orbiter {
 /// Frame and image times of a run.
 struct FrameStats {
     std::vector<double> frame_ms, image_ms;
-    /// One JSON line {"frames":N,"frame_ms_mean":..,"frame_ms_p95":..,"image_ms_mean":..} over the frames
-    /// after the first `skip` (start-up: first trace, shader compiles).
+    bool preview = false; ///< the images were previews (--orbit-preview)
+    /// One JSON line {"frames":N,"frame_ms_mean":..,"frame_ms_p95":..,"image_ms_mean":..,"image_ms_p95":..,
+    /// "images":"full"|"preview"} over the frames after the first `skip` (start-up: first trace, shader
+    /// compiles).
     std::string json_line(size_t skip = 1) const;
 };
 

@@ -1,5 +1,6 @@
 #include "render_worker.hpp"
 
+#include <algorithm>
 #include <exception>
 
 namespace sonarsim::ui {
@@ -16,17 +17,22 @@ RenderWorker::~RenderWorker() {
     {
         std::lock_guard<std::mutex> lock(mutex_);
         stop_ = true;
+        cancel_.store(true, std::memory_order_relaxed);
     }
     wake_.notify_all();
     thread_.join();
 }
 
-std::uint64_t RenderWorker::request(const SceneDesc& scene) {
+std::uint64_t RenderWorker::request(const SceneDesc& scene, bool preview) {
     std::uint64_t id;
     {
         std::lock_guard<std::mutex> lock(mutex_);
         id = next_id_++;
-        queued_.emplace(id, scene);
+        queued_ = Job{id, scene, preview};
+        // Restart on change: a full render of an outdated scene is stopped inside its trace. A running
+        // preview is let finish (a few ms): cancelling previews in favour of newer previews while the user
+        // drags would show nothing at all.
+        if (running_id_ != 0 && !running_preview_) cancel_.store(true, std::memory_order_relaxed);
     }
     wake_.notify_one();
     return id;
@@ -49,47 +55,72 @@ void RenderWorker::set_notify(std::function<void()> notify) {
     notify_ = std::move(notify);
 }
 
+std::uint64_t RenderWorker::running_id() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return running_id_;
+}
+
+std::uint64_t RenderWorker::cancelled_count() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return cancelled_;
+}
+
 bool RenderWorker::busy() const {
     std::lock_guard<std::mutex> lock(mutex_);
-    return running_ || queued_.has_value();
+    return running_id_ != 0 || queued_.has_value();
 }
 
 void RenderWorker::loop() {
     std::unique_ptr<Simulator> sim; // its own Simulator: core's is not thread-safe
+    Stage carried = Stage::None;    // what cancelled renders had started to recompute
     for (;;) {
-        std::pair<std::uint64_t, SceneDesc> job;
+        Job job;
         {
             std::unique_lock<std::mutex> lock(mutex_);
             wake_.wait(lock, [&] { return stop_ || queued_.has_value(); });
             if (stop_) return;
             job = std::move(*queued_);
             queued_.reset();
-            running_ = true;
+            running_id_ = job.id, running_preview_ = job.preview;
+            cancel_.store(false, std::memory_order_relaxed); // only requests after this one cancel it
         }
         RenderResult r;
-        r.id = job.first;
+        r.id = job.id;
+        bool cancelled = false;
         const auto t0 = std::chrono::steady_clock::now();
         try {
             if (!sim) {
-                sim = std::make_unique<Simulator>(job.second);
+                sim = std::make_unique<Simulator>(job.scene);
                 r.stage = Stage::Geometry;
             } else {
-                r.stage = changed_stage(sim->scene(), job.second);
-                sim->set_scene(job.second); // a bad mesh throws; the last good geometry stays
+                r.stage = changed_stage(sim->scene(), job.scene);
+                sim->set_scene(job.scene); // a bad mesh throws; the last good geometry stays
             }
-            r.frame = std::make_shared<const Frame>(sim->render());
+            TraceControl control;
+            control.cancel = &cancel_;
+            control.preview = job.preview;
+            r.frame = sim->render(control); // shares its stages with the simulator: no copy
             r.scene = sim->scene();
+            r.stage = std::min(r.stage, carried);
+            carried = Stage::None;
+        } catch (const TraceCancelled&) {
+            cancelled = true; // the simulator keeps its stale stages stale; a newer request is queued
+            carried = std::min(carried, r.stage);
         } catch (const std::exception& e) {
             r.error = e.what();
-            r.scene = job.second;
+            r.scene = job.scene;
             r.frame.reset();
         }
         r.wall_ms = ms_since(t0);
         {
             std::lock_guard<std::mutex> lock(mutex_);
+            running_id_ = 0, running_preview_ = false;
+            if (cancelled) {
+                ++cancelled_;
+                continue;
+            }
             result_ = std::move(r);
-            finished_id_ = job.first;
-            running_ = false;
+            finished_id_ = job.id;
         }
         done_.notify_all();
         std::lock_guard<std::mutex> lock(notify_mutex_);

@@ -118,11 +118,21 @@ bool Session::save_scene(const std::string& path) {
     }
 }
 
-std::uint64_t Session::submit() {
-    if (!dirty_) return 0;
-    dirty_ = false;
-    requested_id_ = worker_.request(scene_);
-    return requested_id_;
+std::uint64_t Session::submit(bool interacting, Clock::time_point now) {
+    if (dirty_) {
+        dirty_ = false;
+        last_change_ = now;
+        full_pending_ = interacting;
+        requested_id_ = worker_.request(scene_, interacting);
+        return requested_id_;
+    }
+    if (full_pending_ && (!interacting || now - last_change_ >= kRest)) {
+        // The input rests: the same scene again, in full quality (the worker re-traces a preview).
+        full_pending_ = false;
+        requested_id_ = worker_.request(scene_, false);
+        return requested_id_;
+    }
+    return 0;
 }
 
 bool Session::poll() {
@@ -133,6 +143,7 @@ bool Session::poll() {
         // The newest request failed (a mesh that the worker could not load): go back to the last good scene.
         if (r->id == requested_id_ && !dirty_) {
             scene_ = last_good_;
+            full_pending_ = shown_ && shown_->frame->preview(); // the full image of the last good scene
             try {
                 update_geometry(scene_);
             } catch (const InputError&) {
@@ -140,6 +151,8 @@ bool Session::poll() {
         }
         return false;
     }
+    // A preview request that came back in full quality (uniform and spread ignore TraceControl::preview).
+    if (r->id == requested_id_ && !r->frame->preview()) full_pending_ = false;
     last_good_ = r->scene;
     shown_ = std::make_shared<const RenderResult>(std::move(*r));
     ++shown_count_;
@@ -152,13 +165,22 @@ bool Session::wait_latest(std::chrono::milliseconds timeout) {
     return ok;
 }
 
+bool Session::wait_full(std::chrono::milliseconds timeout) {
+    submit(false);
+    return wait_latest(timeout) && shown_ && !shown_->frame->preview();
+}
+
 bool Session::busy() const {
-    return dirty_ || worker_.busy();
+    return dirty_ || full_pending_ || worker_.busy();
 }
 
 bool Session::snapshot(const std::string& prefix, const Bytes& view3d_png) {
     if (!shown_) {
         error_ = "no sonar image yet: nothing to snapshot";
+        return false;
+    }
+    if (shown_->frame->preview() && !wait_full(std::chrono::milliseconds(60000))) {
+        error_ = "snapshot: the full-quality image is not ready";
         return false;
     }
     try {

@@ -46,18 +46,29 @@ class Session {
     /// Writes the edited scene as a scene file (atomically).
     bool save_scene(const std::string& path);
 
-    /// Sends the scene to the worker if it changed since the last request. Returns the request id (0: none).
-    std::uint64_t submit();
+    using Clock = std::chrono::steady_clock;
+    /// How long the input must rest before a drag's previews are followed by the full-quality image.
+    static constexpr std::chrono::milliseconds kRest{150};
+    /// Sends the scene to the worker if it changed since the last request. `interacting` (a drag or a slider
+    /// is held): the change goes as a preview (TraceControl::preview); the full-quality image of the same
+    /// scene follows once the input is released or has not changed for kRest. Returns the request id (0:
+    /// none).
+    std::uint64_t submit(bool interacting = false, Clock::time_point now = Clock::now());
+    /// True while a preview was requested and its full-quality image not yet.
+    bool full_pending() const { return full_pending_; }
     /// Takes a finished result from the worker. Returns true when the shown frame changed.
     bool poll();
     /// Waits for the newest request to finish, then polls. False on timeout.
     bool wait_latest(std::chrono::milliseconds timeout);
+    /// Requests the full-quality image of the edited scene if it is not on its way, and waits for it.
+    bool wait_full(std::chrono::milliseconds timeout);
     /// True while the worker has work queued or running, or the scene changed since the last request.
     bool busy() const;
     /// Called on the worker thread whenever a result is ready.
     void set_notify(std::function<void()> notify) { worker_.set_notify(std::move(notify)); }
 
-    /// The frame on screen and the scene it was made from (null until the first image arrives).
+    /// The frame on screen and the scene it was made from (null until the first image arrives);
+    /// shown()->frame->preview() while it is a drag's preview.
     const RenderResult* shown() const { return shown_ ? shown_.get() : nullptr; }
     std::uint64_t shown_count() const { return shown_count_; }
 
@@ -67,7 +78,8 @@ class Session {
     const std::string& status() const { return status_; }
     void set_status(const std::string& s) { status_ = s; }
 
-    /// Writes the sonar files of the shown frame, the 3D view PNG and the scene file (see snapshot.hpp).
+    /// Writes the sonar files of the shown frame, the 3D view PNG and the scene file (see snapshot.hpp); a
+    /// preview on screen is first replaced by the full-quality image (wait_full).
     /// Returns false (and sets error()) when there is nothing to save or writing fails.
     bool snapshot(const std::string& prefix, const Bytes& view3d_png);
 
@@ -82,6 +94,8 @@ class Session {
     std::uint64_t meshes_version_ = 0;
     bool dirty_ = true;
     std::uint64_t requested_id_ = 0, shown_count_ = 0;
+    bool full_pending_ = false;       ///< the last request for scene_ was a preview
+    Clock::time_point last_change_{}; ///< when the last changed scene was sent
     std::shared_ptr<const RenderResult> shown_;
     std::string error_, status_;
     RenderWorker worker_;

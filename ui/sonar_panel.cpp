@@ -55,15 +55,18 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
     const Frame& f = *shown->frame;
     const SonarParams& s = shown->scene.sonar;
     if (uploaded_count_ != session.shown_count() || uploaded_polar_ != polar) {
-        texture_.upload(polar ? polar_color_image(f.polar, shown->scene.display) : f.sector);
+        texture_.upload(polar ? polar_color_image(f.polar(), shown->scene.display) : f.sector());
         uploaded_count_ = session.shown_count(), uploaded_polar_ = polar;
     }
-    const double aspect = double(f.sector.width) / f.sector.height;
+    const double aspect = double(f.sector().width) / f.sector().height;
     const SonarPanelLayout L = sonar_panel_layout(area, aspect);
     ImDrawList* dl = ImGui::GetWindowDrawList();
     ImGui::SetCursorScreenPos(ImVec2(L.image.x, L.image.y));
     ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(texture_.id())),
                  ImVec2(L.image.w, L.image.h));
+    if (f.preview()) // a drag's coarse image: the full-quality one follows when the input rests
+        text_at(dl, ImVec2(L.image.x + 4, L.image.y + L.image.h - 2), IM_COL32(255, 200, 80, 255),
+                "preview (base grid only)", 0.0f, 1.0f);
 
     // Hover: the place under the mouse.
     const ImVec2 mouse = ImGui::GetIO().MousePos;
@@ -72,8 +75,8 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
         if (polar)
             hovered_ = polar_pixel_place(s, u * s.beams, v * s.range_bins);
         else
-            hovered_ = sector_pixel_place(SectorLayout(s, f.sector.height), s, u * f.sector.width,
-                                          v * f.sector.height);
+            hovered_ = sector_pixel_place(SectorLayout(s, f.sector().height), s, u * f.sector().width,
+                                          v * f.sector().height);
         if (hovered_) ascan_beam_ = hovered_->beam;
     }
     if (polar)
@@ -83,7 +86,7 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
 
     // The pixel of the hovered 3D surface point.
     if (marker) {
-        const SectorLayout SL(s, f.sector.height);
+        const SectorLayout SL(s, f.sector().height);
         const PointInImage p = locate_world_point(s, SL, *marker);
         ImVec2 q;
         if (polar) {
@@ -91,8 +94,8 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
                 L.image.x + float((s.azimuth_fov_deg / 2 - p.azimuth_deg) / s.azimuth_fov_deg) * L.image.w,
                 L.image.y + float((s.range_max_m - p.range_m) / (s.range_max_m - s.range_min_m)) * L.image.h);
         } else {
-            q = ImVec2(L.image.x + float(p.px / f.sector.width) * L.image.w,
-                       L.image.y + float(p.py / f.sector.height) * L.image.h);
+            q = ImVec2(L.image.x + float(p.px / f.sector().width) * L.image.w,
+                       L.image.y + float(p.py / f.sector().height) * L.image.h);
         }
         if (L.image.contains(q.x, q.y)) {
             const ImU32 c = p.in_view ? kMarkerColor : IM_COL32(160, 160, 160, 200);
@@ -109,7 +112,7 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
         ImGui::SetCursorScreenPos(ImVec2(area.x + 8, area.y + 34));
         ImGui::TextColored(ImVec4(1, 0.5f, 0.5f, 1), "%s", buf);
     } else if (hovered_) {
-        const float level = f.polar.at(hovered_->bin, hovered_->beam);
+        const float level = f.polar().at(hovered_->bin, hovered_->beam);
         char lvl[32], buf[160];
         if (std::isfinite(level))
             std::snprintf(lvl, sizeof lvl, "%.1f dB", double(level));
@@ -131,13 +134,13 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
 void SonarPanel::draw_fan_overlay(const Rect& r, const RenderResult& shown) {
     const SonarParams& s = shown.scene.sonar;
     const Frame& f = *shown.frame;
-    const SectorLayout L(s, f.sector.height);
+    const SectorLayout L(s, f.sector().height);
     ImDrawList* dl = ImGui::GetWindowDrawList();
     dl->PushClipRect(ImVec2(r.x - 60, r.y - 4), ImVec2(r.x + r.w + 60, r.y + r.h + 4), true);
     auto to_screen = [&](double range, double az) {
         double px, py;
         L.polar_to_pixel(range, az, px, py);
-        return ImVec2(r.x + float(px / f.sector.width) * r.w, r.y + float(py / f.sector.height) * r.h);
+        return ImVec2(r.x + float(px / f.sector().width) * r.w, r.y + float(py / f.sector().height) * r.h);
     };
     const double half = s.azimuth_fov_deg / 2;
     // Range rings.
@@ -236,7 +239,7 @@ void SonarPanel::draw_colorbar(const Rect& r, const DisplayParams& d) {
 void SonarPanel::draw_ascan(const Rect& r, const RenderResult& shown) {
     const SonarParams& s = shown.scene.sonar;
     const DisplayParams& d = shown.scene.display;
-    const PolarImage& img = shown.frame->polar;
+    const PolarImage& img = shown.frame->polar();
     if (ascan_beam_ < 0 || ascan_beam_ >= img.beams) ascan_beam_ = strongest_beam(img);
     const std::vector<float> lv = beam_levels(img, ascan_beam_);
     ImDrawList* dl = ImGui::GetWindowDrawList();

@@ -4,6 +4,7 @@
 #include "viewer.hpp"
 
 #include "controls_panel.hpp"
+#include "display_mesh.hpp"
 #include "file_dialog.hpp"
 #include "interaction.hpp"
 #include "layout.hpp"
@@ -84,6 +85,8 @@ class Viewer {
     bool sonar_hot_ = false;
     std::optional<glm::dvec3> surface_hover_;
     glm::dvec2 press_px_{0};
+    /// A drag that edits the scene is held (the frustum, or a slider): its changes render as previews.
+    bool interacting_ = false;
 
     // Timing.
     FrameStats stats_;
@@ -166,6 +169,7 @@ int Viewer::run() {
     }
     if (opt_.orbit) {
         // The first frame includes start-up (first trace, shader compiles): leave it out.
+        stats_.preview = opt_.orbit_preview;
         std::printf("%s\n", stats_.json_line(1).c_str());
         std::fflush(stdout);
     }
@@ -202,13 +206,15 @@ void Viewer::frame(int index) {
         session_.wait_latest(std::chrono::milliseconds(20000));
         const Pose p = orbiter_.at(index);
         session_.edit([&](SceneDesc& s) { s.sonar.pose = p; });
-        session_.submit();
+        session_.submit(opt_.orbit_preview);
     } else if (sync) {
         if (opt_.orbit) {
             const Pose p = orbiter_.at(index);
             session_.edit([&](SceneDesc& s) { s.sonar.pose = p; });
         }
-        session_.submit();
+        // --orbit measures the full-quality retrace per frame (or, with --orbit-preview, a drag's preview);
+        // scripted frames (--frames, --drag) render as the interactive viewer does.
+        session_.submit(opt_.orbit ? opt_.orbit_preview : interacting_);
         session_.wait_latest(std::chrono::milliseconds(20000));
     } else {
         session_.poll();
@@ -253,11 +259,31 @@ void Viewer::frame(int index) {
     view3d_input(L.view3d);
     shortcuts();
     draw_view_text(L.view3d);
-    if (!sync && session_.submit() != 0) extra_frames_ = 2;
-    if (frustum_drag_ || camera_drag_ != CameraDrag::None) extra_frames_ = 2;
+    interacting_ = frustum_drag_.has_value() || ImGui::IsAnyItemActive();
+    if (!sync && session_.submit(interacting_) != 0) extra_frames_ = 2;
+    // Keep drawing while a drag is held, and until the full-quality image of a preview has been requested
+    // (the input rests for Session::kRest).
+    if (frustum_drag_ || camera_drag_ != CameraDrag::None || session_.full_pending()) extra_frames_ = 2;
 
     if (meshes_uploaded_ != session_.meshes_version()) {
-        renderer_->set_meshes(session_.local_meshes());
+        // Once per geometry change. Software OpenGL takes a few hundred thousand triangles per frame, not
+        // millions: above kDisplayTriangles the view draws vertex-clustered copies (tracing keeps the full
+        // meshes).
+        const std::vector<std::shared_ptr<const TriMesh>> meshes = session_.local_meshes();
+        size_t triangles = 0;
+        for (const auto& m : meshes) triangles += m->triangles.size();
+        if (triangles > kDisplayTriangles) {
+            const Clock::time_point t0 = Clock::now();
+            const auto simple = simplify_for_display(meshes, kDisplayTriangles);
+            const double ms = ms_between(t0, Clock::now());
+            size_t drawn = 0;
+            for (const auto& m : simple) drawn += m->triangles.size();
+            renderer_->set_meshes(simple);
+            std::fprintf(stderr, "3D view: %zu triangles drawn as %zu (simplified in %.0f ms)\n", triangles,
+                         drawn, ms);
+        } else {
+            renderer_->set_meshes(meshes);
+        }
         meshes_uploaded_ = session_.meshes_version();
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -423,10 +449,10 @@ ViewOverlay Viewer::overlay() const {
     if (shown && sonar_->hovered()) {
         const ImagePlace& p = *sonar_->hovered();
         ov.arc = elevation_arc(shown->scene.sonar, p.range_m, p.azimuth_deg);
-        ov.echo_points = echoing_points(shown->frame->hits, shown->scene, p.bin, p.beam);
+        ov.echo_points = echoing_points(shown->frame->hits(), shown->scene, p.bin, p.beam);
     }
     if (shown && ui_.show_hits)
-        for (auto& beam : shown->frame->hits.cells)
+        for (auto& beam : shown->frame->hits().cells)
             for (auto& c : beam) ov.hit_points.push_back(c.point);
     return ov;
 }
@@ -436,7 +462,8 @@ void Viewer::draw_view_text(const Rect& v) {
     char buf[256];
     const RenderResult* shown = session_.shown();
     if (shown)
-        std::snprintf(buf, sizeof buf, "frame %.1f ms   image %.1f ms", last_frame_ms_, shown->wall_ms);
+        std::snprintf(buf, sizeof buf, "frame %.1f ms   image %.1f ms%s", last_frame_ms_, shown->wall_ms,
+                      shown->frame->preview() ? " (preview)" : "");
     else
         std::snprintf(buf, sizeof buf, "frame %.1f ms   image: rendering...", last_frame_ms_);
     dl->AddText(ImVec2(v.x + 8, v.y + 6), IM_COL32(230, 235, 240, 255), buf);
@@ -461,6 +488,8 @@ void Viewer::reset_camera() {
 }
 
 void Viewer::take_snapshot(const Rect& view, const std::string& prefix) {
+    // A snapshot is of the full-quality image of the edited scene, never of a drag's preview.
+    session_.wait_full(std::chrono::milliseconds(60000));
     const RenderResult* shown = session_.shown();
     if (!shown) {
         session_.set_error("no sonar image yet: nothing to snapshot");

@@ -17,6 +17,8 @@ struct ViewerOptions {
     /// With orbit: a frame shows the image of the previous frame's pose while the worker traces the current
     /// one. Otherwise (default) each frame waits for the image of its own pose.
     bool orbit_pipelined = false;
+    /// With orbit: request each pose as a drag does (a preview, TraceControl::preview) and time that path.
+    bool orbit_preview = false;
     int width = 1280, height = 800;
     std::string snapshot; ///< after the last frame, write a snapshot (as the S key does) to this prefix
     std::optional<glm::dvec2> mouse; ///< headless: hold the mouse at this window pixel (hover feedback)

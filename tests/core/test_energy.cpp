@@ -45,14 +45,14 @@ TEST_CASE("each beam's bins hold exactly the sum of its cells' intensities", "[e
         s.sampling.azimuth_rays = 2;
         INFO((scheme == SamplingScheme::Spread ? "spread" : "uniform"));
         Simulator sim(s);
-        const Frame& f = sim.render();
+        const auto f = sim.render();
         const ShadeConstants k = shade_constants(s);
         const std::vector<double> edges = range_bin_edges_m(s.sonar);
         double worst = 0;
         size_t cells = 0, object_cells = 0;
         for (int i = 0; i < s.sonar.beams; ++i) {
             double cell_sum = 0;
-            for (const Cell& c : f.hits.cells[size_t(i)]) {
+            for (const Cell& c : f->hits().cells[size_t(i)]) {
                 double lo, hi;
                 footprint(c, lo, hi);
                 if (scheme == SamplingScheme::Uniform) lo = hi = c.range_m;
@@ -65,7 +65,7 @@ TEST_CASE("each beam's bins hold exactly the sum of its cells' intensities", "[e
             // The image stores L_EN as float: each bin may be off by half an ulp of its dB value.
             double bin_sum = 0, bound = 0;
             for (int b = 0; b < s.sonar.range_bins; ++b) {
-                const float l = f.polar.at(b, i);
+                const float l = f->polar().at(b, i);
                 const double e = test::lin(double(l) + s.sonar.noise_level_db);
                 bin_sum += e;
                 if (std::isfinite(l))
@@ -87,13 +87,13 @@ TEST_CASE("each beam's bins hold exactly the sum of its cells' intensities", "[e
 TEST_CASE("cell_fraction_in sums to 1 over the bins covering each cell", "[energy]") {
     SceneDesc s = inside_scene();
     Simulator sim(s);
-    const Frame& f = sim.render();
+    const auto f = sim.render();
     const std::vector<double> edges = range_bin_edges_m(s.sonar);
     const double dr = edges[1] - edges[0];
     size_t checked = 0;
     double worst = 0;
     for (int i = 0; i < s.sonar.beams; i += 5)
-        for (const Cell& c : f.hits.cells[size_t(i)]) {
+        for (const Cell& c : f->hits().cells[size_t(i)]) {
             for (SamplingScheme scheme : {SamplingScheme::Uniform, SamplingScheme::Spread}) {
                 double lo, hi;
                 footprint(c, lo, hi);

@@ -66,10 +66,10 @@ double simulated_error(const FloorCase& c, SamplingScheme scheme, int elevation_
     s.sampling.elevation_rays = elevation_rays;
     s.sampling.azimuth_rays = azimuth_rays;
     Simulator sim(s);
-    const Frame& f = sim.render();
-    REQUIRE(f.polar.bins == s.sonar.range_bins);
-    REQUIRE(f.polar.beams == s.sonar.beams);
-    const double err = relative_l1(echo_intensity(f.polar, s.sonar.noise_level_db), reference(c));
+    const auto f = sim.render();
+    REQUIRE(f->polar().bins == s.sonar.range_bins);
+    REQUIRE(f->polar().beams == s.sonar.beams);
+    const double err = relative_l1(echo_intensity(f->polar(), s.sonar.noise_level_db), reference(c));
     std::printf("flat floor %-12s %-8s %5d x %d rays: relative L1 = %.5f %%\n", c.name,
                 scheme == SamplingScheme::Uniform ? "uniform" : "spread", elevation_rays, azimuth_rays,
                 100 * err);
@@ -142,10 +142,10 @@ TEST_CASE("paper normals (eq. 13-14) on a flat floor give the true normal's imag
     SceneDesc s = floor_scene(kCases[1]);
     s.sampling.elevation_rays = 1000;
     Simulator mesh(s);
-    const std::vector<double> e_mesh = echo_intensity(mesh.render().polar, s.sonar.noise_level_db);
+    const std::vector<double> e_mesh = echo_intensity(mesh.render()->polar(), s.sonar.noise_level_db);
     s.sampling.normals = NormalSource::Paper;
     Simulator paper(s);
-    const std::vector<double> e_paper = echo_intensity(paper.render().polar, s.sonar.noise_level_db);
+    const std::vector<double> e_paper = echo_intensity(paper.render()->polar(), s.sonar.noise_level_db);
     // Neighbouring hit points on a plane span the plane: only float rounding of the points separates them.
     CHECK(relative_l1(e_paper, e_mesh) < 1e-4);
     CHECK(relative_l1(e_paper, reference(kCases[1])) < 1e-3);
@@ -168,10 +168,10 @@ TEST_CASE("paper normals keep their precision far from the world origin", "[floo
         s.objects.push_back(plane);
         s.sampling.elevation_rays = 8000;
         Simulator mesh(s);
-        const std::vector<double> e_mesh = echo_intensity(mesh.render().polar, s.sonar.noise_level_db);
+        const std::vector<double> e_mesh = echo_intensity(mesh.render()->polar(), s.sonar.noise_level_db);
         s.sampling.normals = NormalSource::Paper;
         Simulator paper(s);
-        const std::vector<double> e_paper = echo_intensity(paper.render().polar, s.sonar.noise_level_db);
+        const std::vector<double> e_paper = echo_intensity(paper.render()->polar(), s.sonar.noise_level_db);
         const double err = relative_l1(e_paper, e_mesh);
         std::printf("paper vs mesh normals on a tilted plane, offset %6.0f m: relative L1 = %.4f %%\n",
                     offset, 100 * err);

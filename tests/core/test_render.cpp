@@ -27,8 +27,8 @@ void prism_echo(const SceneDesc& scene, Echo& brightest, Echo& centroid) {
     SceneDesc bare = scene;
     bare.seafloor.reset();
     Simulator full(scene), prism(bare);
-    const PolarImage& img = full.render().polar;
-    const PolarImage& only = prism.render().polar;
+    const PolarImage& img = full.render()->polar();
+    const PolarImage& only = prism.render()->polar();
     const std::vector<double> az = beam_azimuths_deg(scene.sonar), edges = range_bin_edges_m(scene.sonar);
     double best = -INFINITY, w = 0, wa = 0, wr = 0;
     for (int b = 0; b < img.bins; ++b)
@@ -101,7 +101,7 @@ TEST_CASE("the prism's echo lands where the pose puts it (Fig. 9 poses 1 and 2)"
 TEST_CASE("golden image of the default scene", "[render][golden]") {
     const SceneDesc s = default_scene();
     Simulator sim(s);
-    const PolarImage& img = sim.render().polar;
+    const PolarImage& img = sim.render()->polar();
     const std::string path = data_path("golden_default.npy");
     const char* update = std::getenv("SONARSIM_UPDATE_GOLDEN");
     if (update && std::string(update) == "1") {

@@ -2,6 +2,7 @@
 #include "core/scene_io.hpp"
 #include "core/simulator.hpp"
 
+#include <atomic>
 #include <catch2/catch.hpp>
 #include <functional>
 #include <string>
@@ -47,13 +48,13 @@ TEST_CASE("incremental re-render equals a fresh render and starts at the right s
         sim.render();
         sim.set_scene(after);
         CHECK(sim.pending() == (c.stage == Stage::Geometry ? Stage::Trace : c.stage));
-        const Frame& inc = sim.render();
+        const auto inc = sim.render();
         CHECK(sim.pending() == Stage::None);
         Simulator fresh(after);
-        const Frame& ref = fresh.render();
-        CHECK(inc.polar.level_db == ref.polar.level_db);
-        CHECK(inc.sector.pixels == ref.sector.pixels);
-        CHECK(inc.hits.rays_traced == ref.hits.rays_traced);
+        const auto ref = fresh.render();
+        CHECK(inc->polar().level_db == ref->polar().level_db);
+        CHECK(inc->sector().pixels == ref->sector().pixels);
+        CHECK(inc->hits().rays_traced == ref->hits().rays_traced);
     }
 }
 
@@ -69,8 +70,70 @@ TEST_CASE("uniform and spread schemes re-shade on absorption and material change
         Simulator sim(before);
         sim.render();
         sim.set_scene(after);
-        const Frame& inc = sim.render();
+        const auto inc = sim.render();
         Simulator fresh(after);
-        CHECK(inc.polar.level_db == fresh.render().polar.level_db);
+        CHECK(inc->polar().level_db == fresh.render()->polar().level_db);
     }
+}
+
+TEST_CASE("frames share the stages a change leaves alone", "[simulator]") {
+    SceneDesc s = default_scene();
+    Simulator sim(s);
+    const auto first = sim.render();
+    const std::vector<std::uint8_t> first_pixels = first->sector().pixels;
+
+    s.display.lo_db = 70; // display only: the same trace and polar image, a new fan
+    sim.set_scene(s);
+    const auto display = sim.render();
+    CHECK(display->hits_ptr == first->hits_ptr);
+    CHECK(display->polar_ptr == first->polar_ptr);
+    CHECK(display->sector_ptr != first->sector_ptr);
+    CHECK(first->sector().pixels == first_pixels); // a finished frame never changes
+
+    s.sonar.source_level_db = 225; // re-shade: the same trace
+    sim.set_scene(s);
+    const auto shaded = sim.render();
+    CHECK(shaded->hits_ptr == first->hits_ptr);
+    CHECK(shaded->polar_ptr != first->polar_ptr);
+
+    const auto again = sim.render(); // nothing stale: everything shared
+    CHECK(again->hits_ptr == shaded->hits_ptr);
+    CHECK(again->polar_ptr == shaded->polar_ptr);
+    CHECK(again->sector_ptr == shaded->sector_ptr);
+}
+
+TEST_CASE("a cancelled render leaves the simulator consistent", "[simulator]") {
+    SceneDesc s = default_scene();
+    Simulator sim(s);
+    const auto before = sim.render();
+    s.sonar.pose.orientation_deg[2] = -30;
+    sim.set_scene(s);
+    const std::atomic<bool> cancel{true};
+    TraceControl control;
+    control.cancel = &cancel;
+    CHECK_THROWS_AS(sim.render(control), TraceCancelled);
+    CHECK(sim.pending() == Stage::Trace); // still stale
+    const auto after = sim.render();
+    CHECK(after->hits_ptr != before->hits_ptr);
+    Simulator fresh(s);
+    CHECK(after->polar().level_db == fresh.render()->polar().level_db);
+}
+
+TEST_CASE("a preview is never taken for the full image", "[simulator]") {
+    SceneDesc s = default_scene();
+    Simulator sim(s);
+    TraceControl preview;
+    preview.preview = true;
+    const auto coarse = sim.render(preview);
+    REQUIRE(coarse->preview());
+    CHECK_FALSE(coarse->hits().error_estimate.valid);
+    const auto coarse_again = sim.render(preview); // a preview of an unchanged scene is reused
+    CHECK(coarse_again->hits_ptr == coarse->hits_ptr);
+    const auto full = sim.render(); // same scene, but the full image was never made: re-trace
+    CHECK_FALSE(full->preview());
+    CHECK(full->hits().rays_traced > coarse->hits().rays_traced);
+    Simulator fresh(s);
+    CHECK(full->polar().level_db == fresh.render()->polar().level_db);
+    const auto full_again = sim.render(preview); // the full image is better than a preview: keep it
+    CHECK(full_again->hits_ptr == full->hits_ptr);
 }

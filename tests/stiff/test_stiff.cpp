@@ -25,7 +25,7 @@ SceneDesc floor_scene(double height_m, Vec3d orientation_deg,
 
 PolarImage render(const SceneDesc& s) {
     Simulator sim(s);
-    return sim.render().polar;
+    return sim.render()->polar();
 }
 
 /// No NaN, no +inf anywhere; returns the number of echoing (finite) bins.

@@ -62,7 +62,7 @@ bool not_blank(const Png& p, size_t min_colours, std::string& why) {
 /// Correlation of the fan in the screenshot with core's sector image of `s`; counts bright fan pixels.
 double fan_correlation(const Png& p, const sonarsim::SceneDesc& s, int& bright, std::string& why) {
     sonarsim::Simulator sim(s);
-    const sonarsim::Image8& ref = sim.render().sector;
+    const sonarsim::Image8& ref = sim.render()->sector();
     const auto L = sonarsim::ui::viewer_layout(p.w, p.h);
     const auto S = sonarsim::ui::sonar_panel_layout(L.sonar, double(ref.width) / ref.height);
     const sonarsim::SectorLayout fan(s.sonar, ref.height);

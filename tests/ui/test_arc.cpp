@@ -57,8 +57,8 @@ TEST_CASE("raw polar pixels map to their bin and beam", "[ui][arc]") {
 TEST_CASE("the surface points echoing into the prism's pixel lie in that cell", "[ui][arc]") {
     const SceneDesc s = default_scene();
     Simulator sim(s);
-    const Frame& f = sim.render();
-    const SectorLayout L(s.sonar, f.sector.height);
+    const auto f = sim.render();
+    const SectorLayout L(s.sonar, f->sector().height);
     // The pixel of the prism's front face (towards the sonar), where it echoes.
     const glm::dvec3 pos = to_glm(s.sonar.pose.position_m);
     const glm::dvec3 centre(1.5, 1.5, 0.11);
@@ -66,7 +66,7 @@ TEST_CASE("the surface points echoing into the prism's pixel lie in that cell", 
         centre + 0.03 * glm::normalize(glm::dvec3(pos.x - centre.x, pos.y - centre.y, 0));
     const PointInImage q = locate_world_point(s.sonar, L, front);
     REQUIRE(q.in_view);
-    const auto pts = echoing_points(f.hits, s, q.bin, q.beam);
+    const auto pts = echoing_points(f->hits(), s, q.bin, q.beam);
     REQUIRE(!pts.empty());
     const double dr = (s.sonar.range_max_m - s.sonar.range_min_m) / s.sonar.range_bins;
     const double r0 = s.sonar.range_min_m + q.bin * dr;
@@ -77,7 +77,7 @@ TEST_CASE("the surface points echoing into the prism's pixel lie in that cell", 
         CHECK(e.range_m > r0 - 0.05);
         CHECK(e.range_m < r0 + dr + 0.05);
     }
-    CHECK(std::isfinite(f.polar.at(q.bin, q.beam)));
+    CHECK(std::isfinite(f->polar().at(q.bin, q.beam)));
 }
 
 TEST_CASE("image helpers: polar colour image, tick steps, A-scan", "[ui][image]") {

@@ -71,5 +71,8 @@ TEST_CASE("frame statistics: mean, nearest-rank p95, start-up frame left out", "
     for (int i = 1; i <= 20; ++i) st.frame_ms.push_back(i);
     st.image_ms = {4, 6};
     CHECK(st.json_line(1) ==
-          "{\"frames\":20,\"frame_ms_mean\":10.50,\"frame_ms_p95\":19.00,\"image_ms_mean\":5.00}");
+          "{\"frames\":20,\"frame_ms_mean\":10.50,\"frame_ms_p95\":19.00,\"image_ms_mean\":5.00,"
+          "\"image_ms_p95\":6.00,\"images\":\"full\"}");
+    st.preview = true;
+    CHECK(st.json_line(1).find("\"images\":\"preview\"") != std::string::npos);
 }

@@ -20,10 +20,10 @@ Ray ray_to(const glm::dvec3& eye, const glm::dvec3& p) {
 /// Mean beam index of the traced hits on object 0 (material 1), or -1 if none.
 double prism_beam(const SceneDesc& scene) {
     Simulator sim(scene);
-    const Frame& f = sim.render();
+    const auto f = sim.render();
     double sum = 0, n = 0;
-    for (int i = 0; i < f.hits.beams; ++i)
-        for (const Cell& c : f.hits.cells[size_t(i)])
+    for (int i = 0; i < f->hits().beams; ++i)
+        for (const Cell& c : f->hits().cells[size_t(i)])
             if (c.material == 1) sum += i, n += 1;
     return n > 0 ? sum / n : -1;
 }

@@ -141,7 +141,7 @@ TEST_CASE("every slider visibly changes the image", "[ui][params]") {
     const SceneDesc base = default_scene();
     auto image = [](const SceneDesc& s) {
         Simulator sim(s);
-        return encode_png(sim.render().sector);
+        return encode_png(sim.render()->sector());
     };
     const Bytes ref = image(base);
     for (const ParamSpec& p : scene_params()) {
@@ -177,4 +177,59 @@ TEST_CASE("every slider visibly changes the image", "[ui][params]") {
         const bool changed = image(after) != image(before);
         CHECK(changed);
     }
+}
+
+TEST_CASE("a drag renders previews, then the full image once the input rests", "[ui][session]") {
+    ui::Session session(default_scene());
+    session.submit();
+    REQUIRE(session.wait_latest(60s));
+    REQUIRE_FALSE(session.shown()->frame->preview());
+
+    // Dragging: each change goes as a preview.
+    const auto t0 = ui::Session::Clock::now();
+    REQUIRE(session.edit([](SceneDesc& s) { s.sonar.pose.orientation_deg[2] = -36.0; }));
+    REQUIRE(session.submit(true, t0) != 0);
+    REQUIRE(session.wait_latest(60s));
+    const auto* shown = session.shown();
+    REQUIRE(shown->frame->preview());
+    CHECK(shown->scene.sonar.pose.orientation_deg[2] == -36.0);
+    CHECK(session.full_pending());
+    CHECK(session.busy());
+    // Held still but not for long: nothing new; rested: the same scene again, in full quality.
+    CHECK(session.submit(true, t0 + ui::Session::kRest / 3) == 0);
+    REQUIRE(session.submit(true, t0 + ui::Session::kRest) != 0);
+    REQUIRE(session.wait_latest(60s));
+    CHECK_FALSE(session.shown()->frame->preview());
+    CHECK(session.shown()->scene.sonar.pose.orientation_deg[2] == -36.0);
+    CHECK_FALSE(session.full_pending());
+    CHECK(session.submit(true, t0 + 10 * ui::Session::kRest) == 0); // nothing more to do
+
+    // Released right after a change: the full image is requested at once.
+    const auto t1 = ui::Session::Clock::now();
+    REQUIRE(session.edit([](SceneDesc& s) { s.sonar.pose.orientation_deg[2] = -35.0; }));
+    REQUIRE(session.submit(true, t1) != 0);
+    REQUIRE(session.submit(false, t1) != 0);
+    REQUIRE(session.wait_latest(60s));
+    CHECK_FALSE(session.shown()->frame->preview());
+
+    // A snapshot taken while a preview is on screen writes the full image.
+    REQUIRE(session.edit([](SceneDesc& s) { s.sonar.pose.orientation_deg[2] = -34.0; }));
+    REQUIRE(session.submit(true) != 0);
+    REQUIRE(session.wait_latest(60s));
+    REQUIRE(session.shown()->frame->preview());
+    const std::string prefix = test::ui_out_path("after_preview");
+    REQUIRE(session.snapshot(prefix, {}));
+    CHECK_FALSE(session.shown()->frame->preview());
+    Simulator fresh(session.scene());
+    CHECK(test::read_bytes(prefix + ".npy") == encode_npy(fresh.render()->polar()));
+}
+
+TEST_CASE("a preview request of a scheme without previews needs no second render", "[ui][session]") {
+    SceneDesc s = default_scene();
+    s.sampling.scheme = SamplingScheme::Spread;
+    ui::Session session(s);
+    REQUIRE(session.submit(true) != 0);
+    REQUIRE(session.wait_latest(60s));
+    CHECK_FALSE(session.shown()->frame->preview());
+    CHECK_FALSE(session.full_pending());
 }
