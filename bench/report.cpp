@@ -275,7 +275,8 @@ std::string write_reports(const json& input, const std::string& dir) {
           "refinement level coarser; – for schemes that make none.\n"
           "- **reference**: the semi-analytic integral for a bare flat floor; otherwise a dense `spread` run "
           "traced and shaded a chunk of beams at a time (bounded memory), its convergence measured against a "
-          "run 3× coarser in elevation and in azimuth.\n"
+          "run 3× coarser in elevation and in azimuth: that difference bounds the reference's own error from "
+          "above, several times over (bench/README.md).\n"
           "- **peak memory of the benchmark process**: each scene runs in its own process (reference and all "
           "settings), so its ru_maxrss is that scene's alone.\n";
 
