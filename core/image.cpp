@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 #include <stdexcept>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -53,6 +56,45 @@ inline int round_half_up(float v) {
     return v - float(i) >= 0.5f ? i + 1 : i;
 }
 
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define SONARSIM_FAN_AVX2 1
+/// Eight fan pixels with AVX2 gathers: the same float operations, in the same order, as the portable loop
+/// in SectorResampler::apply. Writes 28 bytes from `dst`: the ten pixels from `dst` on must be in the run
+/// (the last four bytes are overwritten by the pixels after these eight).
+__attribute__((target("avx2"))) void fan_pixels8_avx2(const float* gray, std::ptrdiff_t up,
+                                                      const std::int32_t* index, const std::uint16_t* wb,
+                                                      const std::uint16_t* wi, const std::uint32_t* lut,
+                                                      std::uint8_t* dst) {
+    const __m256 unit = _mm256_set1_ps(1.0f / SectorResampler::kWeightOne), one = _mm256_set1_ps(1.0f);
+    const __m256i idx = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(index));
+    const __m256 tb = _mm256_mul_ps(
+        _mm256_cvtepi32_ps(_mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(wb)))),
+        unit);
+    const __m256 ti = _mm256_mul_ps(
+        _mm256_cvtepi32_ps(_mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(wi)))),
+        unit);
+    const __m256 g00 = _mm256_i32gather_ps(gray, idx, 4), g01 = _mm256_i32gather_ps(gray + 1, idx, 4);
+    const __m256 g10 = _mm256_i32gather_ps(gray + up, idx, 4),
+                 g11 = _mm256_i32gather_ps(gray + up + 1, idx, 4);
+    const __m256 ui = _mm256_sub_ps(one, ti);
+    const __m256 near = _mm256_add_ps(_mm256_mul_ps(ui, g00), _mm256_mul_ps(ti, g01));
+    const __m256 far = _mm256_add_ps(_mm256_mul_ps(ui, g10), _mm256_mul_ps(ti, g11));
+    const __m256 v = _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(one, tb), near), _mm256_mul_ps(tb, far));
+    const __m256i t = _mm256_cvttps_epi32(v); // round_half_up
+    const __m256 half =
+        _mm256_cmp_ps(_mm256_sub_ps(v, _mm256_cvtepi32_ps(t)), _mm256_set1_ps(0.5f), _CMP_GE_OQ);
+    const __m256i g =
+        _mm256_min_epi32(_mm256_sub_epi32(t, _mm256_castps_si256(half)), _mm256_set1_epi32(255));
+    const __m256i rgb0 = _mm256_i32gather_epi32(reinterpret_cast<const int*>(lut), g, 4);
+    // Per 128-bit lane: the three colour bytes of its four pixels, packed into 12 bytes.
+    const __m256i pack = _mm256_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1, 0, 1, 2, 4,
+                                          5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
+    const __m256i rgb = _mm256_shuffle_epi8(rgb0, pack);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(dst), _mm256_castsi256_si128(rgb));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(dst + 12), _mm256_extracti128_si256(rgb, 1));
+}
+#endif
+
 } // namespace
 
 int default_sector_height(const SonarParams& s) {
@@ -100,9 +142,9 @@ SectorResampler::SectorResampler(const SonarParams& s, int height_px)
     const double r0 = s.range_min_m, a0 = s.azimuth_fov_deg / 2;
     // x >= 0: x * 2^15 + 1/2 is exact, so its floor is std::lround(x * 2^15) (no library call).
     auto weight = [](double x) { return std::uint16_t(x * kWeightOne + 0.5); };
-    auto tap = [=](double r, double a) {
-        double fb = (r - r0) / dr - 0.5, fi = (a0 - a) / da - 0.5;
-        fb = std::clamp(fb, 0.0, K - 1.0), fi = std::clamp(fi, 0.0, N - 1.0);
+    // `bin` is (r - r0) / dr - 0.5, the same for a pixel and its mirror image.
+    auto tap = [=](double bin, double a) {
+        const double fb = std::clamp(bin, 0.0, K - 1.0), fi = std::clamp((a0 - a) / da - 0.5, 0.0, N - 1.0);
         const int b0 = std::min(int(fb), K - 1), i0 = std::min(int(fi), N - 1);
         return Tap{b0 * (N + 1) + i0, weight(fb - b0), weight(fi - i0)};
     };
@@ -115,7 +157,7 @@ SectorResampler::SectorResampler(const SonarParams& s, int height_px)
     tbb::parallel_for(tbb::blocked_range<int>(0, H, 8), [&](const tbb::blocked_range<int>& rows) {
         struct Inside {
             int px;
-            double r, a;
+            double bin, a;
         };
         std::vector<Inside> left;
         for (int py = rows.begin(); py < rows.end(); ++py) {
@@ -127,7 +169,8 @@ SectorResampler::SectorResampler(const SonarParams& s, int height_px)
             left.clear();
             double r, a;
             for (int px = px_begin; px < (W + 1) / 2; ++px)
-                if (layout_.pixel_to_polar(px + 0.5, py + 0.5, r, a)) left.push_back({px, r, a});
+                if (layout_.pixel_to_polar(px + 0.5, py + 0.5, r, a))
+                    left.push_back({px, (r - r0) / dr - 0.5, a});
             std::vector<Tap>& taps = row_taps[size_t(py)];
             std::vector<Run>& runs = row_runs[size_t(py)];
             auto add = [&](int px, const Tap& t) {
@@ -137,9 +180,9 @@ SectorResampler::SectorResampler(const SonarParams& s, int height_px)
                 taps.push_back(t);
             };
             taps.reserve(2 * left.size());
-            for (const Inside& p : left) add(p.px, tap(p.r, p.a));
+            for (const Inside& p : left) add(p.px, tap(p.bin, p.a));
             for (auto p = left.rbegin(); p != left.rend(); ++p)
-                if (W - 1 - p->px != p->px) add(W - 1 - p->px, tap(p->r, -p->a));
+                if (W - 1 - p->px != p->px) add(W - 1 - p->px, tap(p->bin, -p->a));
         }
     });
     row_runs_.assign(size_t(H) + 1, 0);
@@ -170,17 +213,22 @@ bool SectorResampler::matches(const SonarParams& s, int height_px) const {
            s.range_max_m == sonar_.range_max_m;
 }
 
-Image8 SectorResampler::apply(const PolarImage& img, const DisplayParams& d) const {
+Image8 SectorResampler::apply(const PolarImage& img, const DisplayParams& d, Kernel kernel) const {
     const int K = img.bins, N = img.beams;
     if (K != sonar_.range_bins || N != sonar_.beams)
         throw std::invalid_argument("SectorResampler: the image is not of the sonar it was built for");
     // Gray level of every sample once, padded with a copy of the last bin and of the last beam.
+    const double lo = d.lo_db, span = d.hi_db - d.lo_db;
     std::vector<float> gray(size_t(K + 1) * size_t(N + 1));
     tbb::parallel_for(tbb::blocked_range<int>(0, K + 1, 64), [&](const tbb::blocked_range<int>& bins) {
         for (int b = bins.begin(); b < bins.end(); ++b) {
             const float* in = img.level_db.data() + size_t(std::min(b, K - 1)) * size_t(N);
             float* out = gray.data() + size_t(b) * size_t(N + 1);
-            for (int i = 0; i < N; ++i) out[i] = gray_level(in[i], d.lo_db, d.hi_db);
+            for (int i = 0; i < N; ++i) { // gray_level, written so that it vectorises
+                const double t = (double(in[i]) - lo) / span;
+                const float g = float(255.0 * (t < 0.0 ? 0.0 : 1.0 < t ? 1.0 : t));
+                out[i] = in[i] > -INFINITY ? g : 0.0f;
+            }
             out[N] = out[N - 1];
         }
     });
@@ -205,6 +253,12 @@ Image8 SectorResampler::apply(const PolarImage& img, const DisplayParams& d) con
     const int W = out.width;
     const std::ptrdiff_t up = N + 1; // next bin in the padded image
     constexpr float unit = 1.0f / kWeightOne;
+#ifdef SONARSIM_FAN_AVX2
+    static const bool has_avx2 = __builtin_cpu_supports("avx2");
+    const bool avx2 = has_avx2 && kernel == Kernel::Best;
+#else
+    (void)kernel;
+#endif
     // One pixel, and four at a time with the same operations in the same order (so the same floats).
     auto pixel = [=](std::uint32_t k) {
         const float* g = G + I[k];
@@ -247,7 +301,13 @@ Image8 SectorResampler::apply(const PolarImage& img, const DisplayParams& d) con
                 // Each pixel is a 4-byte store whose fourth byte the next pixel overwrites; the run's last
                 // pixel stores three bytes.
                 std::uint32_t k = run.first;
-                for (x = run.x0; x + 4 < run.x1; x += 4, k += 4) pixels4(k, row + 3 * x);
+                x = run.x0;
+#ifdef SONARSIM_FAN_AVX2
+                if (avx2)
+                    for (; x + 10 <= run.x1; x += 8, k += 8)
+                        fan_pixels8_avx2(G, up, I + k, WB + k, WI + k, C, row + 3 * x);
+#endif
+                for (; x + 4 < run.x1; x += 4, k += 4) pixels4(k, row + 3 * x);
                 for (; x + 1 < run.x1; ++x, ++k) {
                     const std::uint32_t c = pixel(k);
                     std::memcpy(row + 3 * x, &c, 4);

@@ -63,7 +63,10 @@ class SectorResampler {
     /// The RGB fan: per pixel inside it, the bilinear interpolation in (bin, beam) of the gray levels
     /// (gray_level) of its four nearest samples, rounded, through the colour map; kFanBackground outside.
     /// The interpolation weights are kept to 1/kWeightOne (15 bits).
-    Image8 apply(const PolarImage& img, const DisplayParams& display) const;
+    /// Kernel::Portable forces the portable four-pixel loop (tests compare it with the default, which uses
+    /// AVX2 gathers where the CPU has them; both give the same pixels).
+    enum class Kernel { Best, Portable };
+    Image8 apply(const PolarImage& img, const DisplayParams& display, Kernel kernel = Kernel::Best) const;
     const SectorLayout& layout() const { return layout_; }
     static constexpr int kWeightOne = 1 << 15;
 

@@ -198,12 +198,15 @@ TEST_CASE("the fast fan equals the per-pixel definition exactly", "[image]") {
             d.colormap = map;
             const PolarImage img = varied_image(s);
             const SectorResampler fast(s, c.height_px);
-            const Image8 got = fast.apply(img, d), want = reference_sector(img, s, d, c.height_px);
-            INFO(c.what);
-            REQUIRE(got.width == want.width);
-            REQUIRE(got.height == want.height);
-            CHECK(got.width <= kMaxSectorWidth);
-            CHECK(got.pixels == want.pixels);
+            const Image8 want = reference_sector(img, s, d, c.height_px);
+            for (auto kernel : {SectorResampler::Kernel::Best, SectorResampler::Kernel::Portable}) {
+                const Image8 got = fast.apply(img, d, kernel);
+                INFO(c.what << (kernel == SectorResampler::Kernel::Best ? " (best kernel)" : " (portable)"));
+                REQUIRE(got.width == want.width);
+                REQUIRE(got.height == want.height);
+                CHECK(got.width <= kMaxSectorWidth);
+                CHECK(got.pixels == want.pixels);
+            }
         }
 }
 
