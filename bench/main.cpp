@@ -349,6 +349,10 @@ int main(int argc, char** argv) {
     terrain->add_option("--grid", grid, "Vertices per side (317: ~200 k triangles, 1001: 2 M)")
         ->capture_default_str();
     terrain->add_option("--out", terrain_out, "PLY file")->required();
+    std::string report_in, report_out;
+    CLI::App* report = app.add_subcommand("report", "Rewrite RESULTS.md and results.csv from a results.json");
+    report->add_option("results_json", report_in)->required();
+    report->add_option("--out", report_out, "Directory (default: the JSON's)");
     CLI11_PARSE(app, argc, argv);
     // bench/run.sh names itself and its arguments; otherwise the command line as given.
     const char* via = std::getenv("SONARSIM_BENCH_COMMAND");
@@ -358,6 +362,15 @@ int main(int argc, char** argv) {
 
     try {
         if (*worker) return run_worker(w);
+        if (*report) {
+            if (report_out.empty()) report_out = fs::path(report_in).parent_path().string();
+            if (report_out.empty()) report_out = ".";
+            json in = json::parse(read_text(report_in));
+            for (json& sc : in["scenes"]) sc.erase("summary");
+            write_reports(in, report_out);
+            std::cout << "wrote " << report_out << "/RESULTS.md, results.csv, results.json\n";
+            return 0;
+        }
         if (*terrain) {
             write_terrain_ply(terrain_out, grid);
             std::cout << "wrote " << terrain_out << " (" << terrain_triangles(grid) << " triangles)\n";

@@ -294,7 +294,7 @@ std::string write_reports(const json& input, const std::string& dir) {
             auto f = [](double v) {
                 if (!std::isfinite(v)) return std::string();
                 char b[40];
-                std::snprintf(b, sizeof b, "%.6g", v);
+                std::snprintf(b, sizeof b, "%.10g", v);
                 return std::string(b);
             };
             csv << sc["name"].get<std::string>() << "," << r["label"].get<std::string>() << ","
