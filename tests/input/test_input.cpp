@@ -136,8 +136,9 @@ TEST_CASE("zero-area faces are skipped, a mesh of nothing else has no faces", "[
     const TriMesh m = load_mesh(write_temp("degenerate_one.obj", v + "f 1 2 3\nf 1 1 2\n"), "s", "k");
     CHECK(m.triangles.size() == 1);
     // A face written with fewer than 3 corners is malformed, not merely degenerate (OpenMesh aborts on some).
-    CHECK(error_of([&] { load_mesh(write_temp("two_corners.obj", v + "f 1 2 3\nf 2 3\n"), "s", "k"); })
-              .find("line 5: a face needs at least 3 corners") != std::string::npos);
+    CHECK(error_of([&] {
+              load_mesh(write_temp("two_corners.obj", v + "f 1 2 3\nf 2 3\n"), "s", "k");
+          }).find("line 5: a face needs at least 3 corners") != std::string::npos);
     CHECK(error_of([&] {
               load_mesh(write_temp("degenerate_all.obj", v + "f 1 1 2\n"), "s", "k");
           }).find("contains no faces") != std::string::npos);
