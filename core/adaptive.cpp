@@ -1,4 +1,5 @@
-// Adaptive sampling: refine where the integrand of SONAR_MODEL.md is not smooth, leave the rest coarse.
+// Adaptive sampling: refine where the integrand of SONAR_MODEL.md is not smooth and the error that leaves
+// in the image is significant against the tolerance; leave the rest coarse (see core/ARCHITECTURE.md).
 #include "params.hpp"
 #include "physics.hpp"
 #include "reference.hpp"
@@ -22,16 +23,16 @@ namespace {
 constexpr int kElevationLevels = 5; // ternary splits: cells down to 1/243 of the base width
 constexpr int kAzimuthLevels = 3; // columns split in three locally: down to 1/27 of the base width (specular)
 constexpr int kEdgeAzimuthLevels = 2; // ... and down to 1/9 where neighbouring columns see different surfaces
-constexpr int kMaxPasses = 3;
+constexpr int kMaxPasses = 3;         // base refinements (x3) when the error estimate misses the tolerance
 /// Cells whose errors may add up in one bin: a pair is worth refining when its possible error exceeds
-/// this fraction of what the tolerance allows the bin.
+/// 1 / kErrorsPerBin of what the tolerance allows the bin.
 constexpr double kErrorsPerBin = 3;
 /// The error estimate looks at every kEstimateStride-th beam of images with 8 x that many beams or more.
 constexpr int kEstimateStride = 4;
 constexpr double kLn10Over10 = 0.23025850929940458;
 /// An azimuth split covers the base cells where neighbouring columns disagree and this many on each side
 /// (what differs between columns often moves in elevation from one to the next).
-constexpr int kRunMargin = 1; // base refinements (x3) when the error estimate misses the tolerance
+constexpr int kRunMargin = 1;
 
 /// One elevation cell of a column.
 struct Node {

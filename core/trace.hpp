@@ -68,10 +68,10 @@ TraceResult trace(const SceneGeometry& geometry, const SceneDesc& scene, const T
 TraceResult trace_uniform(const SceneGeometry& geometry, const SceneDesc& scene,
                           const TraceControl& control = {});
 
-/// Adaptive: starts from the regular grid and refines elevation cells (ternary splits) where neighbouring
-/// rays see different surfaces, the echo density jumps by more than sampling.tolerance_db, or a specular lobe
-/// or a plane's horizon falls inside a cell; beams whose columns disagree get more azimuth rays.
-/// Fills `error_estimate`.
+/// Adaptive: starts from the regular grid and splits cells (ternary, in elevation; in azimuth over the base
+/// cells where neighbouring columns disagree) where the error they could leave is significant against the
+/// base grid's echo in their bins and sampling.tolerance_db: surface edges, steps in echo level, specular
+/// lobes, horizons, grazing footprints. All rays come out of sampling.max_rays. Fills `error_estimate`.
 TraceResult trace_adaptive(const SceneGeometry& geometry, const SceneDesc& scene,
                            const TraceControl& control = {});
 
