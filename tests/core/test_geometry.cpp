@@ -90,6 +90,23 @@ BruteHit brute_force(const std::vector<Tri>& tris, const glm::dvec3& o, const gl
     return best;
 }
 
+/// A unit ray direction from o: aimed at a random point of a random triangle (mostly hits), or random.
+glm::dvec3 random_direction(std::mt19937& rng, const std::vector<Tri>& tris, const glm::dvec3& o,
+                            bool aimed) {
+    std::uniform_real_distribution<double> u(-1, 1);
+    glm::dvec3 d;
+    if (aimed) {
+        const Tri& tr = tris[std::uniform_int_distribution<size_t>(0, tris.size() - 1)(rng)];
+        double a = 0.5 * (u(rng) + 1), b = 0.5 * (u(rng) + 1);
+        if (a + b > 1) a = 1 - a, b = 1 - b;
+        d = tr.v0 + a * (tr.v1 - tr.v0) + b * (tr.v2 - tr.v0) - o;
+    } else {
+        do d = glm::dvec3(u(rng), u(rng), u(rng));
+        while (glm::length(d) < 0.1 || glm::length(d) > 1);
+    }
+    return glm::normalize(d);
+}
+
 } // namespace
 
 TEST_CASE("Embree first hits equal a brute-force ray-triangle reference", "[geometry]") {
@@ -122,21 +139,10 @@ TEST_CASE("Embree first hits equal a brute-force ray-triangle reference", "[geom
         for (size_t m = 0; m < g.object_count(); ++m)
             REQUIRE(g.local_mesh(m)->triangles.size() == size_t(set.triangles_per_object[m]));
 
-        std::uniform_real_distribution<double> u(-1, 1), box(-4, 4), tm(0.5, 12);
-        std::uniform_int_distribution<size_t> pick(0, tris.size() - 1);
+        std::uniform_real_distribution<double> box(-4, 4), tm(0.5, 12);
         for (int r = 0; r < 4000; ++r) {
             const glm::dvec3 o(box(rng), box(rng), box(rng));
-            glm::dvec3 d;
-            if (r % 2 == 0) { // aimed at a random point of a random triangle: mostly hits
-                const Tri& tr = tris[pick(rng)];
-                double a = 0.5 * (u(rng) + 1), b = 0.5 * (u(rng) + 1);
-                if (a + b > 1) a = 1 - a, b = 1 - b;
-                d = tr.v0 + a * (tr.v1 - tr.v0) + b * (tr.v2 - tr.v0) - o;
-            } else {
-                do d = glm::dvec3(u(rng), u(rng), u(rng));
-                while (glm::length(d) < 0.1 || glm::length(d) > 1);
-            }
-            d = glm::normalize(d);
+            const glm::dvec3 d = random_direction(rng, tris, o, r % 2 == 0);
             const double t_max = r % 3 == 0 ? tm(rng) : 100.0;
             const BruteHit ref = brute_force(tris, o, d, t_max);
             if (ref.ambiguous) {
@@ -227,22 +233,11 @@ std::vector<Tri> world_triangles(const SceneGeometry& g) {
 /// returns the number of hits compared.
 int compare_with_brute_force(const SceneGeometry& g, std::mt19937& rng, int rays) {
     const std::vector<Tri> tris = world_triangles(g);
-    std::uniform_real_distribution<double> u(-1, 1), box(-8, 8);
-    std::uniform_int_distribution<size_t> pick(0, tris.size() - 1);
+    std::uniform_real_distribution<double> box(-8, 8);
     int hits = 0, skipped = 0;
     for (int r = 0; r < rays; ++r) {
         const glm::dvec3 o(box(rng), box(rng), box(rng));
-        glm::dvec3 d;
-        if (r % 2 == 0) {
-            const Tri& tr = tris[pick(rng)];
-            double a = 0.5 * (u(rng) + 1), b = 0.5 * (u(rng) + 1);
-            if (a + b > 1) a = 1 - a, b = 1 - b;
-            d = tr.v0 + a * (tr.v1 - tr.v0) + b * (tr.v2 - tr.v0) - o;
-        } else {
-            do d = glm::dvec3(u(rng), u(rng), u(rng));
-            while (glm::length(d) < 0.1 || glm::length(d) > 1);
-        }
-        d = glm::normalize(d);
+        const glm::dvec3 d = random_direction(rng, tris, o, r % 2 == 0);
         const BruteHit ref = brute_force(tris, o, d, 100.0);
         if (ref.ambiguous) {
             ++skipped;
