@@ -18,8 +18,20 @@ void add_scene_options(CLI::App& cmd, SceneOptions& o) {
 namespace sonarsim::app {
 
 SceneDesc load_scene_from_options(const SceneOptions& o) {
-    SceneDesc scene = o.scene_file.empty() ? default_scene() : load_scene(o.scene_file);
-    for (auto& s : o.sets) apply_setting_text(scene, s, "--set");
+    // Group keys (sonar.device, sensor.model) apply before the scene file's other keys, so that those
+    // still override the preset; every other --set applies after the file, in order.
+    GroupOverrides groups;
+    std::vector<std::pair<std::string, json>> rest;
+    for (auto& s : o.sets) {
+        auto kv = parse_setting_text(s, "--set");
+        (is_group_key(kv.first) ? groups : rest).push_back(std::move(kv));
+    }
+    SceneDesc scene = default_scene();
+    if (o.scene_file.empty())
+        for (auto& [k, v] : groups) apply_setting(scene, k, v, "--set");
+    else
+        scene = load_scene(o.scene_file, groups);
+    for (auto& [k, v] : rest) apply_setting(scene, k, v, "--set");
     if (!o.pose.empty()) scene.sonar.pose = parse_pose_text(o.pose, "--pose");
     validate_scene(scene, o.scene_file.empty() ? "--set" : o.scene_file);
     return scene;

@@ -47,6 +47,9 @@ int run_worker(const WorkerOptions& options);
 /// Writes RESULTS.md, results.csv and results.json into `out_dir`; returns the Markdown text.
 std::string write_reports(const json& results, const std::string& out_dir);
 
+/// `sonarsim_bench sensor`: the sensor stage alone (median of `repeats`), printed as a table.
+int run_sensor_bench(int repeats);
+
 /// Peak resident set size of this process so far [MB] (getrusage ru_maxrss).
 double self_peak_rss_mb();
 

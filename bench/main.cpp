@@ -350,6 +350,9 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     terrain->add_option("--out", terrain_out, "PLY file")->required();
     std::string report_in, report_out;
+    int sensor_repeats = 21;
+    CLI::App* sensor = app.add_subcommand("sensor", "Time the sensor stage alone (median of repeats)");
+    sensor->add_option("--repeats", sensor_repeats, "Repeats")->capture_default_str();
     CLI::App* report = app.add_subcommand("report", "Rewrite RESULTS.md and results.csv from a results.json");
     report->add_option("results_json", report_in)->required();
     report->add_option("--out", report_out, "Directory (default: the JSON's)");
@@ -371,6 +374,7 @@ int main(int argc, char** argv) {
             std::cout << "wrote " << report_out << "/RESULTS.md, results.csv, results.json\n";
             return 0;
         }
+        if (*sensor) return run_sensor_bench(sensor_repeats);
         if (*terrain) {
             write_terrain_ply(terrain_out, grid);
             std::cout << "wrote " << terrain_out << " (" << terrain_triangles(grid) << " triangles)\n";

@@ -39,7 +39,7 @@ struct Node {
     double e = 0, de = 0; ///< centre and width [rad]
     std::optional<Hit> hit;
     glm::dvec3 p{0};
-    double density_db = 0;   ///< echo level per steradian (cell_echo_db with dOmega = 1)
+    double density_db = 0;   ///< echo level per steradian (cell_echo_db with dOmega = B_v(e), the pattern)
     double dr_de = 0;        ///< |d range / d elevation| on the hit plane [m/rad]
     double footprint_m = 0;  ///< dr_de * de: the range the cell spans [m]
     double per_metre_db = 0; ///< echo per metre of range when the footprint spans bins (see set_width)
@@ -78,7 +78,7 @@ struct Context {
     std::vector<float> base_db; ///< [beam * range_bins + bin]: echo [dB, as cell_echo_db] of the base grid
     Context(const SceneGeometry& geo, const SceneDesc& scene, const TraceControl& c)
         : g(geo), s(scene), control(c), frame(scene), k(shade_constants(scene)),
-          phi(deg2rad(scene.sonar.elevation_fov_deg)), jump_db(10 * scene.sampling.tolerance_db),
+          phi(frame.elevation_weight.traced_fov_rad()), jump_db(10 * scene.sampling.tolerance_db),
           range_jump_db(4 * scene.sampling.tolerance_db),
           bin_m((scene.sonar.range_max_m - scene.sonar.range_min_m) / scene.sonar.range_bins),
           gap_m(0.5 * bin_m),
@@ -110,7 +110,7 @@ struct Context {
         if (n.hit) {
             n.p = frame.origin + n.hit->t * d;
             n.density_db = cell_echo_db(k, material_of(s, n.hit->material), n.hit->t,
-                                        std::abs(glm::dot(n.hit->normal, d)), 1.0);
+                                        std::abs(glm::dot(n.hit->normal, d)), frame.elevation_weight(e.rad));
             // On the hit plane r(e) = (n.(p - o)) / (n.d(e)), so dr/de = -r (n.d_e) / (n.d).
             const glm::dvec3 d_e = frame.R * glm::dvec3(-n.angle.s * a.c, -n.angle.s * a.s, n.angle.c);
             n.dr_de = std::abs(n.hit->t * glm::dot(n.hit->normal, d_e) / glm::dot(n.hit->normal, d));

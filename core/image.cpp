@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #if defined(__x86_64__)
 #include <immintrin.h>
 #endif
@@ -35,6 +36,38 @@ std::array<std::uint8_t, 3> colormap_rgb(Colormap map, double t) {
     std::array<std::uint8_t, 3> c{};
     for (int k = 0; k < 3; ++k) c[size_t(k)] = std::uint8_t(std::lround(v[i][k] * (1 - f) + v[i + 1][k] * f));
     return c;
+}
+
+DisplayParams effective_display(const PolarImage& img, const DisplayParams& d) {
+    if (!d.auto_range) return d;
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    size_t n = 0;
+    for (float v : img.level_db)
+        if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v), ++n;
+    if (n == 0) return d;
+    constexpr int kBins = 4096;
+    std::vector<size_t> hist(kBins + 1, 0);
+    const double width = std::max(double(hi) - lo, 1e-6) / kBins;
+    for (float v : img.level_db)
+        if (std::isfinite(v)) ++hist[size_t(std::min(double(kBins - 1), (v - lo) / width))];
+    auto percentile = [&](double p) {
+        const double want = p * double(n);
+        double below = 0;
+        for (int i = 0; i < kBins; ++i) {
+            if (below + double(hist[size_t(i)]) >= want && hist[size_t(i)] > 0)
+                return lo + width * (i + (want - below) / double(hist[size_t(i)]));
+            below += double(hist[size_t(i)]);
+        }
+        return double(hi);
+    };
+    DisplayParams out = d;
+    out.hi_db = percentile(0.995);
+    out.lo_db = std::max(percentile(0.05), out.hi_db - kAutoDisplaySpanDb);
+    if (out.hi_db < out.lo_db + 1) {
+        const double mid = 0.5 * (out.lo_db + out.hi_db);
+        out.lo_db = mid - 0.5, out.hi_db = mid + 0.5;
+    }
+    return out;
 }
 
 Image8 polar_gray_image(const PolarImage& img, const DisplayParams& d) {

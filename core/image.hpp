@@ -18,6 +18,15 @@ struct Image8 {
 /// gray = 255 clamp((L_EN - lo) / (hi - lo), 0, 1); -inf maps to 0. Returned as a float in [0, 255].
 float gray_level(float level_db, double lo_db, double hi_db);
 
+/// The display range an image is shown with: `display` itself, or with display.auto its lo/hi replaced by
+/// the 5th and 99.5th percentiles of the image's finite levels (a histogram of 4096 bins, interpolated),
+/// at most kAutoDisplaySpanDb and at least 1 dB apart. An image with no finite level keeps lo_db and hi_db.
+DisplayParams effective_display(const PolarImage& img, const DisplayParams& display);
+
+/// Widest automatic display range [dB]: a scene whose echoes stand 100 dB above its noise still shows the
+/// texture of its echoes (speckle spans about 20 dB).
+constexpr double kAutoDisplaySpanDb = 50;
+
 /// RGB of a colour map at t in [0, 1].
 std::array<std::uint8_t, 3> colormap_rgb(Colormap map, double t);
 

@@ -1,6 +1,9 @@
 #include "params.hpp"
 
+#include "devices.hpp"
 #include "errors.hpp"
+#include "pose.hpp"
+#include "sensor_patterns.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -82,6 +85,25 @@ ParamSpec enumeration(std::string key, std::vector<std::string> choices, Stage s
     return p;
 }
 
+ParamSpec boolean(std::string key, Stage stage, std::string help, std::function<bool&(SceneDesc&)> ref) {
+    ParamSpec p;
+    p.key = std::move(key);
+    p.type = ParamType::Bool;
+    p.stage = stage;
+    p.help = std::move(help);
+    p.get = [ref](const SceneDesc& s) { return json(ref(const_cast<SceneDesc&>(s))); };
+    p.put = [ref](SceneDesc& s, const json& v) { ref(s) = v.get<bool>(); };
+    return p;
+}
+
+/// A sensor row: `ideal` is what sensor.model "ideal" sets, `device` what "device" sets where the preset
+/// says nothing (null: the model leaves the value alone).
+ParamSpec sensor(ParamSpec p, json ideal, json device) {
+    p.ideal_value = std::move(ideal);
+    p.device_value = std::move(device);
+    return p;
+}
+
 MaterialSpec material(std::string key, std::string unit, double lo, double hi, bool lo_ex, std::string help,
                       double Material::*field) {
     MaterialSpec m;
@@ -97,9 +119,86 @@ MaterialSpec material(std::string key, std::string unit, double lo, double hi, b
     return m;
 }
 
+void add_sensor_params(std::vector<ParamSpec>& t) {
+    using S = SceneDesc&;
+    t.push_back(enumeration<SensorModel>(
+        "sensor.model", {"ideal", "device"}, Stage::None,
+        "ideal: the echo image as the sampler converges it; device: every effect the device preset (or, "
+        "without one, the generic device) defines, on. Sensor keys given in the scene override it",
+        [](S s) -> SensorModel& { return s.sensor.model; }));
+    t.push_back(sensor(enumeration<AzimuthWindow>(
+                           "sensor.azimuth_window", {"none", "rect", "hann", "taylor"}, Stage::Shade,
+                           "Receive beam pattern in azimuth: the array factor of a line array with this "
+                           "window (rect: first sidelobe -13.3 dB); none: each beam is a hard slice",
+                           [](S s) -> AzimuthWindow& { return s.sensor.azimuth_window; }),
+                       "none", "hann"));
+    t.push_back(number("sensor.azimuth_beamwidth_deg", "deg", 0, 180, false, true, Stage::Shade,
+                       "-3 dB width of the receive beam at broadside; 0: the beam spacing",
+                       [](S s) -> double& { return s.sensor.azimuth_beamwidth_deg; }));
+    t.push_back(number("sensor.taylor_sidelobe_db", "dB", -80, -13.3, false, false, Stage::Sensor,
+                       "Design sidelobe level of the taylor window",
+                       [](S s) -> double& { return s.sensor.taylor_sidelobe_db; }));
+    t.push_back(enumeration<Beamformer>(
+        "sensor.beamformer", {"lens", "array"}, Stage::Sensor,
+        "lens: every beam has the broadside width (ARIS, DIDSON); array: a flat receive "
+        "array, whose beams widen as 1 / cos(azimuth) off broadside",
+        [](S s) -> Beamformer& { return s.sensor.beamformer; }));
+    t.push_back(sensor(enumeration<ElevationPattern>(
+                           "sensor.elevation_pattern", {"flat", "gaussian", "sinc"}, Stage::Trace,
+                           "Two-way elevation pattern weighting each ray: flat is the hard aperture; "
+                           "gaussian and sinc^2 are smooth, traced out to -30 dB (gaussian) or their second "
+                           "null (sinc)",
+                           [](S s) -> ElevationPattern& { return s.sensor.elevation_pattern; }),
+                       "flat", "gaussian"));
+    t.push_back(number("sensor.elevation_beamwidth_deg", "deg", 0, 60, false, false, Stage::Trace,
+                       "-3 dB width of the two-way elevation pattern; 0: sonar.elevation_fov_deg",
+                       [](S s) -> double& { return s.sensor.elevation_beamwidth_deg; }));
+    t.push_back(sensor(number("sensor.range_resolution_m", "m", 0, 100, false, false, Stage::Sensor,
+                              "Range resolution of the matched filter: c tau / 2 (cw) or c / 2B (chirp); "
+                              "0: ideal",
+                              [](S s) -> double& { return s.sensor.range_resolution_m; }),
+                       0.0, nullptr));
+    t.push_back(enumeration<Pulse>("sensor.pulse", {"cw", "chirp"}, Stage::Sensor,
+                                   "Pulse: cw (matched-filter intensity response a squared triangle) "
+                                   "or chirp (sinc^2)",
+                                   [](S s) -> Pulse& { return s.sensor.pulse; }));
+    t.push_back(sensor(enumeration<Speckle>("sensor.speckle", {"off", "rayleigh", "k"}, Stage::Shade,
+                                            "Speckle per resolution cell: rayleigh (exponential intensity) "
+                                            "or k (K-distributed); anchored to the scatterers in the world",
+                                            [](S s) -> Speckle& { return s.sensor.speckle; }),
+                       "off", "rayleigh"));
+    t.push_back(number("sensor.speckle_k_shape", "", 0, 1e6, true, false, Stage::Sensor,
+                       "K-distribution shape alpha: scintillation index 1 + 2 / alpha",
+                       [](S s) -> double& { return s.sensor.speckle_k_shape; }));
+    t.push_back(integer("sensor.seed", 0, 2147483647, Stage::Sensor, "Seed of speckle and noise",
+                        [](S s) -> int& { return s.sensor.seed; }));
+    t.push_back(sensor(boolean("sensor.noise", Stage::Sensor,
+                               "Additive complex Gaussian noise at the noise level L_N (before gain)",
+                               [](S s) -> bool& { return s.sensor.noise; }),
+                       false, true));
+    t.push_back(sensor(enumeration<Tvg>("sensor.tvg", {"off", "20log", "30log", "40log"}, Stage::Sensor,
+                                        "Time-varying gain: N log10 R + 2 alpha R [dB]",
+                                        [](S s) -> Tvg& { return s.sensor.tvg; }),
+                       "off", "30log"));
+    t.push_back(sensor(number("sensor.gain_db", "dB", -200, 200, false, false, Stage::Sensor,
+                              "Receiver gain added to the output level",
+                              [](S s) -> double& { return s.sensor.gain_db; }),
+                       0.0, nullptr));
+}
+
 std::vector<ParamSpec> build_scene_params() {
     using S = SceneDesc&;
     std::vector<ParamSpec> t;
+    ParamSpec device;
+    device.key = "sonar.device";
+    device.type = ParamType::Enum;
+    device.choices = device_choices();
+    device.stage = Stage::None; // what it changes is compared key by key
+    device.help = "Device preset (assets/devices/NAME.json, `sonarsim devices`): sets the device's values; "
+                  "keys given in the scene override them";
+    device.get = [](const SceneDesc& s) { return json(s.sonar.device); };
+    device.put = [](SceneDesc& s, const json& v) { s.sonar.device = v.get<std::string>(); };
+    t.push_back(device);
     t.push_back(vec3("sonar.position", "m", -1e6, 1e6, Stage::Trace, "Sonar position x, y, z (world, z up)",
                      [](S s) -> Vec3d& { return s.sonar.pose.position_m; }));
     t.push_back(vec3("sonar.orientation_deg", "deg", -360, 360, Stage::Trace,
@@ -163,6 +262,13 @@ std::vector<ParamSpec> build_scene_params() {
     t.push_back(enumeration<Colormap>("display.colormap", {"gray", "viridis"}, Stage::Display,
                                       "Colour map of the image",
                                       [](S s) -> Colormap& { return s.display.colormap; }));
+    t.push_back(
+        sensor(boolean("display.auto", Stage::Display,
+                       "Display range from the image itself: white at its 99.5th percentile (finite "
+                       "levels), black at its 5th but at most 50 dB below white; instead of lo_db, hi_db",
+                       [](S s) -> bool& { return s.display.auto_range; }),
+               nullptr, true));
+    add_sensor_params(t);
     return t;
 }
 
@@ -224,6 +330,7 @@ std::string allowed_text(const ValueSpec& spec) {
     std::string range = std::string(spec.min_exclusive ? "(" : "[") + fmt(spec.min) + ", " + fmt(spec.max) +
                         (spec.max_exclusive ? ")" : "]");
     std::string unit = spec.unit.empty() ? "" : " " + spec.unit;
+    if (spec.type == ParamType::Bool) return "true or false";
     if (spec.type == ParamType::Integer) return "an integer in " + range;
     if (spec.type == ParamType::Vec3) return "an array of 3 finite numbers in " + range + unit;
     return "a finite number in " + range + unit;
@@ -260,6 +367,9 @@ json validate_value(const ValueSpec& spec, const json& v, const std::string& fil
         }
         return json(out);
     }
+    case ParamType::Bool:
+        if (!v.is_boolean()) throw InputError(file, key, "expected true or false, got " + type_name(v));
+        return v;
     case ParamType::Enum:
         if (v.is_string())
             for (auto& c : spec.choices)
@@ -271,10 +381,50 @@ json validate_value(const ValueSpec& spec, const json& v, const std::string& fil
     return v;
 }
 
+bool is_group_key(const std::string& key) {
+    return key == "sonar.device" || key == "sensor.model";
+}
+
+namespace {
+
+/// sensor.model: each row with a value for the model takes it: for "device" the preset's where it gives
+/// one, else the row's generic device value (null: left as it is).
+void apply_sensor_model(SceneDesc& scene) {
+    const DevicePreset* preset = find_device(scene.sonar.device);
+    const bool device = scene.sensor.model == SensorModel::Device;
+    for (auto& p : scene_params()) {
+        if (p.ideal_value.is_null() && p.device_value.is_null()) continue;
+        json v = device ? p.device_value : p.ideal_value;
+        if (device && preset)
+            for (auto& dv : preset->values)
+                if (dv.key == p.key) v = dv.value;
+        if (!v.is_null()) p.put(scene, validate_value(p, v, preset ? preset->file : "sensor.model", p.key));
+    }
+}
+
+/// sonar.device: the preset's values; its effect switches (rows with an "ideal" value) only under
+/// sensor.model "device".
+void apply_device(SceneDesc& scene) {
+    const DevicePreset* preset = find_device(scene.sonar.device);
+    if (!preset) return; // "none": the values stay as they are
+    for (auto& dv : preset->values) {
+        const ParamSpec* p = find_param(dv.key);
+        if (!p || is_group_key(dv.key) || p->type == ParamType::Vec3 || dv.key == "sensor.seed" ||
+            dv.key.rfind("sampling.", 0) == 0)
+            throw InputError(preset->file, "values." + dv.key, "not a parameter a device preset may set");
+        if (p->ideal_value.is_null()) p->put(scene, validate_value(*p, dv.value, preset->file, dv.key));
+    }
+    if (scene.sensor.model == SensorModel::Device) apply_sensor_model(scene);
+}
+
+} // namespace
+
 Stage apply_setting(SceneDesc& scene, const std::string& key, const json& value, const std::string& file) {
     if (auto* p = find_param(key)) {
         p->put(scene, validate_value(*p, value, file, key));
-        return p->stage;
+        if (key == "sonar.device") apply_device(scene);
+        if (key == "sensor.model") apply_sensor_model(scene);
+        return is_group_key(key) ? Stage::Geometry : p->stage;
     }
     const std::string floor_prefix = "seafloor.material.";
     if (key.rfind(floor_prefix, 0) == 0) {
@@ -328,7 +478,7 @@ Stage apply_setting(SceneDesc& scene, const std::string& key, const json& value,
                          ", seafloor.height_m, seafloor.material.*, objects.N.*");
 }
 
-Stage apply_setting_text(SceneDesc& scene, const std::string& text, const std::string& origin) {
+std::pair<std::string, json> parse_setting_text(const std::string& text, const std::string& origin) {
     const size_t eq = text.find('=');
     if (eq == std::string::npos || eq == 0)
         throw InputError(origin, text, "expected key.path=value, e.g. sonar.range_max_m=8");
@@ -349,6 +499,11 @@ Stage apply_setting_text(SceneDesc& scene, const std::string& text, const std::s
         }
         value = json(raw);
     }
+    return {key, value};
+}
+
+Stage apply_setting_text(SceneDesc& scene, const std::string& text, const std::string& origin) {
+    const auto [key, value] = parse_setting_text(text, origin);
     return apply_setting(scene, key, value, origin);
 }
 
@@ -384,6 +539,17 @@ void validate_scene(const SceneDesc& s, const std::string& file) {
                          "the sector image would have " + fmt(sector_px) + " pixels (limit " +
                              fmt(kMaxImageCells) +
                              "): range_min_m is too close to range_max_m for this field of view");
+    const ElevationWeight elevation(s);
+    if (!(rad2deg(elevation.traced_fov_rad()) < 180))
+        throw InputError(
+            file, "sensor.elevation_beamwidth_deg",
+            "the elevation pattern would be traced over " + fmt(rad2deg(elevation.traced_fov_rad())) +
+                " deg; it must stay below 180 deg (gaussian: 3.16 x, sinc: 4.5 x the -3 dB width)");
+    if (s.sensor.range_resolution_m > (s.sonar.range_max_m - s.sonar.range_min_m) / 4)
+        throw InputError(file, "sensor.range_resolution_m",
+                         "value " + fmt(s.sensor.range_resolution_m) +
+                             " m is coarser than a quarter of the range window; allowed: [0, " +
+                             fmt((s.sonar.range_max_m - s.sonar.range_min_m) / 4) + "] m");
     if (!(s.display.lo_db < s.display.hi_db))
         throw InputError(file, "display.lo_db", "lo_db must be below hi_db");
     for (size_t i = 0; i < s.objects.size(); ++i) {

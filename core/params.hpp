@@ -6,16 +6,17 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace sonarsim {
 
 using json = nlohmann::json;
 
-enum class ParamType { Number, Integer, Vec3, Enum };
+enum class ParamType { Number, Integer, Vec3, Enum, Bool };
 
 /// What must be recomputed when a parameter changes (each stage implies the ones after it).
-enum class Stage { Geometry = 0, Trace = 1, Shade = 2, Display = 3, None = 4 };
+enum class Stage { Geometry = 0, Trace = 1, Shade = 2, Sensor = 3, Display = 4, None = 5 };
 
 /// Bounds and documentation of one value. Numbers: min/max bounds (exclusive where flagged).
 struct ValueSpec {
@@ -33,7 +34,14 @@ struct ValueSpec {
 struct ParamSpec : ValueSpec {
     std::function<json(const SceneDesc&)> get;
     std::function<void(SceneDesc&, const json&)> put; ///< value already validated
+    /// Sensor rows: the value sensor.model "ideal" sets (null: the model leaves it alone) and the one
+    /// "device" sets when the device preset does not give one (null: leaves it alone).
+    json ideal_value, device_value;
 };
+
+/// Keys that choose a group of other values: sonar.device (a preset's values) and sensor.model (the sensor's
+/// effects). A scene applies them before all its other keys, so that explicit keys override what they chose.
+bool is_group_key(const std::string& key);
 
 /// A per-material parameter with accessors into Material.
 struct MaterialSpec : ValueSpec {
@@ -57,6 +65,9 @@ std::string allowed_text(const ValueSpec& spec);
 /// "objects.N.position", "objects.N.material.q", ... Returns the stage it invalidates.
 Stage apply_setting(SceneDesc& scene, const std::string& key_path, const json& value,
                     const std::string& file);
+
+/// Parse "key.path=value" (value as JSON, or a bare word for enums) into key and value.
+std::pair<std::string, json> parse_setting_text(const std::string& assignment, const std::string& origin);
 
 /// Parse "key.path=value" (value as JSON, or a bare word for enums) and apply it.
 Stage apply_setting_text(SceneDesc& scene, const std::string& assignment, const std::string& origin);

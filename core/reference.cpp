@@ -1,5 +1,7 @@
 #include "reference.hpp"
 
+#include "sensor_patterns.hpp"
+
 #include "physics.hpp"
 #include "pose.hpp"
 
@@ -28,7 +30,8 @@ bool has_floor_reference(const SceneDesc& s) {
 
 PolarImage floor_reference(const SceneDesc& s, int panels) {
     const int N = s.sonar.beams, K = s.sonar.range_bins;
-    const double theta = deg2rad(s.sonar.azimuth_fov_deg), phi = deg2rad(s.sonar.elevation_fov_deg);
+    const ElevationWeight pattern(s);
+    const double theta = deg2rad(s.sonar.azimuth_fov_deg), phi = pattern.traced_fov_rad();
     const double r_min = s.sonar.range_min_m, r_max = s.sonar.range_max_m, dr = (r_max - r_min) / K;
     const glm::dmat3 R = rotation_matrix(s.sonar.pose.orientation_deg);
     const double H = s.seafloor->height_m - s.sonar.pose.position_m[2]; // r = H / d_z, needs H / d_z > 0
@@ -37,7 +40,8 @@ PolarImage floor_reference(const SceneDesc& s, int panels) {
     // Linear intensities are taken relative to 10^(L_S/10) so that they stay in double's range.
     auto integrand = [&](double e, double dz) {
         const double r = H / dz, cos_inc = std::abs(dz);
-        return std::exp((cell_echo_db(c, mat, r, cos_inc, std::cos(e)) - c.source_level_db) * kLn10Over10);
+        return std::exp((cell_echo_db(c, mat, r, cos_inc, std::cos(e) * pattern(e)) - c.source_level_db) *
+                        kLn10Over10);
     };
 
     std::vector<double> E(size_t(N) * K, 0.0);

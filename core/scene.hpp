@@ -24,6 +24,7 @@ struct Pose {
 };
 
 struct SonarParams {
+    std::string device = "none"; ///< device preset (assets/devices/NAME.json) its values came from
     Pose pose;
     double frequency_khz = 3000.0;
     double azimuth_fov_deg = 32.0;
@@ -59,6 +60,35 @@ struct DisplayParams {
     double lo_db = 80.0;
     double hi_db = 120.0;
     Colormap colormap = Colormap::Gray;
+    bool auto_range = false; ///< lo/hi from the image's 5th and 99.5th percentiles instead of lo_db/hi_db
+};
+
+enum class SensorModel { Ideal, Device };
+enum class AzimuthWindow { None, Rect, Hann, Taylor };
+enum class Beamformer { Lens, Array };
+enum class ElevationPattern { Flat, Gaussian, Sinc };
+enum class Pulse { Cw, Chirp };
+enum class Speckle { Off, Rayleigh, K };
+enum class Tvg { Off, Log20, Log30, Log40 };
+
+/// The sensor stage: what a device does to the ideal echo image (sensor.cpp). Every effect off is the ideal
+/// sensor. Formulas and sources: core/ARCHITECTURE.md, ../shared/reference/SENSORS.md section 2.
+struct SensorParams {
+    SensorModel model = SensorModel::Ideal;
+    AzimuthWindow azimuth_window = AzimuthWindow::None;
+    double azimuth_beamwidth_deg = 0; ///< -3 dB width of the receive beam; 0: the beam spacing
+    double taylor_sidelobe_db = -30;  ///< design sidelobe level of the "taylor" window
+    Beamformer beamformer = Beamformer::Lens;
+    ElevationPattern elevation_pattern = ElevationPattern::Flat;
+    double elevation_beamwidth_deg = 0; ///< -3 dB two-way width; 0: sonar.elevation_fov_deg
+    double range_resolution_m = 0;      ///< c tau / 2 (cw) or c / 2B (chirp); 0: ideal
+    Pulse pulse = Pulse::Cw;
+    Speckle speckle = Speckle::Off;
+    double speckle_k_shape = 4; ///< K-distribution shape alpha (scintillation index 1 + 2 / alpha)
+    int seed = 1;
+    bool noise = false; ///< additive complex Gaussian noise at L_N
+    Tvg tvg = Tvg::Off;
+    double gain_db = 0;
 };
 
 struct Seafloor {
@@ -84,6 +114,7 @@ struct SceneDesc {
     WaterParams water;
     SamplingParams sampling;
     DisplayParams display;
+    SensorParams sensor;
     std::optional<Seafloor> seafloor = Seafloor{};
     std::vector<ObjectDesc> objects;
 };

@@ -155,7 +155,8 @@ SceneDesc default_scene() {
     return s;
 }
 
-SceneDesc parse_scene(const std::string& text, const std::string& file, const std::string& base_dir) {
+SceneDesc parse_scene(const std::string& text, const std::string& file, const std::string& base_dir,
+                      const GroupOverrides& group_overrides) {
     json root;
     try {
         root = json::parse(text, KeyTracker(file));
@@ -182,11 +183,23 @@ SceneDesc parse_scene(const std::string& text, const std::string& file, const st
 
     SceneDesc scene;
     scene.source_file = file;
+    // Group keys first (a device preset, then the sensor model), so that every other key overrides them.
+    for (const char* key : {"sonar.device", "sensor.model"}) {
+        const std::string k(key), section = k.substr(0, k.find('.')), name = k.substr(k.find('.') + 1);
+        auto over = std::find_if(group_overrides.begin(), group_overrides.end(),
+                                 [&](auto& o) { return o.first == k; });
+        if (over != group_overrides.end())
+            apply_setting(scene, k, over->second, "--set");
+        else if (root.contains(section) && root[section].is_object() && root[section].contains(name))
+            apply_setting(scene, k, root[section][name], file);
+    }
     for (auto& [section, body] : root.items()) {
-        if (section == "sonar" || section == "water" || section == "sampling" || section == "display") {
+        if (section == "sonar" || section == "water" || section == "sampling" || section == "display" ||
+            section == "sensor") {
             require_object(body, file, section);
             for (auto& [k, val] : body.items()) {
                 const std::string key = section + "." + k;
+                if (is_group_key(key)) continue;
                 const ParamSpec* p = find_param(key);
                 if (!p) {
                     std::string allowed;
@@ -222,8 +235,9 @@ SceneDesc parse_scene(const std::string& text, const std::string& file, const st
                 scene.objects.push_back(
                     parse_object(body[i], file, "objects[" + std::to_string(i) + "]", base_dir));
         } else {
-            throw InputError(file, section,
-                             "unknown key; allowed: sonar, water, sampling, display, seafloor, objects");
+            throw InputError(
+                file, section,
+                "unknown key; allowed: sonar, water, sampling, display, sensor, seafloor, objects");
         }
     }
     if (!root.contains("seafloor")) scene.seafloor.reset(); // omit the seafloor key: no floor
@@ -231,7 +245,7 @@ SceneDesc parse_scene(const std::string& text, const std::string& file, const st
     return scene;
 }
 
-SceneDesc load_scene(const std::string& path) {
+SceneDesc load_scene(const std::string& path, const GroupOverrides& group_overrides) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw InputError(path, "", "scene file not found");
     if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "", "not a regular file");
@@ -246,7 +260,7 @@ SceneDesc load_scene(const std::string& path) {
     ss << in.rdbuf();
     if (in.bad()) throw InputError(path, "", "read error");
     const std::string base = std::filesystem::absolute(path, ec).parent_path().string();
-    return parse_scene(ss.str(), path, base);
+    return parse_scene(ss.str(), path, base, group_overrides);
 }
 
 json scene_to_json(const SceneDesc& s) {

@@ -1,5 +1,8 @@
 #include "shade.hpp"
 
+#include "pose.hpp"
+#include "sensor_patterns.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -157,6 +160,80 @@ PolarImage shade(const TraceResult& hits, const SceneDesc& s) {
                     float((x_max + std::log(lin[size_t(b)])) / kLn10Over10 - k.noise_level_db);
     });
     return img;
+}
+
+bool needs_sensor_inputs(const SceneDesc& s) {
+    return azimuth_subcolumns(s) > 1 || s.sensor.speckle != Speckle::Off;
+}
+
+SensorInputs shade_sensor_inputs(const TraceResult& hits, const SceneDesc& s) {
+    const ShadeConstants k = shade_constants(s);
+    const int K = s.sonar.range_bins, N = s.sonar.beams, S = azimuth_subcolumns(s);
+    const double r_min = s.sonar.range_min_m, r_max = s.sonar.range_max_m, dr = (r_max - r_min) / K;
+    const double theta = deg2rad(s.sonar.azimuth_fov_deg), spacing = theta / N;
+    const bool spread = s.sampling.scheme != SamplingScheme::Uniform;
+    const bool fine = S > 1, elevation = s.sensor.speckle != Speckle::Off;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+
+    SensorInputs in;
+    in.sub = S;
+    if (fine) {
+        in.fine.bins = K, in.fine.beams = N * S;
+        in.fine.level_db.assign(size_t(K) * size_t(N) * S, -std::numeric_limits<float>::infinity());
+    }
+    if (elevation) in.elevation_rad.assign(size_t(K) * size_t(N), nan);
+    tbb::parallel_for(0, std::min(N, hits.beams), [&](int i) {
+        const auto& cells = hits.cells[size_t(i)];
+        std::vector<double> x(cells.size());
+        double x_max = kNegInf;
+        for (size_t n = 0; n < cells.size(); ++n) {
+            const Cell& c = cells[n];
+            x[n] = cell_echo_db(k, material_of(s, c.material), c.range_m, c.cos_incidence, c.solid_angle_sr) *
+                   kLn10Over10;
+            if (std::isnan(x[n])) x[n] = kNegInf;
+            x_max = std::max(x_max, x[n]);
+        }
+        if (x_max == kNegInf) return;
+        const double a_top = theta / 2 - i * spacing; // the beam's port edge
+        std::vector<double> lin(fine ? size_t(K) * S : 0, 0.0), wsum(elevation ? size_t(K) : 0, 0.0),
+            esum(elevation ? size_t(K) : 0, 0.0);
+        std::vector<double> share(size_t(S), 1.0);
+        for (size_t n = 0; n < cells.size(); ++n) {
+            if (x[n] == kNegInf) continue;
+            const Cell& c = cells[n];
+            const double w = std::exp(x[n] - x_max);
+            if (fine) { // the cell's azimuth interval over the beam's sub-columns
+                const double a0 = c.azimuth_rad - 0.5 * c.azimuth_width_rad, a1 = a0 + c.azimuth_width_rad;
+                for (int q = 0; q < S; ++q) {
+                    const double hi = a_top - q * spacing / S, lo = hi - spacing / S;
+                    share[size_t(q)] =
+                        std::max(0.0, std::min(a1, hi) - std::max(a0, lo)) / c.azimuth_width_rad;
+                }
+            }
+            const double e_lo = c.elevation_rad - 0.5 * c.elevation_width_rad, de = c.elevation_width_rad;
+            const double span = double(c.range_e_hi_m) - c.range_e_lo_m;
+            for_each_bin(c, spread, K, r_min, r_max, dr, [&](int b, double frac) {
+                const double v = w * frac;
+                if (fine)
+                    for (int q = 0; q < S; ++q) lin[size_t(b) * S + q] += v * share[size_t(q)];
+                if (elevation) {
+                    const double r = r_min + (b + 0.5) * dr;
+                    const double t =
+                        std::abs(span) > 1e-9 ? std::clamp((r - c.range_e_lo_m) / span, 0.0, 1.0) : 0.5;
+                    wsum[size_t(b)] += v, esum[size_t(b)] += v * (e_lo + t * de);
+                }
+            });
+        }
+        for (int b = 0; b < K; ++b) {
+            if (elevation && wsum[size_t(b)] > 0)
+                in.elevation_rad[size_t(b) * N + i] = float(esum[size_t(b)] / wsum[size_t(b)]);
+            for (int q = 0; fine && q < S; ++q)
+                if (const double v = lin[size_t(b) * S + q]; v > 0)
+                    in.fine.level_db[size_t(b) * N * S + size_t(i) * S + q] =
+                        float((x_max + std::log(v)) / kLn10Over10 - k.noise_level_db);
+        }
+    });
+    return in;
 }
 
 } // namespace sonarsim

@@ -16,6 +16,22 @@ const Material& material_of(const SceneDesc& scene, unsigned m);
 /// "spread" distributes it over the cell's range footprint (sum of its elevation and azimuth extents).
 double cell_fraction_in(const Cell& cell, SamplingScheme scheme, double r0, double r1);
 
+/// What the sensor stage needs from the cells beyond the image (computed only when it needs it).
+struct SensorInputs {
+    int sub = 1;     ///< fine azimuth columns per beam (column j = beam * sub + s, s = 0 port-most)
+    PolarImage fine; ///< L_EN [dB] per (range bin, fine column) when sub > 1; otherwise empty
+    /// Per (range bin, beam) [bin * beams + beam]: the echo-weighted mean elevation [rad] of what echoes
+    /// there (each cell at the elevation where its footprint crosses the bin's centre range); NaN where
+    /// nothing echoes. Empty unless speckle is on (it anchors the speckle to the scatterers).
+    std::vector<float> elevation_rad;
+};
+
+/// True when the sensor needs SensorInputs: a receive pattern finer than the beams, or speckle.
+bool needs_sensor_inputs(const SceneDesc& scene);
+
+/// The sensor's inputs, from the same cells and footprints as shade().
+SensorInputs shade_sensor_inputs(const TraceResult& hits, const SceneDesc& scene);
+
 /// L_EN image of the stored hits. Accumulates per bin in the log domain (running max + scaled sum), so
 /// intensities far below double's range (high absorption, grazing q) neither underflow nor overflow.
 PolarImage shade(const TraceResult& hits, const SceneDesc& scene);

@@ -3,6 +3,7 @@
 #include "output.hpp"
 #include "pose.hpp"
 #include "scene_io.hpp"
+#include "sensor.hpp"
 
 #include <algorithm>
 #include "timing.hpp"
@@ -75,7 +76,7 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
         TraceResult t = trace(*geometry_, scene_, control); // TraceCancelled: nothing has changed yet
         next.trace_ms = t.trace_ms;
         if (t.shaded) { // the tracer shaded its cells with this very scene
-            next.polar_ptr = std::make_shared<const PolarImage>(std::move(*t.shaded));
+            next.ideal_ptr = std::make_shared<const PolarImage>(std::move(*t.shaded));
             t.shaded.reset();
             next.alpha_db_per_m = shade_constants(scene_).alpha_db_per_m;
             next.shade_ms = 0;
@@ -83,17 +84,32 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
         }
         next.hits_ptr = std::make_shared<const TraceResult>(std::move(t));
     }
-    if (from <= Stage::Shade && !shaded) {
+    if (from <= Stage::Shade) {
         const auto t0 = std::chrono::steady_clock::now();
-        next.polar_ptr = std::make_shared<const PolarImage>(shade(*next.hits_ptr, scene_));
-        next.alpha_db_per_m = shade_constants(scene_).alpha_db_per_m;
-        next.shade_ms = ms_since(t0);
+        if (!shaded) {
+            next.ideal_ptr = std::make_shared<const PolarImage>(shade(*next.hits_ptr, scene_));
+            next.alpha_db_per_m = shade_constants(scene_).alpha_db_per_m;
+        }
+        next.inputs_ptr =
+            needs_sensor_inputs(scene_)
+                ? std::make_shared<const SensorInputs>(shade_sensor_inputs(*next.hits_ptr, scene_))
+                : nullptr;
+        next.shade_ms = shaded && !next.inputs_ptr ? 0 : ms_since(t0);
+    }
+    if (from <= Stage::Sensor) {
+        const auto t0 = std::chrono::steady_clock::now();
+        next.polar_ptr = sensor_is_ideal(scene_)
+                             ? next.ideal_ptr
+                             : std::make_shared<const PolarImage>(apply_sensor(
+                                   *next.ideal_ptr, next.inputs_ptr.get(), scene_, next.alpha_db_per_m));
+        next.sensor_ms = ms_since(t0);
     }
     if (from <= Stage::Display) {
         const auto t0 = std::chrono::steady_clock::now();
         if (!resampler_ || !resampler_->matches(scene_.sonar, 0))
             resampler_ = std::make_unique<SectorResampler>(scene_.sonar, 0);
-        next.sector_ptr = std::make_shared<const Image8>(resampler_->apply(*next.polar_ptr, scene_.display));
+        next.display = effective_display(*next.polar_ptr, scene_.display);
+        next.sector_ptr = std::make_shared<const Image8>(resampler_->apply(*next.polar_ptr, next.display));
         next.image_ms = ms_since(t0);
     }
     frame_ = std::move(next);
@@ -123,12 +139,17 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
         j["sampling_error_estimate"] = nullptr;
     j["time_ms"] = {{"trace", f.trace_ms},
                     {"shade", f.shade_ms},
+                    {"sensor", f.sensor_ms},
                     {"image", f.image_ms},
-                    {"total", f.trace_ms + f.shade_ms + f.image_ms}};
+                    {"total", f.trace_ms + f.shade_ms + f.sensor_ms + f.image_ms}};
+    j["display_range_db"] = {f.display.lo_db, f.display.hi_db};
     j["image"] = {{"npy_shape", {s.sonar.range_bins, s.sonar.beams}},
                   {"npy_rows", "range bins, row 0 nearest"},
                   {"npy_columns", "beams, column 0 port-most"},
-                  {"npy_units", "L_EN dB; -inf where nothing echoes"}};
+                  {"npy_units", f.sensor_applied()
+                                    ? "the sensor's output level dB (L_EN through the sensor stage, plus TVG "
+                                      "and gain); -inf where nothing echoes. PREFIX_ideal.npy: L_EN dB"
+                                    : "L_EN dB; -inf where nothing echoes"}};
     return j;
 }
 
@@ -136,9 +157,10 @@ void write_render_files(const std::string& prefix, const SceneDesc& scene, const
                         std::vector<std::pair<std::string, std::vector<std::uint8_t>>> extra) {
     std::vector<std::pair<std::string, Bytes>> files = {
         {prefix + ".png", encode_png(f.sector())},
-        {prefix + "_polar.png", encode_png(polar_gray_image(f.polar(), scene.display))},
+        {prefix + "_polar.png", encode_png(polar_gray_image(f.polar(), f.display))},
         {prefix + ".npy", encode_npy(f.polar())},
         {prefix + ".json", to_bytes(frame_metadata(scene, f).dump(2) + "\n")}};
+    if (f.sensor_applied()) files.push_back({prefix + "_ideal.npy", encode_npy(f.ideal())});
     for (auto& e : extra) files.push_back(std::move(e));
     write_files_atomically(files);
 }

@@ -1,6 +1,7 @@
-// The pipeline with per-stage invalidation: geometry -> trace -> shade -> display.
-// A display change re-maps the image; physics re-shades the stored hits; pose or sampling re-traces;
-// objects rebuild the Embree scene. Not thread-safe: give each worker thread its own Simulator.
+// The pipeline with per-stage invalidation: geometry -> trace -> shade -> sensor -> display.
+// A display change re-maps the image; a sensor change (noise, speckle, gain...) re-runs the sensor stage on
+// the shaded image; physics re-shades the stored hits; pose or sampling re-traces; objects rebuild the
+// Embree scene. Not thread-safe: give each worker thread its own Simulator.
 #pragma once
 #include "geometry.hpp"
 #include "image.hpp"
@@ -22,13 +23,19 @@ namespace sonarsim {
 /// thread while the Simulator renders the next frame.
 struct Frame {
     std::shared_ptr<const TraceResult> hits_ptr;
-    std::shared_ptr<const PolarImage> polar_ptr; ///< L_EN [dB]
-    std::shared_ptr<const Image8> sector_ptr;    ///< RGB fan
+    std::shared_ptr<const PolarImage> ideal_ptr;    ///< L_EN [dB] as the sampler converges it
+    std::shared_ptr<const SensorInputs> inputs_ptr; ///< what the sensor needs beyond it (or null)
+    std::shared_ptr<const PolarImage> polar_ptr;    ///< the sensor's output [dB]; ideal_ptr itself when ideal
+    std::shared_ptr<const Image8> sector_ptr;       ///< RGB fan
+    DisplayParams display;                          ///< the display range it is shown with (display.auto)
     double alpha_db_per_m = 0;
-    double trace_ms = 0, shade_ms = 0, image_ms = 0; ///< each stage's latest run
+    double trace_ms = 0, shade_ms = 0, sensor_ms = 0, image_ms = 0; ///< each stage's latest run
 
     const TraceResult& hits() const { return *hits_ptr; }
+    /// The image the device shows [dB]: L_EN through the sensor stage (with the ideal sensor, L_EN).
     const PolarImage& polar() const { return *polar_ptr; }
+    const PolarImage& ideal() const { return *ideal_ptr; }
+    bool sensor_applied() const { return polar_ptr != ideal_ptr; }
     const Image8& sector() const { return *sector_ptr; }
     /// A coarse preview (TraceControl::preview): never to be taken for the full-quality image.
     bool preview() const { return hits_ptr && hits_ptr->preview; }

@@ -45,9 +45,9 @@ void apply_paper_normals(TraceResult& out, const SceneDesc& s, const std::vector
 
 TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control) {
     const int N = s.sonar.beams, K = s.sampling.azimuth_rays, M = s.sampling.elevation_rays;
-    const double theta = deg2rad(s.sonar.azimuth_fov_deg), phi = deg2rad(s.sonar.elevation_fov_deg);
-    const double da = theta / N / K, de = phi / M;
     const detail::RayFrame frame(s);
+    const double theta = deg2rad(s.sonar.azimuth_fov_deg), phi = frame.elevation_weight.traced_fov_rad();
+    const double da = theta / N / K, de = phi / M;
 
     // Elevation centres and edges are shared by all beams.
     std::vector<Angle> e_mid(static_cast<size_t>(M)), e_edge(static_cast<size_t>(M) + 1);

@@ -20,11 +20,13 @@ struct Cell {
     glm::vec3 point;      ///< first hit [m, world]
     float range_m;        ///< distance from the sonar to the hit [m]
     float cos_incidence;  ///< cos of the angle between the surface normal and the reversed ray
-    float solid_angle_sr; ///< dOmega = cos e de da [sr]
+    float solid_angle_sr; ///< dOmega = cos e de da [sr], times the elevation pattern B_v(e) when there is one
     float range_e_lo_m,
         range_e_hi_m; ///< range on the hit plane at the cell's lower / upper elevation edge [m]
-    float range_a_lo_m, range_a_hi_m; ///< range on the hit plane at the cell's two azimuth edges [m]
-    std::uint32_t material;           ///< kFloorMaterial or object index + 1
+    float range_a_lo_m, range_a_hi_m;         ///< range on the hit plane at the cell's two azimuth edges [m]
+    float azimuth_rad, azimuth_width_rad;     ///< the cell's centre and width in azimuth (sonar frame)
+    float elevation_rad, elevation_width_rad; ///< the cell's centre and width in elevation (sonar frame)
+    std::uint32_t material;                   ///< kFloorMaterial or object index + 1
     std::uint32_t elevation_index;
 };
 

@@ -41,7 +41,9 @@ Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, 
     c.point = glm::vec3(p);
     c.range_m = float(r);
     c.cos_incidence = float(std::min(1.0, std::abs(glm::dot(h.normal, d))));
-    c.solid_angle_sr = float(e.c * (e_hi.rad - e_lo.rad) * (a_hi.rad - a_lo.rad));
+    c.solid_angle_sr = float(e.c * (e_hi.rad - e_lo.rad) * (a_hi.rad - a_lo.rad) * f.elevation_weight(e.rad));
+    c.azimuth_rad = float(a.rad), c.azimuth_width_rad = float(a_hi.rad - a_lo.rad);
+    c.elevation_rad = float(e.rad), c.elevation_width_rad = float(e_hi.rad - e_lo.rad);
     const double re0 = plane_range(f.origin, p, h.normal, f.dir(a, e_lo));
     const double re1 = plane_range(f.origin, p, h.normal, f.dir(a, e_hi));
     const double ra0 = plane_range(f.origin, p, h.normal, f.dir(a_lo, e));

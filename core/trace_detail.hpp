@@ -2,6 +2,7 @@
 #pragma once
 #include "geometry.hpp"
 #include "pose.hpp"
+#include "sensor_patterns.hpp"
 #include "trace.hpp"
 
 #include <cmath>
@@ -24,9 +25,10 @@ struct RayFrame {
     glm::dmat3 R;
     glm::dvec3 origin;
     double t_max; ///< rays reaching past r_max can still spread part of their cell into the window
+    ElevationWeight elevation_weight; ///< the sensor's elevation pattern (1 for the hard aperture)
     explicit RayFrame(const SceneDesc& s)
         : R(rotation_matrix(s.sonar.pose.orientation_deg)), origin(to_glm(s.sonar.pose.position_m)),
-          t_max(s.sonar.range_max_m * 1.05) {}
+          t_max(s.sonar.range_max_m * 1.05), elevation_weight(s) {}
     glm::dvec3 dir(const Angle& a, const Angle& e) const { return R * glm::dvec3(e.c * a.c, e.c * a.s, e.s); }
 };
 
@@ -38,7 +40,7 @@ std::optional<Hit> first_hit(const SceneGeometry& g, const SceneDesc& s, const g
                              const glm::dvec3& d, double t_max);
 
 /// The cell [a_lo, a_hi] x [e_lo, e_hi] around the ray (a, e) that hit `h`: range, incidence, solid angle
-/// and the range footprint on the hit plane at the cell's edges.
+/// (weighted by the elevation pattern) and the range footprint on the hit plane at the cell's edges.
 Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, const Angle& a_lo,
                const Angle& a_hi, const Angle& e_lo, const Angle& e_hi);
 

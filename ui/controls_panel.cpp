@@ -53,6 +53,12 @@ void section_params(Session& session, const std::string& section) {
             help_tooltip(p);
             continue;
         }
+        if (p.type == ParamType::Bool) {
+            bool on = cur.get<bool>();
+            if (ImGui::Checkbox((param_label(p) + "##" + p.key).c_str(), &on)) session.set(p.key, on);
+            help_tooltip(p);
+            continue;
+        }
         double v = 0;
         if (slider(p, cur.get<double>(), v))
             session.set(p.key, p.type == ParamType::Integer ? json(int(v)) : json(v));
@@ -177,6 +183,7 @@ void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui) {
     if (ImGui::CollapsingHeader("Material", ImGuiTreeNodeFlags_DefaultOpen)) material_section(session, ui);
     if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen))
         section_params(session, "Display");
+    if (ImGui::CollapsingHeader("Sensor")) section_params(session, "Sensor");
     if (ImGui::CollapsingHeader("Sampling")) section_params(session, "Sampling");
     if (ImGui::CollapsingHeader("Files")) {
         if (ImGui::Button("Open scene...")) ui.want_open = true;

@@ -22,6 +22,13 @@ SliderRange slider_range(const ValueSpec& spec) {
         {"sampling.azimuth_rays", {1, 16, false}},
         {"sampling.tolerance_db", {0.01, 3, true}},
         {"display.lo_db", {-50, 200, false}},
+        {"sensor.azimuth_beamwidth_deg", {0, 5, false}},
+        {"sensor.taylor_sidelobe_db", {-60, -20, false}},
+        {"sensor.elevation_beamwidth_deg", {0, 40, false}},
+        {"sensor.range_resolution_m", {0, 0.2, false}},
+        {"sensor.speckle_k_shape", {0.3, 50, true}},
+        {"sensor.seed", {0, 1000, false}},
+        {"sensor.gain_db", {-40, 40, false}},
         {"display.hi_db", {-50, 250, false}},
         {"nu_db", {-90, 0, false}},
         {"q", {0, 20, false}},
@@ -42,6 +49,7 @@ std::string param_section(const ParamSpec& spec) {
     if (head == "water") return "Water";
     if (head == "sampling") return "Sampling";
     if (head == "display") return "Display";
+    if (head == "sensor") return "Sensor";
     return head;
 }
 

@@ -1,0 +1,36 @@
+// Device presets: assets/devices/NAME.json, embedded in the library at build time (embed_devices.cmake), so
+// the executable, the tests and the Python module find them wherever they run.
+#pragma once
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace sonarsim {
+
+/// One value of a preset: a parameter-table key's value, where it comes from and whether it is sure.
+struct DeviceValue {
+    std::string key; ///< a key of the parameter table, e.g. "sonar.beams" or "sensor.azimuth_window"
+    nlohmann::json value;
+    bool sure = false;  ///< stated or derived in a cited source (SENSORS.md "S"/"D"), not a plausible default
+    std::string source; ///< e.g. "SENSORS.md 1.1 [ARIS-CORE]"
+};
+
+struct DevicePreset {
+    std::string name;                ///< file name without .json, the value of sonar.device
+    std::string title;               ///< e.g. "Sound Metrics ARIS Explorer 3000, high frequency"
+    std::string file;                ///< "assets/devices/NAME.json", for error messages
+    std::vector<DeviceValue> values; ///< in file order
+};
+
+/// All presets, sorted by name. Parsed once; a malformed embedded file throws std::logic_error (a build
+/// defect, caught by the tests), not an InputError.
+const std::vector<DevicePreset>& device_presets();
+
+/// The preset called `name`, or nullptr.
+const DevicePreset* find_device(const std::string& name);
+
+/// "none" followed by every preset's name: the values sonar.device allows.
+std::vector<std::string> device_choices();
+
+} // namespace sonarsim
