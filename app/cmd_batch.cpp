@@ -36,19 +36,10 @@ std::string progress_text(const BatchProgress& p) {
     return b;
 }
 
-Trajectory trajectory_from_options(const BatchCliOptions& o, const SceneDesc& scene) {
-    const int given = int(!o.trajectory.empty()) + int(!o.circle.empty()) + int(!o.line.empty());
-    if (given != 1)
-        throw InputError("--trajectory", "",
-                         "give exactly one of --trajectory FILE, --circle ... or --line ...");
-    if (!o.trajectory.empty()) return load_trajectory_csv(o.trajectory);
-    if (!o.circle.empty()) return circle_trajectory(o.circle, o.rate_hz, "--circle");
-    return line_trajectory(o.line, scene.sonar.pose.orientation_deg, o.rate_hz, "--line");
-}
-
 int run_batch_command(const BatchCliOptions& o) {
     const SceneDesc scene = load_scene_from_options(o.scene);
-    const Trajectory trajectory = trajectory_from_options(o, scene);
+    const Trajectory trajectory =
+        make_trajectory(o.trajectory, o.circle, o.line, o.rate_hz, scene.sonar.pose.orientation_deg);
     BatchOptions options;
     if (!o.shard.empty()) options.frames = shard_frames(o.shard, trajectory.size(), "--shard");
     options.resume = o.resume;

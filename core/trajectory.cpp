@@ -143,6 +143,18 @@ Trajectory line_trajectory(const std::string& spec, const Vec3d& orientation_deg
     return out;
 }
 
+Trajectory make_trajectory(const std::string& csv_path, const std::string& circle, const std::string& line,
+                           double rate_hz, const Vec3d& orientation_deg) {
+    if (int(!csv_path.empty()) + int(!circle.empty()) + int(!line.empty()) != 1)
+        throw InputError(
+            "--trajectory", "",
+            "give exactly one of --trajectory FILE, --circle cx,cy,cz,radius_m,height_m,frames or "
+            "--line x0,y0,z0,x1,y1,z1,frames");
+    if (!csv_path.empty()) return load_trajectory_csv(csv_path);
+    if (!circle.empty()) return circle_trajectory(circle, rate_hz, "--circle");
+    return line_trajectory(line, orientation_deg, rate_hz, "--line");
+}
+
 std::string trajectory_to_csv(const Trajectory& trajectory) {
     std::string text = std::string(kTrajectoryHeader) + "\n";
     char row[256];

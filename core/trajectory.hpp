@@ -38,6 +38,11 @@ Trajectory circle_trajectory(const std::string& spec, double rate_hz, const std:
 Trajectory line_trajectory(const std::string& spec, const Vec3d& orientation_deg, double rate_hz,
                            const std::string& origin);
 
+/// Exactly one of a CSV file, a --circle spec or a --line spec (the others empty), as `batch` and the
+/// Python module take them; `orientation_deg` is the line's. Throws InputError unless exactly one is given.
+Trajectory make_trajectory(const std::string& csv_path, const std::string& circle, const std::string& line,
+                           double rate_hz, const Vec3d& orientation_deg);
+
 /// The trajectory as CSV text (kTrajectoryHeader, then one row per frame); parses back to the same poses.
 std::string trajectory_to_csv(const Trajectory& trajectory);
 

@@ -8,6 +8,8 @@ Simulator (the geometry built once per task), and the index is rebuilt once at t
     PYTHONPATH=build/python /usr/bin/python3 examples/dask_batch.py --scene S --trajectory T.csv --out DIR \\
         --workers 4 [--scheduler tcp://host:8786] [--resume]
 
+(or --circle / --line instead of --trajectory, as `sonarsim batch` takes them).
+
 Without --scheduler it starts a distributed.LocalCluster with --workers worker processes (one thread each:
 a render already uses every core of its worker through TBB). The workers must see DIR (a shared file system
 on a real cluster) and import sonarsim (the same PYTHONPATH).
@@ -26,7 +28,10 @@ def render_chunk(out, frames, resume):
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--scene", help="scene file (default: the built-in scene)")
-    p.add_argument("--trajectory", required=True, help="CSV: t,x,y,z,roll_deg,pitch_deg,yaw_deg")
+    p.add_argument("--trajectory", default="", help="CSV: t,x,y,z,roll_deg,pitch_deg,yaw_deg")
+    p.add_argument("--circle", default="", help="cx,cy,cz,radius_m,height_m,frames (as sonarsim batch)")
+    p.add_argument("--line", default="", help="x0,y0,z0,x1,y1,z1,frames (as sonarsim batch)")
+    p.add_argument("--rate", type=float, default=10.0, help="frames per second of --circle and --line")
     p.add_argument("--out", required=True, help="dataset directory")
     p.add_argument("--workers", type=int, default=2, help="worker processes of the local cluster")
     p.add_argument("--scheduler", help="address of a running Dask scheduler instead of a local cluster")
@@ -38,7 +43,8 @@ def main(argv=None):
     from distributed import Client, LocalCluster, as_completed
 
     try:
-        n = sonarsim.prepare_dataset(a.out, a.scene, a.trajectory)
+        n = sonarsim.prepare_dataset(a.out, a.scene, trajectory=a.trajectory, circle=a.circle, line=a.line,
+                                     rate_hz=a.rate)
     except ValueError as e:  # bad input: one line, exit status 2, as the command line tool
         print(f"dask_batch: error: {e}", file=sys.stderr)
         return 2

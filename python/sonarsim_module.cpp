@@ -146,16 +146,20 @@ PYBIND11_MODULE(sonarsim, m) {
 
     m.def(
         "prepare_dataset",
-        [](const std::string& out, const py::object& scene, const std::string& trajectory_csv) {
+        [](const std::string& out, const py::object& scene, const std::string& trajectory,
+           const std::string& circle, const std::string& line, double rate_hz) {
             SceneDesc s = scene_from(scene);
             validate_scene(s, s.source_file);
-            const Trajectory t = load_trajectory_csv(trajectory_csv);
+            const Trajectory t =
+                make_trajectory(trajectory, circle, line, rate_hz, s.sonar.pose.orientation_deg);
             prepare_dataset(out, s, t);
             return t.size();
         },
-        py::arg("out"), py::arg("scene"), py::arg("trajectory"),
-        "start (or check) the dataset directory `out` as `sonarsim batch` does; returns its number of "
-        "frames");
+        py::arg("out"), py::arg("scene") = py::none(), py::arg("trajectory") = "", py::arg("circle") = "",
+        py::arg("line") = "", py::arg("rate_hz") = 10.0,
+        "start (or check) the dataset directory `out` as `sonarsim batch` does, with the poses of exactly "
+        "one of a trajectory CSV file, a circle or a line spec (as batch's --circle, --line); returns its "
+        "number of frames");
     m.def(
         "render_frames",
         [](const std::string& out, const std::vector<size_t>& frames, bool resume) {

@@ -72,3 +72,14 @@ TEST_CASE("a line runs from end to end with a fixed orientation", "[trajectory]"
     CHECK_THROWS_WITH(circle_trajectory("0,0,0,1,1", 10, "--circle"),
                       "--circle: \"0,0,0,1,1\": expected cx,cy,cz,radius_m,height_m,frames");
 }
+
+TEST_CASE("a trajectory comes from exactly one of a file or a circle or a line", "[trajectory]") {
+    CHECK(make_trajectory("", "0,0,0,1,1,3", "", 10, {}).size() == 3);
+    CHECK(make_trajectory("", "", "0,0,1,4,2,1,4", 10, {0, 10, 20})[3].pose.orientation_deg ==
+          Vec3d{0, 10, 20});
+    CHECK_THROWS_WITH(make_trajectory("", "", "", 10, {}), Catch::Contains("give exactly one of"));
+    CHECK_THROWS_WITH(make_trajectory("t.csv", "0,0,0,1,1,3", "", 10, {}),
+                      Catch::Contains("give exactly one of"));
+    CHECK_THROWS_WITH(make_trajectory("no/such.csv", "", "", 10, {}),
+                      "no/such.csv: trajectory file cannot be read");
+}
