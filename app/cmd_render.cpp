@@ -60,9 +60,8 @@ int run_render(const RenderOptions& o) {
     const auto f = sim.render();
     write_render_files(o.out, scene, *f, std::move(extra));
     if (!o.view3d.empty()) std::cout << "wrote " << o.view3d << " (3D view)\n";
-    std::cout << "wrote " << o.out << ".png (sector image " << f->sector().width << "x" << f->sector().height
-              << "), " << o.out << "_polar.png, " << o.out << ".npy (L_EN dB, " << f->polar().bins << " x "
-              << f->polar().beams << "), " << o.out << ".json\n"
+    std::cout << "wrote " << render_outputs_text(o.out) << "; image " << f->polar().bins << " x "
+              << f->polar().beams << ", sector " << f->sector().width << "x" << f->sector().height << "\n"
               << "rays " << f->hits().rays_traced << ", trace " << f->trace_ms << " ms, shade " << f->shade_ms
               << " ms, image " << f->image_ms << " ms\n";
     return 0;
@@ -74,8 +73,7 @@ void register_render(CLI::App& app, std::function<int()>& run) {
     auto o = std::make_shared<RenderOptions>();
     CLI::App* cmd = app.add_subcommand("render", "Render one sonar image headless (PNG, .npy, .json)");
     add_scene_options(*cmd, o->scene);
-    cmd->add_option("--out", o->out,
-                    "Output prefix: writes PREFIX.png, PREFIX_polar.png, PREFIX.npy, PREFIX.json");
+    cmd->add_option("--out", o->out, "Output prefix: writes " + render_outputs_text("PREFIX"));
     cmd->add_option(
         "--view3d", o->view3d,
         "Also draw the 3D view (scene, sonar, field of view) into this PNG, with no display (EGL)");

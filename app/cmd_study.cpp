@@ -4,6 +4,7 @@
 #include "commands.hpp"
 #include "load.hpp"
 #include "plot.hpp"
+#include "status_line.hpp"
 
 #include "core/output.hpp"
 #include "core/study.hpp"
@@ -30,21 +31,6 @@ std::string fmt(const char* f, double v) {
     std::snprintf(b, sizeof b, f, v);
     return b;
 }
-
-/// One overwritten status line on stderr, only when stderr is a terminal (logs and pipes stay clean).
-class StatusLine {
-  public:
-    StatusLine() : tty_(isatty(fileno(stderr)) != 0) {}
-    void show(const std::string& text) {
-        if (!tty_) return;
-        std::fprintf(stderr, "\r\033[K%s", text.c_str());
-        std::fflush(stderr);
-    }
-    void clear() { show(""); }
-
-  private:
-    bool tty_;
-};
 
 /// Peak resident set size of this process so far [MB].
 double peak_rss_mb() {

@@ -153,16 +153,4 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
     return j;
 }
 
-void write_render_files(const std::string& prefix, const SceneDesc& scene, const Frame& f,
-                        std::vector<std::pair<std::string, std::vector<std::uint8_t>>> extra) {
-    std::vector<std::pair<std::string, Bytes>> files = {
-        {prefix + ".png", encode_png(f.sector())},
-        {prefix + "_polar.png", encode_png(polar_gray_image(f.polar(), f.display))},
-        {prefix + ".npy", encode_npy(f.polar())},
-        {prefix + ".json", to_bytes(frame_metadata(scene, f).dump(2) + "\n")}};
-    if (f.sensor_applied()) files.push_back({prefix + "_ideal.npy", encode_npy(f.ideal())});
-    for (auto& e : extra) files.push_back(std::move(e));
-    write_files_atomically(files);
-}
-
 } // namespace sonarsim

@@ -71,9 +71,4 @@ class Simulator {
 /// Metadata of a rendered frame: every effective parameter plus derived values and timings.
 json frame_metadata(const SceneDesc& scene, const Frame& frame);
 
-/// Writes PREFIX.png (sector), PREFIX_polar.png, PREFIX.npy and PREFIX.json atomically (what `render`
-/// writes). `extra` files (e.g. a 3D view PNG or a scene file) are written in the same atomic step.
-void write_render_files(const std::string& prefix, const SceneDesc& scene, const Frame& frame,
-                        std::vector<std::pair<std::string, std::vector<std::uint8_t>>> extra = {});
-
 } // namespace sonarsim

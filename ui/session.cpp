@@ -185,9 +185,9 @@ bool Session::snapshot(const std::string& prefix, const Bytes& view3d_png) {
     }
     try {
         const auto paths = write_snapshot(prefix, shown_->scene, *shown_->frame, view3d_png);
-        status_ = "snapshot: " + prefix + ".{png,npy,json}, _polar.png, _3d.png, _scene.json";
+        status_ = "snapshot:";
+        for (auto& p : paths) status_ += " " + std::filesystem::path(p).filename().string();
         error_.clear();
-        (void)paths;
         return true;
     } catch (const std::exception& e) {
         error_ = std::string("snapshot failed: ") + e.what();

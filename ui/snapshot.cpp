@@ -30,7 +30,7 @@ std::vector<std::string> write_snapshot(const std::string& prefix, const SceneDe
     std::vector<std::pair<std::string, Bytes>> extra;
     if (!view3d_png.empty()) extra.emplace_back(prefix + "_3d.png", view3d_png);
     extra.emplace_back(prefix + "_scene.json", to_bytes(snapshot_scene_text(scene)));
-    std::vector<std::string> paths{prefix + ".png", prefix + "_polar.png", prefix + ".npy", prefix + ".json"};
+    std::vector<std::string> paths = render_output_paths(prefix, scene);
     for (auto& e : extra) paths.push_back(e.first);
     write_render_files(prefix, scene, frame, std::move(extra));
     return paths;

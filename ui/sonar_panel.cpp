@@ -55,7 +55,7 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
     const Frame& f = *shown->frame;
     const SonarParams& s = shown->scene.sonar;
     if (uploaded_count_ != session.shown_count() || uploaded_polar_ != polar) {
-        texture_.upload(polar ? polar_color_image(f.polar(), shown->scene.display) : f.sector());
+        texture_.upload(polar ? polar_color_image(f.polar(), f.display) : f.sector());
         uploaded_count_ = session.shown_count(), uploaded_polar_ = polar;
     }
     const double aspect = double(f.sector().width) / f.sector().height;
@@ -126,7 +126,7 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
         ImGui::SetCursorScreenPos(ImVec2(area.x + 8, area.y + 34));
         ImGui::TextDisabled("hover the image: its elevation arc shows in 3D");
     }
-    draw_colorbar(L.colorbar, shown->scene.display);
+    draw_colorbar(L.colorbar, f.display); // display.auto: the range the frame was shown with
     draw_ascan(L.ascan, *shown);
     ImGui::End();
 }
@@ -238,7 +238,7 @@ void SonarPanel::draw_colorbar(const Rect& r, const DisplayParams& d) {
 
 void SonarPanel::draw_ascan(const Rect& r, const RenderResult& shown) {
     const SonarParams& s = shown.scene.sonar;
-    const DisplayParams& d = shown.scene.display;
+    const DisplayParams& d = shown.frame->display;
     const PolarImage& img = shown.frame->polar();
     if (ascan_beam_ < 0 || ascan_beam_ >= img.beams) ascan_beam_ = strongest_beam(img);
     const std::vector<float> lv = beam_levels(img, ascan_beam_);

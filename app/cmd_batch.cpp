@@ -1,0 +1,110 @@
+// `sonarsim batch`: one frame per pose of a trajectory (a CSV file, a circle or a line) into a dataset
+// directory, optionally one shard of it, resumable; then, on request, the ARIS and MCAP files of the dataset.
+#include "commands.hpp"
+#include "load.hpp"
+#include "status_line.hpp"
+
+#include "core/aris.hpp"
+#include "core/batch.hpp"
+#include "core/ros2_sonar.hpp"
+#include "core/errors.hpp"
+
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+namespace sonarsim::app {
+namespace {
+
+struct BatchCliOptions {
+    SceneOptions scene;
+    std::string trajectory, circle, line, out, shard, aris, mcap;
+    std::string mcap_dtype = "uint8";
+    double rate_hz = 10.0;
+    bool resume = false;
+};
+
+std::string progress_text(const BatchProgress& p) {
+    const int width = 30;
+    const int filled = int(double(width) * double(p.done) / double(std::max<size_t>(p.total, 1)));
+    const double rate = p.elapsed_s > 0 ? double(p.rendered) / p.elapsed_s : 0;
+    const double eta = rate > 0 ? double(p.total - p.done) / rate : 0;
+    char b[160];
+    std::snprintf(b, sizeof b, "[%s%s] %zu/%zu frames  %.2f frames/s  ETA %d:%02d",
+                  std::string(size_t(filled), '#').c_str(), std::string(size_t(width - filled), '-').c_str(),
+                  p.done, p.total, rate, int(eta) / 60, int(eta) % 60);
+    return b;
+}
+
+int run_batch_command(const BatchCliOptions& o) {
+    const SceneDesc scene = load_scene_from_options(o.scene);
+    const Trajectory trajectory =
+        make_trajectory(o.trajectory, o.circle, o.line, o.rate_hz, scene.sonar.pose.orientation_deg);
+    BatchOptions options;
+    if (!o.shard.empty()) options.frames = shard_frames(o.shard, trajectory.size(), "--shard");
+    options.resume = o.resume;
+    StatusLine status;
+    options.progress = [&](const BatchProgress& p) { status.show(progress_text(p)); };
+    if (!o.aris.empty()) check_aris_beams(scene, o.scene.scene_file.empty() ? "--aris" : o.scene.scene_file);
+    prepare_dataset(o.out, scene, trajectory);
+    const BatchSummary r = run_batch(o.out, options);
+    status.clear();
+    std::printf(
+        "rendered %zu frames (%zu already complete) in %.1f s (%.2f frames/s) into %s; index.csv lists "
+        "%zu of %zu frames\n",
+        r.rendered, r.skipped, r.elapsed_s, r.elapsed_s > 0 ? double(r.rendered) / r.elapsed_s : 0.0,
+        o.out.c_str(), r.indexed, trajectory.size());
+    if (o.aris.empty() && o.mcap.empty()) return 0;
+    SceneDesc stored; // the files describe the dataset as rendered
+    Trajectory poses;
+    load_dataset(o.out, stored, poses);
+    if (!o.aris.empty()) {
+        write_aris(o.aris, stored, poses, dataset_images(o.out, poses.size(), "--aris"), "--aris");
+        std::printf("wrote %s (ARIS recording, %zu frames)\n", o.aris.c_str(), poses.size());
+    }
+    if (!o.mcap.empty()) {
+        const auto type = o.mcap_dtype == "float32" ? SonarDataType::Float32 : SonarDataType::Uint8;
+        write_sonar_mcap(o.mcap, stored, poses, dataset_images(o.out, poses.size(), "--mcap"), type);
+        std::printf("wrote %s (ROS 2 bag in MCAP, %zu ProjectedSonarImage messages)\n", o.mcap.c_str(),
+                    poses.size());
+    }
+    return 0;
+}
+
+} // namespace
+
+void register_batch(CLI::App& app, std::function<int()>& run) {
+    auto o = std::make_shared<BatchCliOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "batch",
+        "Render one frame per pose of a trajectory into a dataset: DIR/frames/NNNNNN.*, DIR/index.csv");
+    add_scene_options(*cmd, o->scene);
+    cmd->add_option(
+        "--trajectory", o->trajectory,
+        "CSV file with the header t,x,y,z,roll_deg,pitch_deg,yaw_deg (s, m, deg), one frame per row");
+    cmd->add_option("--circle", o->circle,
+                    "cx,cy,cz,radius_m,height_m,frames: around the vertical through (cx,cy) at cz+height_m, "
+                    "looking at (cx,cy,cz)");
+    cmd->add_option("--line", o->line,
+                    "x0,y0,z0,x1,y1,z1,frames: from one point to the other, ends included, with the scene's "
+                    "orientation");
+    cmd->add_option("--rate", o->rate_hz, "Frames per second of --circle and --line (sets t)")
+        ->capture_default_str();
+    cmd->add_option("--out", o->out, "Dataset directory (created)")->required();
+    cmd->add_option("--shard", o->shard,
+                    "i/n: render only frames i, i+n, i+2n, ... (e.g. a Slurm array task)");
+    cmd->add_flag("--resume", o->resume, "Skip frames that are already complete");
+    cmd->add_option(
+        "--aris", o->aris,
+        "Also write the dataset as an ARIS recording (.aris; 48, 64, 96 or 128 beams); needs every frame");
+    cmd->add_option(
+        "--mcap", o->mcap,
+        "Also write the dataset as a ROS 2 bag (MCAP) of marine_acoustic_msgs/ProjectedSonarImage");
+    cmd->add_option("--mcap-dtype", o->mcap_dtype,
+                    "Data of the MCAP messages: uint8 (as ARIS) or float32 (L_EN dB)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"uint8", "float32"}));
+    cmd->callback([o, &run] { run = [o] { return run_batch_command(*o); }; });
+}
+
+} // namespace sonarsim::app

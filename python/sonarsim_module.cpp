@@ -1,0 +1,177 @@
+// The `sonarsim` Python module (pybind11): a Simulator, its frames as NumPy arrays that share the frame's
+// memory, one-off renders, and the dataset functions the Dask example distributes.
+#include "core/batch.hpp"
+#include "core/errors.hpp"
+#include "core/output.hpp"
+#include "core/params.hpp"
+#include "core/scene_io.hpp"
+#include "core/simulator.hpp"
+
+#include <filesystem>
+#include <memory>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+namespace py = pybind11;
+using namespace sonarsim;
+
+namespace {
+
+json to_json(const py::handle& value) {
+    return json::parse(py::module_::import("json").attr("dumps")(value).cast<std::string>());
+}
+
+py::object to_python(const json& j) {
+    return py::module_::import("json").attr("loads")(j.dump());
+}
+
+/// A scene from None (the built-in scene), a scene file path or a dict with the scene file's keys.
+SceneDesc scene_from(const py::object& scene) {
+    if (scene.is_none()) return default_scene();
+    if (py::isinstance<py::str>(scene) || py::hasattr(scene, "__fspath__"))
+        return load_scene(py::str(scene).cast<std::string>());
+    if (py::isinstance<py::dict>(scene))
+        return parse_scene(to_json(scene).dump(), "<dict>", std::filesystem::current_path().string());
+    throw InputError("scene", "", "expected None, a scene file path or a dict of scene file keys");
+}
+
+Pose pose_from(const py::object& pose) {
+    const auto v = pose.cast<std::vector<double>>();
+    if (v.size() != 6) throw InputError("pose", "", "expected [x, y, z, roll, pitch, yaw] (m, deg)");
+    return {{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+}
+
+/// A rendered frame; its arrays view the frame's own memory, which lives as long as any of them.
+struct PyFrame {
+    std::shared_ptr<const Frame> frame;
+    SceneDesc scene;
+
+    py::array level_db() const {
+        const PolarImage& p = frame->polar();
+        auto owner = new std::shared_ptr<const Frame>(frame);
+        py::capsule base(owner, [](void* o) { delete static_cast<std::shared_ptr<const Frame>*>(o); });
+        py::array a(py::dtype::of<float>(), {p.bins, p.beams}, p.level_db.data(), base);
+        py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+        return a;
+    }
+    py::array sector() const {
+        const Image8& img = frame->sector();
+        auto owner = new std::shared_ptr<const Frame>(frame);
+        py::capsule base(owner, [](void* o) { delete static_cast<std::shared_ptr<const Frame>*>(o); });
+        py::array a(py::dtype::of<std::uint8_t>(), {img.height, img.width, img.channels}, img.pixels.data(),
+                    base);
+        py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+        return a;
+    }
+    py::dict metadata() const { return to_python(frame_metadata(scene, *frame)); }
+};
+
+class PySimulator {
+  public:
+    explicit PySimulator(const py::object& scene) : scene_(scene_from(scene)) {
+        validate_scene(scene_, scene_.source_file);
+        sim_ = std::make_unique<Simulator>(scene_);
+    }
+    void set(const std::string& key, const py::object& value) {
+        SceneDesc s = scene_;
+        apply_setting(s, key, to_json(value), "set");
+        update(s);
+    }
+    void set_pose(const py::object& pose) {
+        SceneDesc s = scene_;
+        s.sonar.pose = pose_from(pose);
+        update(s);
+    }
+    PyFrame render(bool ground_truth) {
+        (void)ground_truth; // no per-pixel ground truth in core yet: frame.ground_truth stays empty
+        std::shared_ptr<const Frame> f;
+        {
+            py::gil_scoped_release release;
+            f = sim_->render();
+        }
+        return {f, scene_};
+    }
+    py::dict scene() const { return to_python(scene_to_json(scene_)); }
+
+  private:
+    void update(const SceneDesc& s) {
+        validate_scene(s, "set");
+        sim_->set_scene(s);
+        scene_ = s;
+    }
+    SceneDesc scene_;
+    std::unique_ptr<Simulator> sim_;
+};
+
+} // namespace
+
+PYBIND11_MODULE(sonarsim, m) {
+    m.doc() = "sonarsim: simulated forward-looking imaging sonar (acoustic camera) images";
+    py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+
+    py::class_<PyFrame>(m, "Frame")
+        .def_property_readonly("level_db", &PyFrame::level_db,
+                               "L_EN [dB], float32 (range_bins, beams): row 0 nearest, column 0 port-most; "
+                               "-inf where nothing echoes. Read-only, shares the frame's memory")
+        .def_property_readonly("sector", &PyFrame::sector, "the sector (fan) image, uint8 (H, W, 3)")
+        .def_property_readonly(
+            "ground_truth", [](const PyFrame&) { return py::dict(); },
+            "per-pixel ground truth arrays by name (empty until core computes them)")
+        .def_property_readonly("metadata", &PyFrame::metadata, "the metadata `render` writes as JSON");
+
+    py::class_<PySimulator>(m, "Simulator")
+        .def(py::init<const py::object&>(), py::arg("scene") = py::none(),
+             "scene: a scene file path, a dict with the scene file's keys, or None for the built-in scene")
+        .def("set", &PySimulator::set, py::arg("key"), py::arg("value"),
+             "set one parameter, e.g. sim.set('sonar.beams', 64) or sim.set('objects.0.position', [1, 2, 0])")
+        .def("set_pose", &PySimulator::set_pose, py::arg("pose"), "[x, y, z, roll, pitch, yaw] in m and deg")
+        .def("render", &PySimulator::render, py::arg("ground_truth") = false,
+             "render (the GIL is released meanwhile); recomputes only what changed")
+        .def_property_readonly("scene", &PySimulator::scene, "every effective parameter, as a scene file");
+
+    m.def(
+        "render",
+        [](const py::object& scene, const py::object& pose, const py::object& set, bool ground_truth) {
+            PySimulator sim(scene);
+            if (!set.is_none())
+                for (auto item : set.cast<py::dict>())
+                    sim.set(py::str(item.first), py::reinterpret_borrow<py::object>(item.second));
+            if (!pose.is_none()) sim.set_pose(pose);
+            return sim.render(ground_truth);
+        },
+        py::arg("scene") = py::none(), py::arg("pose") = py::none(), py::arg("set") = py::none(),
+        py::arg("ground_truth") = false,
+        "one frame: sonarsim.render(scene, pose=[...], set={'sonar.beams': 64})");
+
+    m.def(
+        "prepare_dataset",
+        [](const std::string& out, const py::object& scene, const std::string& trajectory,
+           const std::string& circle, const std::string& line, double rate_hz) {
+            SceneDesc s = scene_from(scene);
+            validate_scene(s, s.source_file);
+            const Trajectory t =
+                make_trajectory(trajectory, circle, line, rate_hz, s.sonar.pose.orientation_deg);
+            prepare_dataset(out, s, t);
+            return t.size();
+        },
+        py::arg("out"), py::arg("scene") = py::none(), py::arg("trajectory") = "", py::arg("circle") = "",
+        py::arg("line") = "", py::arg("rate_hz") = 10.0,
+        "start (or check) the dataset directory `out` as `sonarsim batch` does, with the poses of exactly "
+        "one of a trajectory CSV file, a circle or a line spec (as batch's --circle, --line); returns its "
+        "number of frames");
+    m.def(
+        "render_frames",
+        [](const std::string& out, const std::vector<size_t>& frames, bool resume) {
+            BatchOptions o;
+            o.frames = frames;
+            o.resume = resume;
+            o.index = false; // once, by the caller, after all tasks
+            py::gil_scoped_release release;
+            return run_batch(out, o).rendered;
+        },
+        py::arg("out"), py::arg("frames"), py::arg("resume") = false,
+        "render these frames of a prepared dataset (one Simulator for all); returns how many were rendered");
+    m.def("write_index", py::overload_cast<const std::string&>(&write_index), py::arg("out"),
+          "rebuild out/index.csv; returns the frames listed");
+}

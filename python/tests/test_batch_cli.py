@@ -1,0 +1,74 @@
+"""`sonarsim batch` from the command line: bad input, a real kill then --resume, ARIS and MCAP output."""
+import json
+import os
+import signal
+import subprocess
+import time
+
+import numpy as np
+
+from conftest import small_scene_dict
+
+
+def write_scene(d, beams=48, rays=41):
+    scene = small_scene_dict()
+    scene["sonar"]["beams"] = beams
+    scene["sampling"]["elevation_rays"] = rays
+    p = d / "scene.json"
+    p.write_text(json.dumps(scene))
+    return p
+
+
+def test_bad_trajectory_is_one_line_naming_file_line_and_column(sonarsim_exe, scratch):
+    t = scratch / "t.csv"
+    t.write_text("t,x,y,z,roll_deg,pitch_deg,yaw_deg\n0,0,0,0,0,0,0\n0.1,0,0,0,0,oops,0\n")
+    r = subprocess.run([sonarsim_exe, "batch", "--trajectory", str(t), "--out", str(scratch / "o")],
+                       capture_output=True, text=True)
+    assert r.returncode == 2
+    assert r.stderr == f"sonarsim: error: {t}:3: pitch_deg: \"oops\" is not a finite number\n"
+    assert not (scratch / "o").exists()
+
+
+def test_aris_needs_an_aris_beam_count(sonarsim_exe, scratch):
+    scene = write_scene(scratch, beams=50)
+    r = subprocess.run([sonarsim_exe, "batch", "--scene", str(scene), "--line", "0.3,2.4,0.9,0.4,2.4,0.9,2",
+                        "--out", str(scratch / "o"), "--aris", str(scratch / "x.aris")],
+                       capture_output=True, text=True)
+    assert r.returncode == 2
+    assert "sonar.beams: an ARIS file holds 48, 64, 96 or 128 beams, got 50" in r.stderr
+    assert len(r.stderr.splitlines()) == 1
+    assert not (scratch / "o").exists()
+
+
+def test_resume_after_a_kill_completes_the_set(sonarsim_exe, scratch):
+    scene = write_scene(scratch, rays=4001)  # slow enough frames to be killed mid-run
+    out = scratch / "o"
+    args = [sonarsim_exe, "batch", "--scene", str(scene), "--circle", "1.5,1.5,0,1.2,0.8,40", "--out", str(out)]
+    proc = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and proc.poll() is None:
+        if (out / "frames").exists() and len(list((out / "frames").glob("*.json"))) >= 3:
+            break
+        time.sleep(0.01)
+    assert proc.poll() is None, "the run ended before it could be killed"
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    done_before = len(list((out / "frames").glob("*.npy")))
+    assert 3 <= done_before < 40
+    assert not (out / "index.csv").exists()  # the killed run never got there
+
+    r = subprocess.run(args + ["--resume", "--aris", str(scratch / "o.aris"), "--mcap", str(scratch / "o.mcap")],
+                       capture_output=True, text=True, check=True)
+    assert "index.csv lists 40 of 40 frames" in r.stdout
+    rendered = int(r.stdout.split()[1])
+    assert 40 - done_before <= rendered <= 40 - done_before + 1  # at most the frame in flight again
+    rows = (out / "index.csv").read_text().splitlines()
+    assert len(rows) == 41
+    assert [int(row.split(",")[0]) for row in rows[1:]] == list(range(40))
+    for k in range(40):
+        level = np.load(out / "frames" / f"{k:06d}.npy")
+        assert level.shape == (96, 48)
+        assert np.isfinite(level).sum() > 100
+    # The ARIS file: 1024 + 40 frames of (1024 + 48 x 96) bytes.
+    assert (scratch / "o.aris").stat().st_size == 1024 + 40 * (1024 + 48 * 96)
+    assert (scratch / "o.mcap").read_bytes()[:8] == b"\x89MCAP0\r\n"

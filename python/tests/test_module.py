@@ -1,0 +1,102 @@
+"""The sonarsim Python module against `sonarsim render`'s files."""
+import json
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import sonarsim
+from conftest import SMALL, small_scene_dict
+
+
+def read_npy(path):
+    return np.load(path)
+
+
+def test_level_db_equals_render_npy(sonarsim_exe, scratch):
+    sets = [f"--set={k}={v}" for k, v in SMALL.items()]
+    subprocess.run([sonarsim_exe, "render", *sets, "--out", str(scratch / "img")], check=True,
+                   stdout=subprocess.DEVNULL)
+    frame = sonarsim.render(set=SMALL)
+    level = frame.level_db
+    assert level.dtype == np.float32
+    assert level.shape == (96, 48)
+    expected = read_npy(scratch / "img.npy")
+    assert np.array_equal(level, expected)  # -inf where nothing echoes, in both
+    assert np.isfinite(level).sum() > 100
+    meta = json.loads((scratch / "img.json").read_text())
+    assert frame.metadata["range_bin_edges_m"] == meta["range_bin_edges_m"]
+    assert frame.metadata["sonar"] == meta["sonar"]
+    sector = frame.sector
+    assert sector.dtype == np.uint8 and sector.ndim == 3 and sector.shape[2] == 3
+    assert sector.max() > 0
+    assert frame.ground_truth == {}
+
+
+def test_arrays_share_the_frame_memory_and_outlive_it():
+    sim = sonarsim.Simulator(small_scene_dict())
+    frame = sim.render()
+    a = frame.level_db
+    b = frame.level_db
+    assert a.__array_interface__["data"][0] == b.__array_interface__["data"][0]  # no copy
+    assert not a.flags.writeable
+    del frame
+    sim.set_pose([0.3, 2.4, 0.9, 0, 30, -40])
+    other = sim.render().level_db
+    assert np.isfinite(a).sum() > 100 and np.isfinite(other).sum() > 100
+    assert not np.array_equal(a, other)  # the first frame's memory is still alive and its own
+    assert a.shape == (96, 48)
+
+
+def test_set_and_pose_change_the_image():
+    sim = sonarsim.Simulator(small_scene_dict())
+    sim.set("sonar.beams", 64)
+    assert sim.render().level_db.shape == (96, 64)
+    sim.set("display.lo_db", 70)
+    assert sim.scene["display"]["lo_db"] == 70
+    sim.set_pose([0.34, 2.42, 0.90, 0, 29.79, -38.96])
+    assert sim.scene["sonar"]["orientation_deg"] == [0, 29.79, -38.96]
+
+
+def test_scene_file_path(source_dir):
+    sim = sonarsim.Simulator(str(source_dir / "assets/scenes/fig9_pose2.json"))
+    assert sim.scene["sonar"]["beams"] == 128
+
+
+def test_bad_input_raises_value_error_with_the_one_line_message(source_dir):
+    sim = sonarsim.Simulator()
+    with pytest.raises(ValueError, match=r"^set: sonar.beams: value 0 is out of range; allowed: an integer in \[1, 4096\]$"):
+        sim.set("sonar.beams", 0)
+    with pytest.raises(ValueError, match="unknown key"):
+        sim.set("sonar.bems", 12)
+    with pytest.raises(ValueError, match="<dict>: sonra: unknown key"):
+        sonarsim.Simulator({"sonra": {}})
+    with pytest.raises(ValueError, match="scene file not found"):
+        sonarsim.Simulator("no_such_scene.json")
+    with pytest.raises(ValueError, match="expected"):
+        sim.set_pose([1, 2, 3])
+    assert sim.scene["sonar"]["beams"] == 128  # unchanged by the failed calls
+
+
+def test_render_releases_the_gil():
+    sim = sonarsim.Simulator(small_scene_dict())
+    sim.set("sampling.elevation_rays", 40001)  # about a second of rendering
+    ticks = []
+    done = threading.Event()
+
+    def count():
+        while not done.is_set():
+            ticks.append(1)
+            done.wait(0.001)
+
+    t = threading.Thread(target=count)
+    t.start()
+    t0 = time.monotonic()
+    sim.render()
+    seconds = time.monotonic() - t0
+    done.set()
+    t.join()
+    assert seconds > 0.05
+    assert len(ticks) > 0.2 * seconds / 0.001  # the other thread ran throughout the render

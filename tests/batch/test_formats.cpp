@@ -1,0 +1,304 @@
+// ARIS and MCAP files read back by readers written here from the specifications (SENSORS.md §3.1 and
+// Appendix A; the MCAP specification and OMG CDR), not with the writers' code.
+#include "support.hpp"
+
+#include "core/aris.hpp"
+#include "core/batch.hpp"
+#include "core/errors.hpp"
+#include "core/output.hpp"
+#include "core/pose.hpp"
+#include "core/ros2_sonar.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstring>
+#include <map>
+
+using namespace sonarsim;
+using namespace sonarsim::test;
+
+namespace {
+
+template <typename T> T at(const std::vector<std::uint8_t>& b, size_t off) {
+    REQUIRE(off + sizeof(T) <= b.size());
+    T v;
+    std::memcpy(&v, b.data() + off, sizeof v); // the test host is little-endian, as the files are
+    return v;
+}
+
+SceneDesc with_gain(SceneDesc s, double gain_db) {
+    s.sensor.gain_db = gain_db;
+    return s;
+}
+
+/// A dataset of 3 frames of the small scene (48 beams, 96 bins) along a line.
+struct Dataset {
+    std::string dir;
+    SceneDesc scene = with_gain(small_scene(), -80); // L_EN 80 ... 130 dB into the bytes' 0 ... 80 dB
+    Trajectory trajectory = line_trajectory("0.3,2.4,0.9,0.4,2.3,0.9,3", {-1, 30, -39}, 6.5, "test");
+    std::vector<PolarImage> images;
+    Dataset() {
+        dir = batch_out("formats");
+        prepare_dataset(dir, scene, trajectory);
+        run_batch(dir, {});
+        for (size_t k = 0; k < trajectory.size(); ++k) {
+            Bytes b = file_bytes(frame_prefix(dir, k) + ".npy");
+            images.push_back(decode_npy(b, "npy"));
+        }
+    }
+};
+
+const Dataset& dataset() {
+    static const Dataset d;
+    return d;
+}
+
+/// The level a byte stands for in the test's own reading of the documented mapping: byte 80/255 dB above
+/// `lo_db` (0: the image level itself).
+double byte_level(std::uint8_t b, double lo_db) {
+    return b * 80.0 / 255.0 + lo_db;
+}
+
+/// Checks a byte against the L_EN level it was written from: within half a quantisation step, and
+/// clamped at the ends.
+void check_byte(std::uint8_t byte, float level, double lo_db) {
+    const double l = double(level);
+    if (!std::isfinite(l) || l <= lo_db)
+        CHECK(byte == 0);
+    else if (l >= lo_db + 80)
+        CHECK(byte == 255);
+    else
+        CHECK(std::abs(byte_level(byte, lo_db) - l) <= 0.5 * 80.0 / 255.0 + 1e-4);
+}
+
+std::uint32_t bitwise_crc32(const std::uint8_t* p, size_t n) {
+    std::uint32_t c = 0xffffffffu;
+    for (size_t i = 0; i < n; ++i) {
+        c ^= p[i];
+        for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+    }
+    return ~c;
+}
+
+} // namespace
+
+TEST_CASE("an ARIS file read from its specification gives back the frames", "[aris]") {
+    const Dataset& d = dataset();
+    const std::string path = d.dir + "/out.aris";
+    write_aris(path, d.scene, d.trajectory, dataset_images(d.dir, 3, "--aris"), "--aris");
+    const auto b = file_bytes(path);
+    const size_t beams = at<std::uint32_t>(b, 1024 + 436) == 1 ? 48 : 0; // PingMode 1: 48 beams
+    REQUIRE(beams == 48);
+    const size_t samples = at<std::uint32_t>(b, 1024 + 468);
+    REQUIRE(samples == 96);
+    const size_t frame_bytes = 1024 + beams * samples;
+    REQUIRE((b.size() - 1024) % frame_bytes == 0);
+    REQUIRE((b.size() - 1024) / frame_bytes == 3); // frame count from the size, as readers should
+    CHECK(at<std::uint32_t>(b, 0) == 0x05464444);
+    CHECK(std::memcmp(b.data(), "DDF\x05", 4) == 0);
+    CHECK(at<std::uint32_t>(b, 4) == 3);
+    CHECK(at<std::uint32_t>(b, 16) == 48);
+    CHECK(at<std::uint32_t>(b, 24) == 96);
+
+    const std::vector<double> edges = range_bin_edges_m(d.scene.sonar);
+    for (size_t k = 0; k < 3; ++k) {
+        const size_t f = 1024 + k * frame_bytes;
+        CHECK(at<std::uint32_t>(b, f + 0) == k);
+        CHECK(at<std::uint32_t>(b, f + 12) == 0x05464444);
+        CHECK(at<std::uint32_t>(b, f + 516) == 1); // reordered: sample-major
+        CHECK(at<std::uint64_t>(b, f + 4) == std::uint64_t(std::llround(d.trajectory[k].t_s * 1e6)));
+        CHECK(at<float>(b, f + 232) == Approx(d.trajectory[k].pose.position_m[0]));
+        // Range of sample i: SampleStartDelay, SamplePeriod [us] and SoundSpeed [m/s].
+        const double c = at<float>(b, f + 464);
+        const double start = at<std::uint32_t>(b, f + 476) * 1e-6 * c / 2;
+        const double step = at<std::uint32_t>(b, f + 452) * 1e-6 * c / 2;
+        CHECK(c > 1400);
+        CHECK(c < 1600);
+        for (size_t i : {size_t(0), size_t(50), samples - 1})
+            CHECK(start + double(i) * step == Approx(0.5 * (edges[i] + edges[i + 1])).margin(0.5e-3));
+        const PolarImage& img = d.images[k];
+        size_t lit = 0;
+        for (size_t s = 0; s < samples; ++s)
+            for (size_t beam = 0; beam < beams; ++beam) {
+                const std::uint8_t byte = b[f + 1024 + s * beams + beam];
+                // ARIS beam 0 is the starboard-most: the image's last column.
+                check_byte(byte, img.at(int(s), int(beams - 1 - beam)), 0.0);
+                lit += byte > 0;
+            }
+        CHECK(lit > 100); // the frame is not blank
+    }
+}
+
+TEST_CASE("ARIS files hold only the beam counts ARIS has", "[aris]") {
+    SceneDesc s = small_scene();
+    s.sonar.beams = 100;
+    CHECK_THROWS_WITH(check_aris_beams(s, "scene.json"),
+                      "scene.json: sonar.beams: an ARIS file holds 48, 64, 96 or 128 beams, got 100");
+    for (int beams : {48, 64, 96, 128}) {
+        s.sonar.beams = beams;
+        CHECK_NOTHROW(check_aris_beams(s, "scene.json"));
+    }
+}
+
+namespace {
+
+/// The records of an MCAP file: opcode and content, in file order, after checking both magics.
+struct Record {
+    std::uint8_t op;
+    size_t offset; ///< of the opcode, from the start of the file
+    std::vector<std::uint8_t> content;
+};
+
+std::vector<Record> mcap_records(const std::vector<std::uint8_t>& b) {
+    const std::uint8_t magic[8] = {0x89, 'M', 'C', 'A', 'P', '0', '\r', '\n'};
+    REQUIRE(b.size() > 16);
+    REQUIRE(std::memcmp(b.data(), magic, 8) == 0);
+    REQUIRE(std::memcmp(b.data() + b.size() - 8, magic, 8) == 0);
+    std::vector<Record> out;
+    for (size_t p = 8; p < b.size() - 8;) {
+        const auto len = size_t(at<std::uint64_t>(b, p + 1));
+        REQUIRE(p + 9 + len <= b.size() - 8);
+        out.push_back({b[p], p, {b.begin() + long(p + 9), b.begin() + long(p + 9 + len)}});
+        p += 9 + len;
+    }
+    return out;
+}
+
+/// Reads fields in order from a byte string.
+struct Reader {
+    const std::vector<std::uint8_t>& b;
+    size_t p = 0, origin = 0; ///< CDR aligns from `origin`
+    template <typename T> T get(bool aligned = false) {
+        if (aligned)
+            while ((p - origin) % sizeof(T)) ++p;
+        T v = at<T>(b, p);
+        p += sizeof(T);
+        return v;
+    }
+    std::string str(bool cdr = false) {
+        const auto n = size_t(get<std::uint32_t>(cdr));
+        std::string s(b.begin() + long(p), b.begin() + long(p + n));
+        p += n;
+        if (cdr) {
+            REQUIRE(!s.empty());
+            REQUIRE(s.back() == '\0');
+            s.pop_back();
+        }
+        return s;
+    }
+};
+
+} // namespace
+
+TEST_CASE("an MCAP bag read from its specification gives back the frames", "[mcap]") {
+    const Dataset& d = dataset();
+    for (const auto type : {SonarDataType::Uint8, SonarDataType::Float32}) {
+        const std::string path = d.dir + "/out.mcap";
+        write_sonar_mcap(path, d.scene, d.trajectory, dataset_images(d.dir, 3, "--mcap"), type);
+        const auto b = file_bytes(path);
+        const auto recs = mcap_records(b);
+        REQUIRE(recs.front().op == 0x01);
+        {
+            Reader h{recs.front().content};
+            CHECK(h.str() == "ros2");
+        }
+        REQUIRE(recs.back().op == 0x02);
+        Reader footer{recs.back().content};
+        const auto summary_start = footer.get<std::uint64_t>();
+        std::map<std::uint16_t, std::string> schema_of_channel, schemas;
+        std::vector<std::vector<std::uint8_t>> messages;
+        bool data_end = false;
+        size_t chunk_indexes = 0;
+        for (const Record& r : recs) {
+            Reader in{r.content};
+            if (r.op == 0x0F) {
+                data_end = true;
+                CHECK(r.offset + 13 == summary_start);
+            }
+            if (data_end) {
+                chunk_indexes += r.op == 0x08;
+                continue; // the summary repeats the schema and channel
+            }
+            if (r.op == 0x03) {
+                const auto id = in.get<std::uint16_t>();
+                schemas[id] = in.str();
+                CHECK(in.str() == "ros2msg");
+                CHECK(in.str().find("SonarImageData image") != std::string::npos);
+            } else if (r.op == 0x04) {
+                in.get<std::uint16_t>();
+                const auto schema = in.get<std::uint16_t>();
+                in.str();
+                CHECK(in.str() == "cdr");
+                CHECK(in.get<std::uint32_t>() > 0); // metadata map: offered_qos_profiles
+                schema_of_channel[0] = schemas.at(schema);
+            } else if (r.op == 0x06) {
+                in.get<std::uint64_t>(), in.get<std::uint64_t>();
+                const auto size = in.get<std::uint64_t>();
+                const auto crc = in.get<std::uint32_t>();
+                CHECK(in.str().empty()); // uncompressed
+                REQUIRE(in.get<std::uint64_t>() == size);
+                CHECK(crc == bitwise_crc32(r.content.data() + in.p, size_t(size)));
+                REQUIRE(r.content[in.p] == 0x05); // the chunk holds one Message record
+                Reader m{r.content, in.p + 9};
+                CHECK(m.get<std::uint16_t>() == 0);
+                const auto seq = m.get<std::uint32_t>();
+                CHECK(m.get<std::uint64_t>() == std::uint64_t(std::llround(d.trajectory[seq].t_s * 1e9)));
+                m.get<std::uint64_t>();
+                messages.emplace_back(r.content.begin() + long(m.p), r.content.end());
+            }
+        }
+        CHECK(schema_of_channel[0] == "marine_acoustic_msgs/msg/ProjectedSonarImage");
+        CHECK(chunk_indexes == 3);
+        REQUIRE(messages.size() == 3);
+
+        const std::vector<double> az = beam_azimuths_deg(d.scene.sonar),
+                                  edges = range_bin_edges_m(d.scene.sonar);
+        for (size_t k = 0; k < 3; ++k) {
+            const auto& msg = messages[k];
+            REQUIRE(msg[1] == 0x01); // CDR little-endian encapsulation
+            Reader c{msg, 4, 4};
+            const auto sec = c.get<std::int32_t>(true);
+            const auto nsec = c.get<std::uint32_t>(true);
+            CHECK(sec + nsec * 1e-9 == Approx(d.trajectory[k].t_s));
+            CHECK(c.str(true) == "sonar");
+            CHECK(c.get<float>(true) == Approx(3.0e6));           // frequency [Hz]
+            CHECK(c.get<float>(true) == Approx(1490).margin(20)); // sound speed
+            const auto tx = c.get<std::uint32_t>(true);
+            for (size_t i = 0; i < tx; ++i) CHECK(c.get<float>(true) == Approx(14 * kPi / 180));
+            const auto rx = c.get<std::uint32_t>(true);
+            for (size_t i = 0; i < rx; ++i) CHECK(c.get<float>(true) == Approx(32.0 / 48 * kPi / 180));
+            const auto beams = c.get<std::uint32_t>(true);
+            REQUIRE(beams == 48);
+            for (size_t i = 0; i < beams; ++i) {
+                const double x = c.get<double>(true), y = c.get<double>(true), z = c.get<double>(true);
+                CHECK(x == 0);
+                CHECK(y * y + z * z == Approx(1));
+                CHECK(std::atan2(-y, z) * 180 / kPi == Approx(az[i])); // positive to port
+            }
+            const auto n_ranges = c.get<std::uint32_t>(true);
+            REQUIRE(n_ranges == 96);
+            for (size_t i = 0; i < n_ranges; ++i)
+                CHECK(c.get<float>(true) == Approx(0.5 * (edges[i] + edges[i + 1])));
+            CHECK(c.get<std::uint8_t>() == 0); // is_bigendian
+            const auto dtype = c.get<std::uint32_t>(true);
+            CHECK(c.get<std::uint32_t>(true) == 48);
+            const auto n = c.get<std::uint32_t>(true);
+            const PolarImage& img = d.images[k];
+            if (type == SonarDataType::Uint8) {
+                CHECK(dtype == 0);
+                REQUIRE(n == 96 * 48);
+                for (size_t r = 0; r < 96; ++r) // range-major: all beams of bin 0, then of bin 1, ...
+                    for (size_t beam = 0; beam < 48; ++beam)
+                        check_byte(msg[c.p + r * 48 + beam], img.at(int(r), int(beam)), 0.0);
+            } else {
+                CHECK(dtype == 8);
+                REQUIRE(n == 96 * 48 * 4);
+                for (size_t i = 0; i < 96 * 48; i += 97) {
+                    const float v = at<float>(msg, c.p + 4 * i);
+                    CHECK((v == img.level_db[i] || (std::isinf(v) && std::isinf(img.level_db[i]))));
+                }
+            }
+            CHECK(c.p + n == msg.size());
+        }
+    }
+}
