@@ -18,6 +18,7 @@ void add_scene_options(CLI::App& cmd, SceneOptions& o);
 /// Registers `render`; `run` is set to the function that executes it.
 void register_render(CLI::App& app, std::function<int()>& run);
 void register_params(CLI::App& app, std::function<int()>& run);
+void register_devices(CLI::App& app, std::function<int()>& run);
 void register_study(CLI::App& app, std::function<int()>& run);
 void register_view(CLI::App& app, std::function<int()>& run);
 /// `sonarsim` with no arguments: the viewer on the built-in scene.
