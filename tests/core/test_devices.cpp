@@ -74,7 +74,7 @@ const char* const kRequired[] = {"aris3000-hf",      "aris3000-lf",     "aris180
 
 } // namespace
 
-TEST_CASE("every device preset parses and the required ones exist", "[devices]") {
+TEST_CASE("devices: every preset parses and the required ones exist", "[devices]") {
     const auto& presets = device_presets();
     for (const char* name : kRequired) {
         INFO(name);
@@ -93,7 +93,7 @@ TEST_CASE("every device preset parses and the required ones exist", "[devices]")
     CHECK(choices.size() == presets.size() + 1);
 }
 
-TEST_CASE("every preset value is a table key with a valid value and a source", "[devices]") {
+TEST_CASE("devices: every preset value is a table key with a valid value and a source", "[devices]") {
     for (auto& p : device_presets()) {
         std::set<std::string> keys;
         for (auto& v : p.values) {
@@ -138,7 +138,7 @@ TEST_CASE("every preset value is a table key with a valid value and a source", "
     }
 }
 
-TEST_CASE("sonar.device sets the preset's values and scene keys override them", "[devices]") {
+TEST_CASE("devices: sonar.device sets the preset values and scene keys override them", "[devices]") {
     for (auto& p : device_presets()) {
         INFO(p.file);
         SceneDesc s = default_scene();
@@ -163,7 +163,7 @@ TEST_CASE("sonar.device sets the preset's values and scene keys override them", 
     CHECK_THROWS_AS(apply_setting(t, "sonar.device", "no-such-sonar", "--set"), InputError);
 }
 
-TEST_CASE("each preset renders a visible floor with the device sensor", "[devices]") {
+TEST_CASE("devices: each preset renders a visible floor with the device sensor", "[devices]") {
     for (auto& p : device_presets()) {
         INFO(p.name);
         const SceneDesc s = floor_scene(p.name);
