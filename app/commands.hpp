@@ -19,6 +19,7 @@ void add_scene_options(CLI::App& cmd, SceneOptions& o);
 void register_render(CLI::App& app, std::function<int()>& run);
 void register_batch(CLI::App& app, std::function<int()>& run);
 void register_params(CLI::App& app, std::function<int()>& run);
+void register_devices(CLI::App& app, std::function<int()>& run);
 void register_study(CLI::App& app, std::function<int()>& run);
 void register_view(CLI::App& app, std::function<int()>& run);
 /// `sonarsim` with no arguments: the viewer on the built-in scene.

@@ -38,25 +38,32 @@ std::array<std::uint8_t, 3> colormap_rgb(Colormap map, double t) {
     return c;
 }
 
-DisplayParams effective_display(const PolarImage& img, const DisplayParams& d) {
+DisplayParams effective_display(const PolarImage& img, const DisplayParams& d, const SonarParams& sonar) {
     if (!d.auto_range) return d;
     float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-    size_t n = 0;
     for (float v : img.level_db)
-        if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v), ++n;
-    if (n == 0) return d;
+        if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+    if (!(lo <= hi)) return d;
     constexpr int kBins = 4096;
-    std::vector<size_t> hist(kBins + 1, 0);
+    std::vector<double> hist(kBins, 0.0);
     const double width = std::max(double(hi) - lo, 1e-6) / kBins;
-    for (float v : img.level_db)
-        if (std::isfinite(v)) ++hist[size_t(std::min(double(kBins - 1), (v - lo) / width))];
+    const double dr = (sonar.range_max_m - sonar.range_min_m) / img.bins;
+    double total = 0;
+    for (int k = 0; k < img.bins; ++k) {
+        const double weight = sonar.range_min_m + (k + 0.5) * dr; // the fan's area grows with range
+        for (int b = 0; b < img.beams; ++b)
+            if (const float v = img.level_db[size_t(k) * img.beams + b]; std::isfinite(v)) {
+                hist[size_t(std::min(double(kBins - 1), (v - lo) / width))] += weight;
+                total += weight;
+            }
+    }
     auto percentile = [&](double p) {
-        const double want = p * double(n);
+        const double want = p * total;
         double below = 0;
         for (int i = 0; i < kBins; ++i) {
-            if (below + double(hist[size_t(i)]) >= want && hist[size_t(i)] > 0)
-                return lo + width * (i + (want - below) / double(hist[size_t(i)]));
-            below += double(hist[size_t(i)]);
+            if (below + hist[size_t(i)] >= want && hist[size_t(i)] > 0)
+                return lo + width * (i + (want - below) / hist[size_t(i)]);
+            below += hist[size_t(i)];
         }
         return double(hi);
     };

@@ -19,9 +19,11 @@ struct Image8 {
 float gray_level(float level_db, double lo_db, double hi_db);
 
 /// The display range an image is shown with: `display` itself, or with display.auto its lo/hi replaced by
-/// the 5th and 99.5th percentiles of the image's finite levels (a histogram of 4096 bins, interpolated),
-/// at most kAutoDisplaySpanDb and at least 1 dB apart. An image with no finite level keeps lo_db and hi_db.
-DisplayParams effective_display(const PolarImage& img, const DisplayParams& display);
+/// the 5th and 99.5th percentiles of the image's finite levels as the fan shows them (each sample weighted
+/// by its range, as the fan's area is; a histogram of 4096 bins, interpolated), at most kAutoDisplaySpanDb
+/// and at least 1 dB apart. An image with no finite level keeps lo_db and hi_db.
+DisplayParams effective_display(const PolarImage& img, const DisplayParams& display,
+                                const SonarParams& sonar);
 
 /// Widest automatic display range [dB]: a scene whose echoes stand 100 dB above its noise still shows the
 /// texture of its echoes (speckle spans about 20 dB).

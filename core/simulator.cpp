@@ -108,7 +108,7 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
         const auto t0 = std::chrono::steady_clock::now();
         if (!resampler_ || !resampler_->matches(scene_.sonar, 0))
             resampler_ = std::make_unique<SectorResampler>(scene_.sonar, 0);
-        next.display = effective_display(*next.polar_ptr, scene_.display);
+        next.display = effective_display(*next.polar_ptr, scene_.display, scene_.sonar);
         next.sector_ptr = std::make_shared<const Image8>(resampler_->apply(*next.polar_ptr, next.display));
         next.image_ms = ms_since(t0);
     }

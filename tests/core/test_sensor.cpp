@@ -336,20 +336,27 @@ TEST_CASE("the device model turns every effect on and the ideal model every effe
     CHECK(g.sensor.speckle == Speckle::Rayleigh);
 }
 
-TEST_CASE("the automatic display range spans the image's 5th to 99.5th percentile", "[sensor][display]") {
+TEST_CASE("the automatic display range spans the fan's 5th to 99.5th percentile", "[sensor][display]") {
+    // One beam, 1001 bins over 100 ... 101 m (range weights within 1 % of each other): levels 0 ... 39.96 dB.
+    SonarParams sonar;
+    sonar.range_min_m = 100, sonar.range_max_m = 101, sonar.beams = 1, sonar.range_bins = 1001;
     PolarImage img;
     img.bins = 1001, img.beams = 1;
-    for (int i = 0; i < 1000; ++i) img.level_db.push_back(float(i) / 25); // 0 ... 39.96 dB, uniform
-    img.level_db.push_back(kNoEcho);                                      // not counted
+    for (int i = 0; i < 1000; ++i) img.level_db.push_back(float(i) / 25);
+    img.level_db.push_back(kNoEcho); // not counted
     DisplayParams d;
     d.auto_range = true;
-    const DisplayParams e = effective_display(img, d);
-    CHECK(e.lo_db == Approx(2.0).margin(0.06)); // within 1.5 samples of the exact quantiles
-    CHECK(e.hi_db == Approx(39.8).margin(0.06));
+    const DisplayParams e = effective_display(img, d, sonar);
+    CHECK(e.lo_db == Approx(2.0).margin(0.08)); // within 2 samples of the exact quantiles
+    CHECK(e.hi_db == Approx(39.8).margin(0.08));
+    // Samples count as the fan's area does, in proportion to their range: over 0 ... 1 m the area below
+    // range x grows as x^2, so the 5th percentile lies at sqrt(0.05) of the range.
+    sonar.range_min_m = 0, sonar.range_max_m = 1;
+    CHECK(effective_display(img, d, sonar).lo_db == Approx(40 * std::sqrt(0.05)).margin(0.1));
     // A wider image: black at most kAutoDisplaySpanDb below white.
     for (float& v : img.level_db) v *= 4;
-    const DisplayParams w = effective_display(img, d);
+    const DisplayParams w = effective_display(img, d, sonar);
     CHECK(w.hi_db - w.lo_db == Approx(kAutoDisplaySpanDb));
     d.auto_range = false;
-    CHECK(effective_display(img, d).lo_db == d.lo_db);
+    CHECK(effective_display(img, d, sonar).lo_db == d.lo_db);
 }
