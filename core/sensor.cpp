@@ -30,9 +30,9 @@ std::uint64_t pose_key(const SceneDesc& s) {
     return h;
 }
 
-/// A uniform variate in (0, 1) from the top 24 bits of h.
-float unit_float(std::uint64_t h) {
-    return (float(h >> 40) + 0.5f) * 5.9604645e-8f;
+/// A uniform variate in (0, 1) from the top 32 bits of h.
+double unit(std::uint64_t h) {
+    return (double(h >> 32) + 0.5) * 0x1.0p-32;
 }
 
 /// sin of an elevation angle |e| <= pi/2 (Taylor to e^9: error below 2e-4 at pi/2, 1e-8 within 0.5 rad):
@@ -199,13 +199,13 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
                 const std::uint64_t key =
                     mix64(row_key ^ cell(pt.x) * 0x9e3779b97f4a7c15ULL ^ cell(pt.y) * 0xc2b2ae3d27d4eb4fULL ^
                           cell(pt.z) * 0x165667b19e3779f9ULL);
-                v *= fast::neg_ln(unit_float(key));
+                v *= fast::neg_ln(unit(key));
                 if (k_dist) v *= KeyedRandom(key).gamma(p.speckle_k_shape) / p.speckle_k_shape;
             }
             if (noise_power > 0) {
                 // |sqrt(v) + n|^2, n = sigma sqrt(E) e^(i phi): circular complex Gaussian of power sigma^2.
                 const std::uint64_t h = mix64(noise_seed ^ (std::uint64_t(k) << 32 | std::uint64_t(b)));
-                const double E = fast::neg_ln(unit_float(h)), cphi = fast::cos_turn(unit_float(h << 24));
+                const double E = fast::neg_ln(unit(h)), cphi = fast::cos_turn(unit(h << 32));
                 v = v + noise_power * E + 2 * sigma * std::sqrt(v * E) * cphi;
             }
             out.level_db[c] = v > 0 ? float(fast::db(v) + gain) : -std::numeric_limits<float>::infinity();
