@@ -1,5 +1,7 @@
 #include "batch.hpp"
 
+#include "sensor.hpp"
+
 #include "errors.hpp"
 #include "output.hpp"
 #include "params.hpp"
@@ -28,14 +30,6 @@ std::string read_text(const std::string& path) {
     std::ostringstream s;
     s << in.rdbuf();
     return s.str();
-}
-
-/// splitmix64: a well-mixed 64-bit value of x.
-std::uint64_t mix64(std::uint64_t x) {
-    x += 0x9e3779b97f4a7c15ull;
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-    return x ^ (x >> 31);
 }
 
 /// Holds an exclusive lock on DIR/.index.lock while alive (concurrent shards rebuild the index in turn).
@@ -111,13 +105,13 @@ std::vector<size_t> shard_frames(const std::string& spec, size_t total, const st
 SceneDesc frame_scene(const SceneDesc& base, const Trajectory& trajectory, size_t k) {
     SceneDesc s = base;
     s.sonar.pose = trajectory.at(k).pose;
-    if (const ParamSpec* seed = find_param("sensor.seed")) {
-        // Each frame its own speckle, reproducible from the base seed and the frame number alone.
-        const double lo = seed->min, span = seed->max - seed->min + 1;
-        const auto base_seed = std::uint64_t(std::llround(seed->get(base).get<double>()));
-        const double value = lo + double(mix64(base_seed * 0x100000001b3ull + k) % std::uint64_t(span));
-        apply_setting(s, "sensor.seed", json(std::llround(value)), "batch frame " + std::to_string(k));
-    }
+    // Each frame its own speckle and noise, reproducible from the base seed and the frame number alone (so
+    // shards and resumed runs give the same bytes as one run).
+    const ParamSpec& seed = *find_param("sensor.seed");
+    const auto span = std::uint64_t(seed.max - seed.min + 1);
+    const auto value = std::int64_t(seed.min) +
+                       std::int64_t(mix64(std::uint64_t(base.sensor.seed) * 0x100000001b3ull + k) % span);
+    apply_setting(s, "sensor.seed", json(value), "batch frame " + std::to_string(k));
     return s;
 }
 
