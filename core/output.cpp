@@ -33,9 +33,12 @@ Bytes encode_png(const Image8& img) {
     return out;
 }
 
-Bytes encode_npy(const PolarImage& img) {
-    std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::to_string(img.bins) +
-                         ", " + std::to_string(img.beams) + "), }";
+Bytes encode_npy_array(const void* data, std::size_t bytes, const std::string& descr,
+                       const std::vector<std::size_t>& shape) {
+    std::string dims;
+    for (std::size_t d : shape) dims += (dims.empty() ? "" : ", ") + std::to_string(d);
+    if (shape.size() == 1) dims += ","; // a one-axis shape is written (3,)
+    std::string header = "{'descr': '" + descr + "', 'fortran_order': False, 'shape': (" + dims + "), }";
     const size_t total = 10 + header.size() + 1;
     header.append((64 - total % 64) % 64, ' ');
     header += '\n';
@@ -44,10 +47,15 @@ Bytes encode_npy(const PolarImage& img) {
     out.push_back(std::uint8_t(header.size() >> 8));
     out.insert(out.end(), header.begin(), header.end());
     const size_t off = out.size();
-    out.resize(off + img.level_db.size() * 4);
-    static_assert(sizeof(float) == 4, "float32");
-    std::memcpy(out.data() + off, img.level_db.data(), img.level_db.size() * 4); // x86/ARM: little-endian
+    out.resize(off + bytes);
+    if (bytes) std::memcpy(out.data() + off, data, bytes); // x86/ARM: little-endian
     return out;
+}
+
+Bytes encode_npy(const PolarImage& img) {
+    static_assert(sizeof(float) == 4, "float32");
+    return encode_npy_array(img.level_db.data(), img.level_db.size() * 4, "<f4",
+                            {std::size_t(img.bins), std::size_t(img.beams)});
 }
 
 namespace {

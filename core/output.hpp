@@ -19,6 +19,10 @@ using Bytes = std::vector<std::uint8_t>;
 Bytes encode_png(const Image8& image);
 /// NumPy .npy v1.0, little-endian float32, C order, shape (bins, beams).
 Bytes encode_npy(const PolarImage& image);
+/// NumPy .npy v1.0 of `bytes` bytes at `data`, C order: `descr` "<f4" or "<i4", `shape` e.g. {bins, beams,
+/// 3}.
+Bytes encode_npy_array(const void* data, std::size_t bytes, const std::string& descr,
+                       const std::vector<std::size_t>& shape);
 
 /// Checks every target first (its directory exists and is writable, the target is not a directory), then
 /// writes every (path, bytes) pair to a temporary file beside its target, then renames them all. On any

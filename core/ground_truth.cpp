@@ -1,0 +1,137 @@
+#include "ground_truth.hpp"
+
+#include "footprint.hpp"
+#include "physics.hpp"
+#include "pose.hpp"
+#include "shade.hpp"
+
+#include <array>
+#include <bitset>
+#include <cmath>
+#include <limits>
+#include <tbb/parallel_for.h>
+
+namespace sonarsim {
+namespace {
+
+constexpr double kLn10Over10 = 0.23025850929940458;
+
+/// One (bin, beam) cell's sums over its contributions.
+struct Accumulator {
+    double w = 0, e = 0, inc = 0;
+    double e_min = std::numeric_limits<double>::infinity(), e_max = -e_min;
+    glm::dvec3 p{0};
+    std::bitset<64> materials; ///< the floor and objects 0 ... 62 have a bit each; later objects share bit 63
+    /// Echo per surface (material index), for the strongest one; a ninth surface in one cell is not counted
+    /// there (it still counts in `materials`).
+    std::array<std::pair<std::uint32_t, double>, 8> share{};
+    int shares = 0;
+    void add_share(std::uint32_t m, double v) {
+        for (int n = 0; n < shares; ++n)
+            if (share[size_t(n)].first == m) {
+                share[size_t(n)].second += v;
+                return;
+            }
+        if (shares < int(share.size())) share[size_t(shares++)] = {m, v};
+    }
+    std::int32_t strongest() const {
+        int best = 0;
+        for (int n = 1; n < shares; ++n)
+            if (share[size_t(n)].second > share[size_t(best)].second) best = n;
+        return shares ? std::int32_t(share[size_t(best)].first) : -1;
+    }
+};
+
+} // namespace
+
+const std::vector<std::string>& ground_truth_names() {
+    static const std::vector<std::string> names = {"elevation_deg", "elevation_min_deg", "elevation_max_deg",
+                                                   "point_m",       "object_id",         "incidence_deg",
+                                                   "surfaces"};
+    return names;
+}
+
+GroundTruth compute_ground_truth(const TraceResult& hits, const SceneDesc& s) {
+    const ShadeConstants k = shade_constants(s);
+    const int K = s.sonar.range_bins, N = s.sonar.beams;
+    const double r_min = s.sonar.range_min_m, r_max = s.sonar.range_max_m, dr = (r_max - r_min) / K;
+    const bool spread = s.sampling.scheme != SamplingScheme::Uniform;
+    const glm::dmat3 R = rotation_matrix(s.sonar.pose.orientation_deg);
+    const glm::dvec3 origin = to_glm(s.sonar.pose.position_m);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const size_t cells = size_t(K) * size_t(N);
+
+    GroundTruth gt;
+    gt.bins = K, gt.beams = N;
+    for (auto* v : {&gt.elevation_deg, &gt.elevation_min_deg, &gt.elevation_max_deg, &gt.incidence_deg})
+        v->assign(cells, nan);
+    gt.point_m.assign(cells * 3, nan);
+    gt.object_id.assign(cells, -1);
+    gt.surfaces.assign(cells, 0);
+    tbb::parallel_for(0, std::min(N, hits.beams), [&](int i) {
+        const auto& beam_cells = hits.cells[size_t(i)];
+        // Levels as shade() computes them, then weights relative to the beam's strongest cell.
+        std::vector<double> x(beam_cells.size());
+        double x_max = -std::numeric_limits<double>::infinity();
+        for (size_t n = 0; n < beam_cells.size(); ++n) {
+            const Cell& c = beam_cells[n];
+            x[n] = cell_echo_db(k, material_of(s, c.material), c.range_m, c.cos_incidence, c.solid_angle_sr) *
+                   kLn10Over10;
+            if (std::isnan(x[n])) x[n] = -std::numeric_limits<double>::infinity();
+            x_max = std::max(x_max, x[n]);
+        }
+        if (!std::isfinite(x_max)) return;
+        std::vector<Accumulator> acc(static_cast<size_t>(K));
+        for (size_t n = 0; n < beam_cells.size(); ++n) {
+            const Cell& c = beam_cells[n];
+            const double w = std::exp(x[n] - x_max);
+            if (!(w > 0)) continue;
+            const double inc = rad2deg(std::acos(std::clamp(double(c.cos_incidence), 0.0, 1.0)));
+            detail::for_each_bin(c, spread, K, r_min, r_max, dr, [&](int b, double frac) {
+                const double v = w * frac;
+                if (!(v > 0)) return;
+                const double r = r_min + (b + 0.5) * dr, e = detail::elevation_at(c, r);
+                Accumulator& a = acc[size_t(b)];
+                a.w += v, a.e += v * e, a.inc += v * inc;
+                a.e_min = std::min(a.e_min, e), a.e_max = std::max(a.e_max, e);
+                a.p += v * (origin + r * (R * sonar_direction(c.azimuth_rad, e)));
+                a.add_share(c.material, v);
+                a.materials.set(std::min<std::uint32_t>(c.material, 63));
+            });
+        }
+        for (int b = 0; b < K; ++b) {
+            const Accumulator& a = acc[size_t(b)];
+            if (!(a.w > 0)) continue;
+            const size_t at = size_t(b) * N + i;
+            gt.elevation_deg[at] = float(rad2deg(a.e / a.w));
+            gt.elevation_min_deg[at] = float(rad2deg(a.e_min));
+            gt.elevation_max_deg[at] = float(rad2deg(a.e_max));
+            for (int axis = 0; axis < 3; ++axis) gt.point_m[at * 3 + axis] = float(a.p[axis] / a.w);
+            gt.object_id[at] = a.strongest(); // material index: 0 the floor, i + 1 objects[i]
+            gt.incidence_deg[at] = float(a.inc / a.w);
+            gt.surfaces[at] = std::int32_t(a.materials.count());
+        }
+    });
+    return gt;
+}
+
+std::vector<std::pair<std::string, Bytes>> ground_truth_files(const std::string& prefix,
+                                                              const GroundTruth& gt) {
+    const std::vector<std::size_t> shape{std::size_t(gt.bins), std::size_t(gt.beams)};
+    auto f32 = [&](const std::vector<float>& v, std::vector<std::size_t> sh) {
+        return encode_npy_array(v.data(), v.size() * 4, "<f4", sh);
+    };
+    auto i32 = [&](const std::vector<std::int32_t>& v) {
+        return encode_npy_array(v.data(), v.size() * 4, "<i4", shape);
+    };
+    const std::string p = prefix + "_gt_";
+    return {{p + "elevation_deg.npy", f32(gt.elevation_deg, shape)},
+            {p + "elevation_min_deg.npy", f32(gt.elevation_min_deg, shape)},
+            {p + "elevation_max_deg.npy", f32(gt.elevation_max_deg, shape)},
+            {p + "point_m.npy", f32(gt.point_m, {shape[0], shape[1], 3})},
+            {p + "object_id.npy", i32(gt.object_id)},
+            {p + "incidence_deg.npy", f32(gt.incidence_deg, shape)},
+            {p + "surfaces.npy", i32(gt.surfaces)}};
+}
+
+} // namespace sonarsim

@@ -1,0 +1,39 @@
+// Ground truth per (range bin, beam): what echoed into each cell of the raw image, from the same cells and
+// footprints as the image itself (footprint.hpp), so it converges with the sampler. Computed only when asked
+// for (render --ground-truth, batch --ground-truth, the Python module, the viewer's snapshot toggle).
+#pragma once
+#include "output.hpp"
+#include "scene.hpp"
+#include "trace.hpp"
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace sonarsim {
+
+/// Arrays of the raw image's shape (range_bins, beams), row 0 nearest; point_m has a last axis of 3.
+/// Each contribution is a cell's echo in the bin (as shaded) at the elevation where its surface crosses the
+/// bin's centre range; NaN (object_id -1, surfaces 0) where nothing echoes.
+struct GroundTruth {
+    int bins = 0, beams = 0;
+    std::vector<float> elevation_deg;     ///< echo-weighted mean elevation [deg]
+    std::vector<float> elevation_min_deg; ///< lowest elevation echoing into the cell [deg]: the ambiguity
+    std::vector<float> elevation_max_deg; ///< highest [deg]
+    std::vector<float> point_m;           ///< echo-weighted centroid, world coordinates [m], x y z per cell
+    std::vector<std::int32_t> object_id; ///< strongest contribution: -1 nothing, 0 seafloor, i + 1 objects[i]
+    std::vector<float> incidence_deg;    ///< echo-weighted mean incidence angle [deg]
+    std::vector<std::int32_t> surfaces;  ///< distinct surfaces contributing (the floor and each object once)
+};
+
+GroundTruth compute_ground_truth(const TraceResult& hits, const SceneDesc& scene);
+
+/// PREFIX_gt_<name>.npy for each array (float32, int32 for object_id and surfaces).
+std::vector<std::pair<std::string, Bytes>> ground_truth_files(const std::string& prefix,
+                                                              const GroundTruth& gt);
+
+/// The names of the arrays, in file order: elevation_deg, elevation_min_deg, ... surfaces.
+const std::vector<std::string>& ground_truth_names();
+
+} // namespace sonarsim
