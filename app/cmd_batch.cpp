@@ -22,6 +22,7 @@ struct BatchCliOptions {
     std::string mcap_dtype = "uint8";
     double rate_hz = 10.0;
     bool resume = false;
+    bool ground_truth = false;
 };
 
 std::string progress_text(const BatchProgress& p) {
@@ -43,6 +44,7 @@ int run_batch_command(const BatchCliOptions& o) {
     BatchOptions options;
     if (!o.shard.empty()) options.frames = shard_frames(o.shard, trajectory.size(), "--shard");
     options.resume = o.resume;
+    options.ground_truth = o.ground_truth;
     StatusLine status;
     options.progress = [&](const BatchProgress& p) { status.show(progress_text(p)); };
     if (!o.aris.empty()) check_aris_beams(scene, o.scene.scene_file.empty() ? "--aris" : o.scene.scene_file);
@@ -94,6 +96,9 @@ void register_batch(CLI::App& app, std::function<int()>& run) {
     cmd->add_option("--shard", o->shard,
                     "i/n: render only frames i, i+n, i+2n, ... (e.g. a Slurm array task)");
     cmd->add_flag("--resume", o->resume, "Skip frames that are already complete");
+    cmd->add_flag("--ground-truth", o->ground_truth,
+                  "Also write each frame's NNNNNN_gt_<name>.npy (elevation, point, object id, incidence, "
+                  "surfaces per range bin and beam)");
     cmd->add_option(
         "--aris", o->aris,
         "Also write the dataset as an ARIS recording (.aris; 48, 64, 96 or 128 beams); needs every frame");

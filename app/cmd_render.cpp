@@ -3,6 +3,7 @@
 #include "load.hpp"
 
 #include "core/errors.hpp"
+#include "core/ground_truth.hpp"
 #include "core/output.hpp"
 #include "core/simulator.hpp"
 
@@ -21,6 +22,7 @@ struct RenderOptions {
     SceneOptions scene;
     std::string out;
     std::string view3d; ///< PNG of the 3D view (headless EGL)
+    bool ground_truth = false;
 };
 
 /// The 3D view as PNG bytes, drawn without any display (EGL, Mesa surfaceless).
@@ -58,9 +60,13 @@ int run_render(const RenderOptions& o) {
 
     Simulator sim(scene);
     const auto f = sim.render();
+    if (o.ground_truth)
+        for (auto& file : ground_truth_files(o.out, compute_ground_truth(f->hits(), scene)))
+            extra.push_back(std::move(file));
     write_render_files(o.out, scene, *f, std::move(extra));
+    if (o.ground_truth) std::cout << "wrote " << o.out << "_gt_*.npy (ground truth per range bin and beam)\n";
     if (!o.view3d.empty()) std::cout << "wrote " << o.view3d << " (3D view)\n";
-    std::cout << "wrote " << render_outputs_text(o.out) << "; image " << f->polar().bins << " x "
+    std::cout << "wrote " << render_outputs_text(o.out, &scene) << "; image " << f->polar().bins << " x "
               << f->polar().beams << ", sector " << f->sector().width << "x" << f->sector().height << "\n"
               << "rays " << f->hits().rays_traced << ", trace " << f->trace_ms << " ms, shade " << f->shade_ms
               << " ms, image " << f->image_ms << " ms\n";
@@ -74,6 +80,9 @@ void register_render(CLI::App& app, std::function<int()>& run) {
     CLI::App* cmd = app.add_subcommand("render", "Render one sonar image headless (PNG, .npy, .json)");
     add_scene_options(*cmd, o->scene);
     cmd->add_option("--out", o->out, "Output prefix: writes " + render_outputs_text("PREFIX"));
+    cmd->add_flag("--ground-truth", o->ground_truth,
+                  "Also write PREFIX_gt_<name>.npy: per range bin and beam the elevation (mean, min, max), "
+                  "point, object id, incidence and number of surfaces behind it");
     cmd->add_option(
         "--view3d", o->view3d,
         "Also draw the 3D view (scene, sonar, field of view) into this PNG, with no display (EGL)");

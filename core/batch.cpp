@@ -3,6 +3,7 @@
 #include "sensor.hpp"
 
 #include "errors.hpp"
+#include "ground_truth.hpp"
 #include "output.hpp"
 #include "params.hpp"
 #include "scene_io.hpp"
@@ -175,7 +176,11 @@ BatchSummary run_batch(const std::string& dir, const BatchOptions& options) {
                 sim->set_scene(s);
             else
                 sim.emplace(s);
-            write_render_files(frame_prefix(dir, k), s, *sim->render());
+            const auto f = sim->render();
+            write_render_files(frame_prefix(dir, k), s, *f,
+                               options.ground_truth ? ground_truth_files(frame_prefix(dir, k),
+                                                                         compute_ground_truth(f->hits(), s))
+                                                    : std::vector<std::pair<std::string, Bytes>>{});
             ++progress.rendered;
         }
         ++progress.done;

@@ -51,6 +51,7 @@ struct BatchOptions {
     bool resume = false;                                ///< skip frames that are already complete
     std::function<void(const BatchProgress&)> progress; ///< after each frame
     bool index = true; ///< rebuild index.csv at the end (a distributed run does it once, after all tasks)
+    bool ground_truth = false; ///< also write each frame's PREFIX_gt_<name>.npy (ground_truth.hpp)
 };
 
 struct BatchSummary {

@@ -124,10 +124,11 @@ std::vector<std::string> render_output_paths(const std::string& prefix, const Sc
     return paths;
 }
 
-std::string render_outputs_text(const std::string& prefix) {
+std::string render_outputs_text(const std::string& prefix, const SceneDesc* scene) {
     std::string text;
     for (auto& o : render_outputs())
-        text += (text.empty() ? "" : ", ") + prefix + o.suffix + " (" + o.what + ")";
+        if (!scene || o.written_for(*scene))
+            text += (text.empty() ? "" : ", ") + prefix + o.suffix + " (" + o.what + ")";
     return text;
 }
 

@@ -69,7 +69,7 @@ const std::vector<RenderOutput>& render_outputs();
 std::vector<std::string> render_output_paths(const std::string& prefix, const SceneDesc& scene);
 
 /// "PREFIX.png (sector image), PREFIX_polar.png (...), ...": the files, for messages and help texts.
-std::string render_outputs_text(const std::string& prefix);
+std::string render_outputs_text(const std::string& prefix, const SceneDesc* scene = nullptr);
 
 /// Writes every file of render_outputs() for `prefix`, and the `extra` files (a 3D view PNG, a scene file),
 /// in one atomic step.

@@ -1,6 +1,7 @@
 // The `sonarsim` Python module (pybind11): a Simulator, its frames as NumPy arrays that share the frame's
 // memory, one-off renders, and the dataset functions the Dask example distributes.
 #include "core/batch.hpp"
+#include "core/ground_truth.hpp"
 #include "core/errors.hpp"
 #include "core/output.hpp"
 #include "core/params.hpp"
@@ -46,6 +47,7 @@ Pose pose_from(const py::object& pose) {
 struct PyFrame {
     std::shared_ptr<const Frame> frame;
     SceneDesc scene;
+    std::shared_ptr<const GroundTruth> gt; ///< when render(ground_truth=True)
 
     py::array level_db() const {
         const PolarImage& p = frame->polar();
@@ -65,6 +67,29 @@ struct PyFrame {
         return a;
     }
     py::dict metadata() const { return to_python(frame_metadata(scene, *frame)); }
+    /// The ground truth arrays by name (views of gt's memory, kept alive by each array), or {}.
+    py::dict ground_truth() const {
+        py::dict d;
+        if (!gt) return d;
+        auto view = [&](const auto& v, std::vector<py::ssize_t> shape) {
+            auto owner = new std::shared_ptr<const GroundTruth>(gt);
+            py::capsule base(owner,
+                             [](void* o) { delete static_cast<std::shared_ptr<const GroundTruth>*>(o); });
+            using T = typename std::decay_t<decltype(v)>::value_type;
+            py::array a(py::dtype::of<T>(), shape, v.data(), base);
+            py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+            return a;
+        };
+        const std::vector<py::ssize_t> shape{gt->bins, gt->beams}, points{gt->bins, gt->beams, 3};
+        d["elevation_deg"] = view(gt->elevation_deg, shape);
+        d["elevation_min_deg"] = view(gt->elevation_min_deg, shape);
+        d["elevation_max_deg"] = view(gt->elevation_max_deg, shape);
+        d["point_m"] = view(gt->point_m, points);
+        d["object_id"] = view(gt->object_id, shape);
+        d["incidence_deg"] = view(gt->incidence_deg, shape);
+        d["surfaces"] = view(gt->surfaces, shape);
+        return d;
+    }
 };
 
 class PySimulator {
@@ -84,13 +109,15 @@ class PySimulator {
         update(s);
     }
     PyFrame render(bool ground_truth) {
-        (void)ground_truth; // no per-pixel ground truth in core yet: frame.ground_truth stays empty
         std::shared_ptr<const Frame> f;
+        std::shared_ptr<const GroundTruth> gt;
         {
             py::gil_scoped_release release;
             f = sim_->render();
+            if (ground_truth)
+                gt = std::make_shared<const GroundTruth>(compute_ground_truth(f->hits(), scene_));
         }
-        return {f, scene_};
+        return {f, scene_, gt};
     }
     py::dict scene() const { return to_python(scene_to_json(scene_)); }
 
@@ -115,9 +142,11 @@ PYBIND11_MODULE(sonarsim, m) {
                                "L_EN [dB], float32 (range_bins, beams): row 0 nearest, column 0 port-most; "
                                "-inf where nothing echoes. Read-only, shares the frame's memory")
         .def_property_readonly("sector", &PyFrame::sector, "the sector (fan) image, uint8 (H, W, 3)")
-        .def_property_readonly(
-            "ground_truth", [](const PyFrame&) { return py::dict(); },
-            "per-pixel ground truth arrays by name (empty until core computes them)")
+        .def_property_readonly("ground_truth", &PyFrame::ground_truth,
+                               "with render(ground_truth=True): per (range bin, beam) arrays by name, as the "
+                               "files render --ground-truth writes (elevation_deg, elevation_min_deg, "
+                               "elevation_max_deg, point_m (bins, beams, 3), object_id, incidence_deg, "
+                               "surfaces); otherwise {}")
         .def_property_readonly("metadata", &PyFrame::metadata, "the metadata `render` writes as JSON");
 
     py::class_<PySimulator>(m, "Simulator")
@@ -162,15 +191,16 @@ PYBIND11_MODULE(sonarsim, m) {
         "number of frames");
     m.def(
         "render_frames",
-        [](const std::string& out, const std::vector<size_t>& frames, bool resume) {
+        [](const std::string& out, const std::vector<size_t>& frames, bool resume, bool ground_truth) {
             BatchOptions o;
             o.frames = frames;
             o.resume = resume;
+            o.ground_truth = ground_truth;
             o.index = false; // once, by the caller, after all tasks
             py::gil_scoped_release release;
             return run_batch(out, o).rendered;
         },
-        py::arg("out"), py::arg("frames"), py::arg("resume") = false,
+        py::arg("out"), py::arg("frames"), py::arg("resume") = false, py::arg("ground_truth") = false,
         "render these frames of a prepared dataset (one Simulator for all); returns how many were rendered");
     m.def("write_index", py::overload_cast<const std::string&>(&write_index), py::arg("out"),
           "rebuild out/index.csv; returns the frames listed");

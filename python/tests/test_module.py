@@ -32,7 +32,23 @@ def test_level_db_equals_render_npy(sonarsim_exe, scratch):
     sector = frame.sector
     assert sector.dtype == np.uint8 and sector.ndim == 3 and sector.shape[2] == 3
     assert sector.max() > 0
-    assert frame.ground_truth == {}
+    assert frame.ground_truth == {}  # only when asked for
+
+
+def test_ground_truth_arrays_match_the_render_files(scratch):
+    """render(ground_truth=True) gives the arrays render --ground-truth writes, with the image's shape."""
+    frame = sonarsim.render(small_scene_dict(), ground_truth=True)
+    gt = frame.ground_truth
+    assert sorted(gt) == sorted(["elevation_deg", "elevation_min_deg", "elevation_max_deg", "point_m",
+                                 "object_id", "incidence_deg", "surfaces"])
+    level = frame.level_db
+    assert gt["point_m"].shape == level.shape + (3,)
+    assert gt["object_id"].dtype == np.int32
+    echo = np.isfinite(level)
+    assert np.array_equal(gt["object_id"] >= 0, echo)  # something echoes exactly where the image has a level
+    assert np.all(np.isnan(gt["elevation_deg"][~echo]))
+    assert np.all(gt["elevation_min_deg"][echo] <= gt["elevation_deg"][echo] + 1e-4)
+    assert set(np.unique(gt["object_id"])) <= {-1, 0, 1}  # nothing, the floor, the prism
 
 
 def test_arrays_share_the_frame_memory_and_outlive_it():

@@ -3,6 +3,7 @@
 
 #include "core/batch.hpp"
 #include "core/errors.hpp"
+#include "core/ground_truth.hpp"
 #include "core/output.hpp"
 #include "core/params.hpp"
 
@@ -96,6 +97,21 @@ TEST_CASE("shards of a speckled device sensor reproduce a single run byte for by
     CHECK(file_bytes(frame_prefix(single, 0) + "_ideal.npy") ==
           file_bytes(frame_prefix(single, 2) + "_ideal.npy"));
     CHECK(file_bytes(frame_prefix(single, 0) + ".npy") != file_bytes(frame_prefix(single, 2) + ".npy"));
+}
+
+TEST_CASE("batch writes each frame's ground truth on request", "[batch][ground_truth]") {
+    const std::string dir = batch_out("ground_truth");
+    prepare_dataset(dir, small_scene(), path5());
+    BatchOptions o;
+    o.frames = {1};
+    o.ground_truth = true;
+    run_batch(dir, o);
+    for (const std::string& name : ground_truth_names()) {
+        const auto bytes = file_bytes(frame_prefix(dir, 1) + "_gt_" + name + ".npy");
+        INFO(name);
+        CHECK(bytes.size() > 96 * 48 * 4); // (bins, beams) of 4-byte values after the header
+    }
+    CHECK(file_bytes(frame_prefix(dir, 0) + "_gt_object_id.npy").empty()); // frame 0 was not rendered
 }
 
 TEST_CASE("resume after a killed run completes the set", "[batch]") {
