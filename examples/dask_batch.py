@@ -6,7 +6,7 @@ DIR/index.csv): the frames are split into chunks, each chunk is one task that re
 Simulator (the geometry built once per task), and the index is rebuilt once at the end.
 
     PYTHONPATH=build/python /usr/bin/python3 examples/dask_batch.py --scene S --trajectory T.csv --out DIR \\
-        --workers 4 [--scheduler tcp://host:8786] [--resume]
+        --workers 4 [--scheduler tcp://host:8786] [--resume] [--ground-truth]
 
 (or --circle / --line instead of --trajectory, as `sonarsim batch` takes them).
 
@@ -19,10 +19,10 @@ import sys
 import time
 
 
-def render_chunk(out, frames, resume):
+def render_chunk(out, frames, resume, ground_truth):
     import sonarsim  # in the worker process
 
-    return sonarsim.render_frames(out, frames, resume=resume)
+    return sonarsim.render_frames(out, frames, resume=resume, ground_truth=ground_truth)
 
 
 def main(argv=None):
@@ -37,6 +37,8 @@ def main(argv=None):
     p.add_argument("--scheduler", help="address of a running Dask scheduler instead of a local cluster")
     p.add_argument("--chunk", type=int, default=0, help="frames per task (default: about 4 tasks per worker)")
     p.add_argument("--resume", action="store_true", help="skip frames that are already complete")
+    p.add_argument("--ground-truth", action="store_true",
+                   help="also write each frame's NNNNNN_gt_<name>.npy, as sonarsim batch --ground-truth")
     a = p.parse_args(argv)
 
     import sonarsim
@@ -60,7 +62,7 @@ def main(argv=None):
         chunk = a.chunk or max(1, -(-n // (4 * workers)))
         chunks = [list(range(i, min(n, i + chunk))) for i in range(0, n, chunk)]
         t0 = time.monotonic()
-        futures = [client.submit(render_chunk, a.out, c, a.resume, pure=False) for c in chunks]
+        futures = [client.submit(render_chunk, a.out, c, a.resume, a.ground_truth, pure=False) for c in chunks]
         done = rendered = 0
         for f in as_completed(futures):
             rendered += f.result()
