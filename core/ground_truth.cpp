@@ -14,8 +14,6 @@
 namespace sonarsim {
 namespace {
 
-constexpr double kLn10Over10 = 0.23025850929940458;
-
 /// One (bin, beam) cell's sums over its contributions.
 struct Accumulator {
     double w = 0, e = 0, inc = 0;
@@ -71,15 +69,8 @@ GroundTruth compute_ground_truth(const TraceResult& hits, const SceneDesc& s) {
     tbb::parallel_for(0, std::min(N, hits.beams), [&](int i) {
         const auto& beam_cells = hits.cells[size_t(i)];
         // Levels as shade() computes them, then weights relative to the beam's strongest cell.
-        std::vector<double> x(beam_cells.size());
-        double x_max = -std::numeric_limits<double>::infinity();
-        for (size_t n = 0; n < beam_cells.size(); ++n) {
-            const Cell& c = beam_cells[n];
-            x[n] = cell_echo_db(k, material_of(s, c.material), c.range_m, c.cos_incidence, c.solid_angle_sr) *
-                   kLn10Over10;
-            if (std::isnan(x[n])) x[n] = -std::numeric_limits<double>::infinity();
-            x_max = std::max(x_max, x[n]);
-        }
+        std::vector<double> x;
+        const double x_max = cell_levels(beam_cells, s, k, x);
         if (!std::isfinite(x_max)) return;
         std::vector<Accumulator> acc(static_cast<size_t>(K));
         for (size_t n = 0; n < beam_cells.size(); ++n) {

@@ -43,6 +43,20 @@ double cell_fraction_in(const Cell& c, SamplingScheme scheme, double r0, double 
     return f.cdf(r1) - f.cdf(r0);
 }
 
+double cell_levels(const std::vector<Cell>& cells, const SceneDesc& s, const ShadeConstants& k,
+                   std::vector<double>& x) {
+    x.resize(cells.size());
+    double x_max = kNegInf;
+    for (size_t n = 0; n < cells.size(); ++n) {
+        const Cell& c = cells[n];
+        x[n] = cell_echo_db(k, material_of(s, c.material), c.range_m, c.cos_incidence, c.solid_angle_sr) *
+               kLn10Over10;
+        if (std::isnan(x[n])) x[n] = kNegInf;
+        x_max = std::max(x_max, x[n]);
+    }
+    return x_max;
+}
+
 PolarImage shade(const TraceResult& hits, const SceneDesc& s) {
     const ShadeConstants k = shade_constants(s);
     const int K = s.sonar.range_bins, N = s.sonar.beams;
@@ -54,17 +68,9 @@ PolarImage shade(const TraceResult& hits, const SceneDesc& s) {
     img.level_db.assign(size_t(K) * size_t(N), -std::numeric_limits<float>::infinity());
     tbb::parallel_for(0, std::min(N, hits.beams), [&](int i) {
         const auto& cells = hits.cells[size_t(i)];
-        // Each cell's level (natural-log units), then a linear sum scaled by the beam's peak: one exp per
-        // cell.
-        std::vector<double> x(cells.size());
-        double x_max = kNegInf;
-        for (size_t n = 0; n < cells.size(); ++n) {
-            const Cell& c = cells[n];
-            x[n] = cell_echo_db(k, material_of(s, c.material), c.range_m, c.cos_incidence, c.solid_angle_sr) *
-                   kLn10Over10;
-            if (std::isnan(x[n])) x[n] = kNegInf;
-            x_max = std::max(x_max, x[n]);
-        }
+        // Each cell's level, then a linear sum scaled by the beam's peak: one exp per cell.
+        std::vector<double> x;
+        const double x_max = cell_levels(cells, s, k, x);
         if (x_max == kNegInf) return;
         std::vector<double> lin(static_cast<size_t>(K), 0.0);
         std::vector<char> hit(static_cast<size_t>(K), 0);
@@ -124,15 +130,8 @@ SensorInputs shade_sensor_inputs(const TraceResult& hits, const SceneDesc& s) {
     if (elevation) in.elevation_rad.assign(size_t(K) * size_t(N), nan);
     tbb::parallel_for(0, std::min(N, hits.beams), [&](int i) {
         const auto& cells = hits.cells[size_t(i)];
-        std::vector<double> x(cells.size());
-        double x_max = kNegInf;
-        for (size_t n = 0; n < cells.size(); ++n) {
-            const Cell& c = cells[n];
-            x[n] = cell_echo_db(k, material_of(s, c.material), c.range_m, c.cos_incidence, c.solid_angle_sr) *
-                   kLn10Over10;
-            if (std::isnan(x[n])) x[n] = kNegInf;
-            x_max = std::max(x_max, x[n]);
-        }
+        std::vector<double> x;
+        const double x_max = cell_levels(cells, s, k, x);
         if (x_max == kNegInf) return;
         const double a_top = theta / 2 - i * spacing; // the beam's port edge
         std::vector<double> lin(fine ? size_t(K) * S : 0, 0.0), wsum(elevation ? size_t(K) : 0, 0.0),

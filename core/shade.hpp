@@ -32,6 +32,11 @@ bool needs_sensor_inputs(const SceneDesc& scene);
 /// The sensor's inputs, from the same cells and footprints as shade().
 SensorInputs shade_sensor_inputs(const TraceResult& hits, const SceneDesc& scene);
 
+/// Each cell's echo level before noise in natural-log units (cell_echo_db times ln 10 / 10; -inf where
+/// nothing returns) into x; returns the largest (-inf when none).
+double cell_levels(const std::vector<Cell>& cells, const SceneDesc& scene, const ShadeConstants& k,
+                   std::vector<double>& x);
+
 /// L_EN image of the stored hits. Accumulates per bin in the log domain (running max + scaled sum), so
 /// intensities far below double's range (high absorption, grazing q) neither underflow nor overflow.
 PolarImage shade(const TraceResult& hits, const SceneDesc& scene);
