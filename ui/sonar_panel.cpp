@@ -1,6 +1,9 @@
 #include "sonar_panel.hpp"
 
 #include "image_views.hpp"
+#include "measure.hpp"
+
+#include "core/params.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -23,8 +26,29 @@ void text_at(ImDrawList* dl, ImVec2 p, ImU32 col, const char* text, float align_
 
 } // namespace
 
-void SonarPanel::draw(const Rect& area, Session& session, const std::optional<glm::dvec3>& marker) {
+void SonarPanel::draw_header(const Session& session, Session& edit) {
+    int view = polar ? 1 : 0;
+    ImGui::RadioButton("fan", &view, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("raw polar (P)", &view, 1);
+    polar = view == 1;
+    // The colour maps of core's parameter table.
+    const std::string now = find_param("display.colormap")->get(session.scene()).get<std::string>();
+    const float room = ImGui::GetContentRegionAvail().x - ImGui::GetCursorPosX();
+    if (room > 9 * ImGui::GetFontSize()) ImGui::SameLine();
+    ImGui::SetNextItemWidth(7 * ImGui::GetFontSize());
+    if (ImGui::BeginCombo("##cmap", now.c_str())) {
+        for (const std::string& c : find_param("display.colormap")->choices)
+            if (ImGui::Selectable(c.c_str(), c == now)) edit.set("display.colormap", c);
+        ImGui::EndCombo();
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("colour map (display.colormap)");
+}
+
+void SonarPanel::draw(const Rect& area, Session& session, const std::optional<glm::dvec3>& marker,
+                      float scale) {
     hovered_.reset();
+    scale_ = scale;
     ImGui::SetNextWindowPos(ImVec2(area.x, area.y));
     ImGui::SetNextWindowSize(ImVec2(area.w, area.h));
     const ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
@@ -33,19 +57,8 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
                                    ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoBackground;
     ImGui::Begin("Sonar image", nullptr, flags);
     const RenderResult* shown = session.shown();
-
-    // Header: view toggle and colour map.
-    int view = polar ? 1 : 0;
-    ImGui::RadioButton("fan", &view, 0);
-    ImGui::SameLine();
-    ImGui::RadioButton("raw polar (P)", &view, 1);
-    polar = view == 1;
-    ImGui::SameLine(0, 20);
-    const DisplayParams& disp = session.scene().display;
-    int cmap = disp.colormap == Colormap::Viridis ? 1 : 0;
-    if (ImGui::RadioButton("gray", &cmap, 0)) session.set("display.colormap", "gray");
-    ImGui::SameLine();
-    if (ImGui::RadioButton("viridis", &cmap, 1)) session.set("display.colormap", "viridis");
+    draw_header(session, session);
+    const float info_y = ImGui::GetCursorScreenPos().y;
 
     if (!shown) {
         ImGui::TextDisabled("rendering the first image...");
@@ -55,11 +68,16 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
     const Frame& f = *shown->frame;
     const SonarParams& s = shown->scene.sonar;
     if (uploaded_count_ != session.shown_count() || uploaded_polar_ != polar) {
-        texture_.upload(polar ? polar_color_image(f.polar(), f.display) : f.sector());
+        texture_.upload(polar ? polar_color_image(f.polar(), shown->scene.display)
+                              : no_echo_.paint(f.sector(), f.polar(), s, shown->scene.display.colormap));
         uploaded_count_ = session.shown_count(), uploaded_polar_ = polar;
     }
     const double aspect = double(f.sector().width) / f.sector().height;
-    const SonarPanelLayout L = sonar_panel_layout(area, aspect);
+    const SonarPanelLayout L = sonar_panel_layout(area, aspect, scale);
+    const float lh = ImGui::GetTextLineHeight();
+    annotated_ = {L.image.x - 36 * scale, L.image.y - lh - 4,
+                  L.colorbar.x + L.colorbar.w + 40 * scale - (L.image.x - 36 * scale),
+                  L.image.h + 2 * lh + 8};
     ImDrawList* dl = ImGui::GetWindowDrawList();
     ImGui::SetCursorScreenPos(ImVec2(L.image.x, L.image.y));
     ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(texture_.id())),
@@ -71,13 +89,17 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
     // Hover: the place under the mouse.
     const ImVec2 mouse = ImGui::GetIO().MousePos;
     if (ImGui::IsWindowHovered() && L.image.contains(mouse.x, mouse.y)) {
-        const double u = (mouse.x - L.image.x) / L.image.w, v = (mouse.y - L.image.y) / L.image.h;
-        if (polar)
-            hovered_ = polar_pixel_place(s, u * s.beams, v * s.range_bins);
-        else
-            hovered_ = sector_pixel_place(SectorLayout(s, f.sector().height), s, u * f.sector().width,
-                                          v * f.sector().height);
-        if (hovered_) ascan_beam_ = hovered_->beam;
+        hovered_ = place_at(L.image, *shown, mouse);
+        if (measuring_ && hovered_) {
+            if (ImGui::IsMouseClicked(0))
+                measure_a_ = measure_b_ = hovered_;
+            else if (ImGui::IsMouseDown(0) && measure_a_)
+                measure_b_ = hovered_;
+        }
+        if (hovered_) {
+            ascan_beam_ = hovered_->beam, ascan_beams_ = s.beams;
+            ascan_azimuth_deg_ = hovered_->azimuth_deg;
+        }
     }
     if (polar)
         draw_polar_overlay(L.image, *shown);
@@ -85,7 +107,12 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
         draw_fan_overlay(L.image, *shown);
 
     // The pixel of the hovered 3D surface point.
-    if (marker) {
+    if (measuring_ && !last_measure_.empty()) {
+        ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, info_y));
+        ImGui::PushTextWrapPos(area.w - 8 * scale); // window-local
+        ImGui::TextColored(ImVec4(0.3f, 1, 0.65f, 1), "%s", last_measure_.c_str());
+        ImGui::PopTextWrapPos();
+    } else if (marker) {
         const SectorLayout SL(s, f.sector().height);
         const PointInImage p = locate_world_point(s, SL, *marker);
         ImVec2 q;
@@ -109,8 +136,10 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
                       p.in_view                                             ? ""
                       : std::abs(p.elevation_deg) > s.elevation_fov_deg / 2 ? " (el out of beam)"
                                                                             : " (out of view)");
-        ImGui::SetCursorScreenPos(ImVec2(area.x + 8, area.y + 34));
+        ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, info_y));
+        ImGui::PushTextWrapPos(area.w - 8 * scale); // window-local
         ImGui::TextColored(ImVec4(1, 0.5f, 0.5f, 1), "%s", buf);
+        ImGui::PopTextWrapPos();
     } else if (hovered_) {
         const float level = f.polar().at(hovered_->bin, hovered_->beam);
         char lvl[32], buf[160];
@@ -120,15 +149,71 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
             std::snprintf(lvl, sizeof lvl, "no echo");
         std::snprintf(buf, sizeof buf, "r %.3f m  az %+.2f deg  bin %d beam %d: %s", hovered_->range_m,
                       hovered_->azimuth_deg, hovered_->bin, hovered_->beam, lvl);
-        ImGui::SetCursorScreenPos(ImVec2(area.x + 8, area.y + 34));
+        ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, info_y));
+        ImGui::PushTextWrapPos(area.w - 8 * scale); // window-local
         ImGui::TextColored(ImVec4(1, 0.9f, 0.3f, 1), "%s", buf);
+        ImGui::PopTextWrapPos();
     } else {
-        ImGui::SetCursorScreenPos(ImVec2(area.x + 8, area.y + 34));
-        ImGui::TextDisabled("hover the image: its elevation arc shows in 3D");
+        ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, info_y));
+        ImGui::PushTextWrapPos(area.w - 8 * scale); // window-local
+        ImGui::TextDisabled(measuring_ ? "measuring: drag on the image (Esc ends)"
+                                       : "hover the image: its elevation arc shows in 3D");
+        ImGui::PopTextWrapPos();
     }
-    draw_colorbar(L.colorbar, f.display); // display.auto: the range the frame was shown with
+    draw_measure(L.image, *shown);
+    draw_colorbar(L.colorbar, shown->scene.display);
     draw_ascan(L.ascan, *shown);
     ImGui::End();
+}
+
+std::optional<ImagePlace> SonarPanel::place_at(const Rect& r, const RenderResult& shown, ImVec2 q) const {
+    const SonarParams& s = shown.scene.sonar;
+    const Image8& fan = shown.frame->sector();
+    const double u = (q.x - r.x) / r.w, v = (q.y - r.y) / r.h;
+    if (polar) return polar_pixel_place(s, u * s.beams, v * s.range_bins);
+    return sector_pixel_place(SectorLayout(s, fan.height), s, u * fan.width, v * fan.height);
+}
+
+ImVec2 SonarPanel::screen_of(const Rect& r, const RenderResult& shown, double range, double az) const {
+    const SonarParams& s = shown.scene.sonar;
+    if (polar)
+        return ImVec2(r.x + float((s.azimuth_fov_deg / 2 - az) / s.azimuth_fov_deg) * r.w,
+                      r.y + float((s.range_max_m - range) / (s.range_max_m - s.range_min_m)) * r.h);
+    const Image8& fan = shown.frame->sector();
+    double px = 0, py = 0;
+    SectorLayout(s, fan.height).polar_to_pixel(range, az, px, py);
+    return ImVec2(r.x + float(px / fan.width) * r.w, r.y + float(py / fan.height) * r.h);
+}
+
+void SonarPanel::draw_measure(const Rect& r, const RenderResult& shown) {
+    if (!measure_a_ || !measure_b_) return;
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImagePlace &a = *measure_a_, &b = *measure_b_;
+    // The region: range x azimuth between the two places (an annular sector in the fan), and the ruler.
+    const int n = 24;
+    std::vector<ImVec2> outline;
+    for (int k = 0; k <= n; ++k)
+        outline.push_back(
+            screen_of(r, shown, a.range_m, a.azimuth_deg + (b.azimuth_deg - a.azimuth_deg) * k / n));
+    for (int k = 0; k <= n; ++k)
+        outline.push_back(
+            screen_of(r, shown, b.range_m, b.azimuth_deg + (a.azimuth_deg - b.azimuth_deg) * k / n));
+    const ImU32 c = IM_COL32(80, 255, 160, 255);
+    dl->AddPolyline(outline.data(), int(outline.size()), c, ImDrawFlags_Closed, 1.0f);
+    const ImVec2 pa = screen_of(r, shown, a.range_m, a.azimuth_deg),
+                 pb = screen_of(r, shown, b.range_m, b.azimuth_deg);
+    dl->AddLine(pa, pb, c, 2.0f);
+    const RegionStats st = region_stats(shown.frame->polar(), shown.scene.sonar, a, b);
+    char buf[200];
+    if (st.echo_cells > 0)
+        std::snprintf(buf, sizeof buf,
+                      "distance %.3f m | %d cells, %d echo: mean %.1f  median %.1f  min %.1f  max %.1f dB",
+                      image_distance_m(a, b), st.cells, st.echo_cells, st.mean_db, st.median_db, st.min_db,
+                      st.max_db);
+    else
+        std::snprintf(buf, sizeof buf, "distance %.3f m | %d cells, no echo", image_distance_m(a, b),
+                      st.cells);
+    last_measure_ = buf;
 }
 
 void SonarPanel::draw_fan_overlay(const Rect& r, const RenderResult& shown) {
@@ -136,7 +221,8 @@ void SonarPanel::draw_fan_overlay(const Rect& r, const RenderResult& shown) {
     const Frame& f = *shown.frame;
     const SectorLayout L(s, f.sector().height);
     ImDrawList* dl = ImGui::GetWindowDrawList();
-    dl->PushClipRect(ImVec2(r.x - 60, r.y - 4), ImVec2(r.x + r.w + 60, r.y + r.h + 4), true);
+    dl->PushClipRect(ImVec2(r.x - 60, r.y - 2 * ImGui::GetTextLineHeight()),
+                     ImVec2(r.x + r.w + 60, r.y + r.h + 4), true);
     auto to_screen = [&](double range, double az) {
         double px, py;
         L.polar_to_pixel(range, az, px, py);
@@ -159,11 +245,14 @@ void SonarPanel::draw_fan_overlay(const Rect& r, const RenderResult& shown) {
     }
     // Bearing lines (port = positive azimuth on the left).
     const double astep = nice_step(s.azimuth_fov_deg, 4);
-    for (double a = -std::floor(half / astep) * astep; a <= half + 1e-9; a += astep) {
+    float free_x = -1e9f; // labels left to right (port first); one that would overlap the last is left out
+    for (double a = std::floor(half / astep) * astep; a >= -half - 1e-9; a -= astep) {
         dl->AddLine(to_screen(s.range_min_m, a), to_screen(s.range_max_m, a), kGridColor, 1.0f);
         std::snprintf(buf, sizeof buf, "%+g deg", std::abs(a) < 1e-9 ? 0.0 : a);
-        const ImVec2 p = to_screen(s.range_max_m, a);
-        text_at(dl, ImVec2(p.x, p.y + 2), kLabelColor, buf, 0.5f, 0.0f);
+        const ImVec2 p = to_screen(s.range_max_m, a), sz = ImGui::CalcTextSize(buf);
+        if (p.x - sz.x / 2 < free_x) continue;
+        text_at(dl, ImVec2(p.x, p.y - 2), kLabelColor, buf, 0.5f, 1.0f);
+        free_x = p.x + sz.x / 2 + 4;
     }
     if (hovered_) {
         // The hovered cell's outline: its range bin x beam.
@@ -195,12 +284,15 @@ void SonarPanel::draw_polar_overlay(const Rect& r, const RenderResult& shown) {
         text_at(dl, ImVec2(r.x - 3, y_of(rr)), kLabelColor, buf, 1.0f, 0.5f);
     }
     const double half = s.azimuth_fov_deg / 2, astep = nice_step(s.azimuth_fov_deg, 4);
-    for (double a = -std::floor(half / astep) * astep; a <= half + 1e-9; a += astep) {
+    float free_x = -1e9f;
+    for (double a = std::floor(half / astep) * astep; a >= -half - 1e-9; a -= astep) {
         dl->AddLine(ImVec2(x_of(a), r.y), ImVec2(x_of(a), r.y + r.h), kGridColor);
-        std::snprintf(buf, sizeof buf, "%+g", std::abs(a) < 1e-9 ? 0.0 : a);
+        std::snprintf(buf, sizeof buf, "%+g deg", std::abs(a) < 1e-9 ? 0.0 : a);
+        const float w = ImGui::CalcTextSize(buf).x;
+        if (x_of(a) - w / 2 < free_x) continue;
         text_at(dl, ImVec2(x_of(a), r.y - 2), kLabelColor, buf, 0.5f, 1.0f);
+        free_x = x_of(a) + w / 2 + 4;
     }
-    text_at(dl, ImVec2(r.x + r.w + 2, r.y - 2), kLabelColor, "deg", 0.0f, 1.0f);
     if (hovered_) {
         const double dr = (s.range_max_m - s.range_min_m) / s.range_bins, da = s.azimuth_fov_deg / s.beams;
         const double r0 = s.range_min_m + hovered_->bin * dr, a0 = half - hovered_->beam * da;
@@ -238,14 +330,26 @@ void SonarPanel::draw_colorbar(const Rect& r, const DisplayParams& d) {
 
 void SonarPanel::draw_ascan(const Rect& r, const RenderResult& shown) {
     const SonarParams& s = shown.scene.sonar;
-    const DisplayParams& d = shown.frame->display;
+    const DisplayParams& d = shown.scene.display;
     const PolarImage& img = shown.frame->polar();
-    if (ascan_beam_ < 0 || ascan_beam_ >= img.beams) ascan_beam_ = strongest_beam(img);
+    if (ascan_beam_ >= 0 && ascan_beams_ != img.beams) {
+        // The beam count changed: the beam nearest the azimuth it showed.
+        const double da = s.azimuth_fov_deg / img.beams;
+        ascan_beam_ =
+            std::clamp(int(std::floor((s.azimuth_fov_deg / 2 - ascan_azimuth_deg_) / da)), 0, img.beams - 1);
+        ascan_beams_ = img.beams;
+    }
+    if (ascan_beam_ < 0 || ascan_beam_ >= img.beams) {
+        ascan_beam_ = strongest_beam(img), ascan_beams_ = img.beams;
+        ascan_azimuth_deg_ = s.azimuth_fov_deg / 2 - (ascan_beam_ + 0.5) * s.azimuth_fov_deg / img.beams;
+    }
     const std::vector<float> lv = beam_levels(img, ascan_beam_);
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const double a = s.azimuth_fov_deg / 2 - (ascan_beam_ + 0.5) * s.azimuth_fov_deg / s.beams;
     char buf[96];
     std::snprintf(buf, sizeof buf, "A-scan: beam %d (az %+.2f deg): L_EN [dB] vs range [m]", ascan_beam_, a);
+    if (ImGui::CalcTextSize(buf).x > r.w)
+        std::snprintf(buf, sizeof buf, "A-scan beam %d (%+.1f deg) dB vs m", ascan_beam_, a);
     text_at(dl, ImVec2(r.x, r.y), kLabelColor, buf);
     const Rect p{r.x + 40, r.y + 18, r.w - 48, r.h - 36};
     dl->AddRectFilled(ImVec2(p.x, p.y), ImVec2(p.x + p.w, p.y + p.h), IM_COL32(16, 18, 24, 255));
