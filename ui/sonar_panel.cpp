@@ -75,9 +75,9 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
     const double aspect = double(f.sector().width) / f.sector().height;
     const SonarPanelLayout L = sonar_panel_layout(area, aspect, scale);
     const float lh = ImGui::GetTextLineHeight();
-    annotated_ = {L.image.x - 36 * scale, L.image.y - lh - 4,
-                  L.colorbar.x + L.colorbar.w + 40 * scale - (L.image.x - 36 * scale),
-                  L.image.h + 2 * lh + 8};
+    annotated_ = {L.image.x - 36 * scale, L.image.y - lh - 8,
+                  L.colorbar.x + L.colorbar.w + 48 * scale - (L.image.x - 36 * scale),
+                  L.image.h + 2 * lh + 12};
     ImDrawList* dl = ImGui::GetWindowDrawList();
     ImGui::SetCursorScreenPos(ImVec2(L.image.x, L.image.y));
     ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(texture_.id())),

@@ -56,7 +56,7 @@ class Viewer {
     // viewer_draw.cpp
     ViewOverlay overlay() const;
     void draw_view_text(const Rect& view);
-    void take_snapshot(const std::string& prefix);
+    void take_snapshot(const std::string& prefix, bool as_shown = false);
     void take_pending_snapshots(bool full_on_screen, int fb_w, int fb_h, int win_w, int win_h);
     void reset_camera();
     void update_title();

@@ -86,9 +86,10 @@ void Viewer::update_title() {
     glfwSetWindowTitle(window_, ("sonarsim - " + name).c_str());
 }
 
-void Viewer::take_snapshot(const std::string& prefix_in) {
-    // A snapshot is of a full-quality image, never of a drag's preview.
-    if (!session_.shown() || session_.shown()->frame->preview())
+void Viewer::take_snapshot(const std::string& prefix_in, bool as_shown) {
+    // A snapshot is of a full-quality image, never of a drag's preview: of the edited scene, or (`as_shown`)
+    // of the image on screen with the scene it was made from.
+    if (!session_.shown() || session_.shown()->frame->preview() || (!as_shown && session_.busy()))
         session_.wait_full(std::chrono::milliseconds(60000));
     const RenderResult* shown = session_.shown();
     if (!shown) {
@@ -138,7 +139,7 @@ void Viewer::take_pending_snapshots(bool full_on_screen, int fb_w, int fb_h, int
             annotated_png_ = encode_png(gl::read_pixels_rgb(x0, y0, x1 - x0, y1 - y0));
         }
     }
-    for (; pending_snapshots_ > 0; --pending_snapshots_) take_snapshot("");
+    for (; pending_snapshots_ > 0; --pending_snapshots_) take_snapshot("", true);
 }
 
 } // namespace sonarsim::ui
