@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <imgui.h>
+#include <imgui_internal.h>
 #include <iostream>
 
 namespace sonarsim::ui {
@@ -111,6 +112,7 @@ void Viewer::write_state(const std::string& path) const {
         {"objects", objects},
         {"selected", ui_.selected},
         {"snapshots", snapshots_taken_},
+        {"popups_open", ImGui::GetCurrentContext()->OpenPopupStack.Size},
         {"undo_steps", undo_.undo_steps()},
         {"redo_steps", undo_.redo_steps()},
         {"trajectory_poses", trajectory_.track.size()},

@@ -8,13 +8,7 @@
 namespace sonarsim::ui {
 
 std::vector<glm::dvec3> frustum_handles(const SceneDesc& scene) {
-    const SonarParams& s = scene.sonar;
-    double end = s.range_max_m;
-    if (scene.seafloor) {
-        const glm::dvec3 o = sonar_point(s, 0, 0, 0), d = sonar_point(s, 1, 0, 0) - o;
-        if (d.z < -1e-9) end = std::min(end, std::max(s.range_min_m, (scene.seafloor->height_m - o.z) / d.z));
-    }
-    return {sonar_point(s, 0.5 * (s.range_min_m + end), 0, 0)};
+    return {sonar_point(scene.sonar, scene.sonar.range_min_m, 0, 0)};
 }
 
 DragMode drag_mode_for(int m, bool object) {

@@ -33,8 +33,8 @@ constexpr double kHandlePickPx = 10.0;
 /// Scale factor per pixel of vertical motion of an Alt-drag on an object (up grows).
 constexpr double kScalePerPixel = 0.01;
 
-/// Where the sonar can be grabbed besides its housing: on the boresight, half way from r_min to where it
-/// meets the seafloor (or r_max), so in open water in front of the sonar.
+/// Where the sonar can be grabbed besides its housing: on the boresight at r_min, the near end of the
+/// field of view (the blind zone in front of the sonar, where objects seldom are).
 std::vector<glm::dvec3> frustum_handles(const SceneDesc& scene);
 
 /// Which drag a press with these modifiers starts on the frustum (and, Alt aside, on an object).
