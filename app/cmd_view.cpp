@@ -23,6 +23,7 @@ struct ViewOptions {
     std::string snapshot;
     std::vector<double> mouse, drag;
     std::string script, state, layout;
+    float ui_scale = 1.0f;
 };
 
 int run_view(const ViewOptions& o) {
@@ -40,6 +41,7 @@ int run_view(const ViewOptions& o) {
     v.script = o.script;
     v.state = o.state;
     v.layout = o.layout;
+    v.ui_scale = o.ui_scale;
     if (o.mouse.size() == 2) v.mouse = glm::dvec2(o.mouse[0], o.mouse[1]);
     if (o.drag.size() == 4)
         v.drag =
@@ -92,6 +94,9 @@ void register_view(CLI::App& app, std::function<int()>& run) {
         "--layout", o->layout,
         "After the last frame, write every text run on screen as JSON with overlapping or cut-off "
         "text listed under \"problems\"");
+    cmd->add_option("--ui-scale", o->ui_scale,
+                    "UI scale (fonts and widgets), times the monitor's content scale (HiDPI)")
+        ->check(CLI::Range(0.75, 2.5));
     cmd->add_option("--width", o->width, "Window width [px]")->check(CLI::Range(640, 8192));
     cmd->add_option("--height", o->height, "Window height [px]")->check(CLI::Range(480, 8192));
     cmd->callback([o, &run] { run = [o] { return run_view(*o); }; });

@@ -351,7 +351,8 @@ void SonarPanel::draw_ascan(const Rect& r, const RenderResult& shown) {
     if (ImGui::CalcTextSize(buf).x > r.w)
         std::snprintf(buf, sizeof buf, "A-scan beam %d (%+.1f deg) dB vs m", ascan_beam_, a);
     text_at(dl, ImVec2(r.x, r.y), kLabelColor, buf);
-    const Rect p{r.x + 40, r.y + 18, r.w - 48, r.h - 36};
+    const float lh = ImGui::GetTextLineHeight();
+    const Rect p{r.x + 3.2f * lh, r.y + 1.4f * lh, r.w - 3.8f * lh, r.h - 2.8f * lh};
     dl->AddRectFilled(ImVec2(p.x, p.y), ImVec2(p.x + p.w, p.y + p.h), IM_COL32(16, 18, 24, 255));
 
     double lo = std::min(d.lo_db, d.hi_db) - 10, hi = std::max(d.lo_db, d.hi_db) + 10;

@@ -51,6 +51,7 @@ Viewer::Viewer(const ViewerOptions& o) : opt_(o), orbiter_(o.scene), session_(o.
     glfwGetWindowContentScale(window_, &sx, &sy);
     content_scale_ = std::max(1.0f, std::max(sx, sy));
 
+    ui_.ui_scale = o.ui_scale;
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;

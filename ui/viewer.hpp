@@ -26,6 +26,7 @@ struct ViewerOptions {
     std::optional<std::array<glm::dvec2, 2>> drag;
     std::string script; ///< timed mouse and key events replayed through the GLFW callbacks (script.hpp)
     std::string state;  ///< after the last frame: camera, pose, objects, selection, undo depth as JSON
+    float ui_scale = 1.0f; ///< the user's UI scale (View -> UI scale), times the monitor's content scale
     std::string layout; ///< after the last frame: every text run on screen as JSON, with overlaps found
 };
 
