@@ -13,6 +13,7 @@
 #include "core/output.hpp"
 #include "core/params.hpp"
 #include "core/pose.hpp"
+#include "core/scene_io.hpp"
 
 #include <algorithm>
 #include <imgui.h>
@@ -111,6 +112,8 @@ void Viewer::write_state(const std::string& path) const {
         {"pose", {{"position", s.sonar.pose.position_m}, {"orientation_deg", s.sonar.pose.orientation_deg}}},
         {"objects", objects},
         {"selected", ui_.selected},
+        {"scene", scene_to_json(s)},
+        {"measurement", sonar_->measurement()},
         {"snapshots", snapshots_taken_},
         {"popups_open", ImGui::GetCurrentContext()->OpenPopupStack.Size},
         {"undo_steps", undo_.undo_steps()},

@@ -3,6 +3,7 @@
 //       and arrays of numbers within TOL, default 1e-9)
 //   ui_json_check ne FILE_A PTR_A FILE_B PTR_B [TOL] : they differ by more than TOL somewhere
 //   ui_json_check is FILE PTR JSON                    : the value at PTR equals the JSON literal
+//   ui_json_check ratio A PA A0 PA0 B PB B0 PB0 R TOL : (A - A0) / (B - B0) is R within TOL
 //   ui_json_check layout FILE                         : no overlapping, cut-off or outside text ("problems")
 //   ui_json_check files DIR SUFFIX N                  : DIR holds exactly N files whose names end in SUFFIX
 #include <nlohmann/json.hpp>
@@ -60,6 +61,18 @@ int run(int argc, char** argv) {
         std::cout << argv[3] << ": " << a.dump() << "\n";
         if (!close(a, b, 1e-9)) {
             std::cerr << "FAIL: expected " << b.dump() << "\n";
+            return 1;
+        }
+        return 0;
+    }
+    if (cmd == "ratio" && argc == 12) {
+        auto num = [&](int i) { return load(argv[i]).at(json::json_pointer(argv[i + 1])).get<double>(); };
+        const double a = num(2), a0 = num(4), b = num(6), b0 = num(8), r = std::stod(argv[10]),
+                     tol = std::stod(argv[11]);
+        const double got = (a - a0) / (b - b0);
+        std::cout << "(" << a << " - " << a0 << ") / (" << b << " - " << b0 << ") = " << got << "\n";
+        if (!(std::abs(got - r) <= tol)) {
+            std::cerr << "FAIL: expected " << r << " +- " << tol << "\n";
             return 1;
         }
         return 0;
