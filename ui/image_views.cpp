@@ -48,6 +48,11 @@ Image8 NoEchoPainter::paint(const Image8& fan, const PolarImage& img, const Sona
     return out;
 }
 
+int beam_at_azimuth(double az, double fov, int beams) {
+    const double i = std::floor((fov / 2 - az) / (fov / beams));
+    return int(std::clamp(i, 0.0, double(beams - 1)));
+}
+
 double nice_step(double span, int count) {
     if (!(span > 0) || count < 1) return 1;
     const double raw = span / count, p = std::pow(10.0, std::floor(std::log10(raw))), m = raw / p;

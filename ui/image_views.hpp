@@ -31,6 +31,10 @@ double nice_step(double span, int count);
 /// L_EN [dB] of one beam against range bin (-inf where nothing echoes); empty for a bad beam.
 std::vector<float> beam_levels(const PolarImage& image, int beam);
 
+/// The beam whose azimuth sector holds `azimuth_deg` (the nearest beam outside the field of view): where the
+/// A-scan stays when the beam count changes.
+int beam_at_azimuth(double azimuth_deg, double azimuth_fov_deg, int beams);
+
 /// The beam holding the highest echo level (the middle beam when nothing echoes).
 int strongest_beam(const PolarImage& image);
 

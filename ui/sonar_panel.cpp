@@ -334,9 +334,7 @@ void SonarPanel::draw_ascan(const Rect& r, const RenderResult& shown) {
     const PolarImage& img = shown.frame->polar();
     if (ascan_beam_ >= 0 && ascan_beams_ != img.beams) {
         // The beam count changed: the beam nearest the azimuth it showed.
-        const double da = s.azimuth_fov_deg / img.beams;
-        ascan_beam_ =
-            std::clamp(int(std::floor((s.azimuth_fov_deg / 2 - ascan_azimuth_deg_) / da)), 0, img.beams - 1);
+        ascan_beam_ = beam_at_azimuth(ascan_azimuth_deg_, s.azimuth_fov_deg, img.beams);
         ascan_beams_ = img.beams;
     }
     if (ascan_beam_ < 0 || ascan_beam_ >= img.beams) {

@@ -186,3 +186,13 @@ TEST_CASE("every binding has an input and an action and README names each input"
         CHECK(readme.find(b.input) != std::string::npos);
     }
 }
+
+TEST_CASE("the A-scan keeps its azimuth when the beam count changes", "[ui][ascan]") {
+    // +1.2 deg is in beam 59 of 128 over 32 deg (0.25 deg each), beam 29 of 64, beam 118 of 256.
+    const double az = 1.2;
+    CHECK(beam_at_azimuth(az, 32, 128) == 59);
+    CHECK(beam_at_azimuth(az, 32, 64) == 29);
+    CHECK(beam_at_azimuth(az, 32, 256) == 118);
+    CHECK(beam_at_azimuth(40, 32, 64) == 0);   // beyond port: the nearest beam
+    CHECK(beam_at_azimuth(-40, 32, 64) == 63); // beyond starboard
+}
