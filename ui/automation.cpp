@@ -55,6 +55,7 @@ void Viewer::script_actions(int index, int fb_w, int fb_h) {
         if (c == "layout") write_layout(st.args[0], win_w, win_h);
         if (c == "snapshot") take_snapshot(st.args[0]);
         if (c == "quit") quit_ = true;
+        if (c == "open") open_files({st.args[0]});
         if (c == "trajectory_save") save_trajectory(trajectory_.track, st.args[0]);
         if (c == "trajectory_load") {
             trajectory_.track = load_trajectory(st.args[0]);

@@ -92,7 +92,8 @@ void Viewer::handle_key(const InputEvent& e) {
 
 void Viewer::record_undo() {
     // One step per completed edit: nothing is recorded while a drag or a slider is held.
-    if (interacting_ || controller_.pressed()) return;
+    // A trajectory's playback is not an edit: its last pose is recorded once it stops.
+    if (interacting_ || controller_.pressed() || trajectory_.playing) return;
     controller_.take_edit_finished();
     undo_.record(session_.scene());
 }
