@@ -44,10 +44,17 @@ std::vector<TextRun> text_runs(const std::vector<Glyph>& glyphs) {
     return runs;
 }
 
+bool floats_on_top(const std::string& list_name) {
+    for (const char* prefix : {"##Tooltip", "##Popup", "##Menu_", "##Combo"})
+        if (list_name.rfind(prefix, 0) == 0) return true;
+    return false;
+}
+
 std::vector<std::pair<size_t, size_t>> overlapping_runs(const std::vector<TextRun>& runs, float min_px) {
     std::vector<std::pair<size_t, size_t>> out;
     for (size_t i = 0; i < runs.size(); ++i)
         for (size_t j = i + 1; j < runs.size(); ++j) {
+            if (floats_on_top(runs[i].list_name) != floats_on_top(runs[j].list_name)) continue;
             const Rect o = intersect(runs[i].box, runs[j].box);
             if (o.w > min_px && o.h > min_px) out.emplace_back(i, j);
         }

@@ -28,7 +28,11 @@ struct TextRun {
 /// Glyphs wholly outside their clip rectangle are not visible and are dropped.
 std::vector<TextRun> text_runs(const std::vector<Glyph>& glyphs);
 
-/// Pairs of runs (indices) whose visible boxes overlap by more than `min_px` in both directions.
+/// True for tooltips, popups, menus and combo lists: drawn over the panels on purpose.
+bool floats_on_top(const std::string& list_name);
+
+/// Pairs of runs (indices) whose visible boxes overlap (a floating window's text over a panel's is not an
+/// overlap) by more than `min_px` in both directions.
 std::vector<std::pair<size_t, size_t>> overlapping_runs(const std::vector<TextRun>& runs,
                                                         float min_px = 1.0f);
 

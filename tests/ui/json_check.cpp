@@ -5,7 +5,9 @@
 //   ui_json_check is FILE PTR JSON                    : the value at PTR equals the JSON literal
 //   ui_json_check ratio A PA A0 PA0 B PB B0 PB0 R TOL : (A - A0) / (B - B0) is R within TOL
 //   ui_json_check layout FILE                         : no overlapping, cut-off or outside text ("problems")
-//   ui_json_check files DIR SUFFIX N                  : DIR holds exactly N files whose names end in SUFFIX
+//   ui_json_check runs FILE WINDOW MIN               : a --layout file has at least MIN text runs drawn by
+//   WINDOW ui_json_check files DIR SUFFIX N                  : DIR holds exactly N files whose names end in
+//   SUFFIX
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -88,6 +90,17 @@ int run(int argc, char** argv) {
         const std::string p = j.at("problems").get<std::string>();
         if (!p.empty()) {
             std::cerr << "FAIL:\n" << p;
+            return 1;
+        }
+        return 0;
+    }
+    if (cmd == "runs" && argc == 5) {
+        int n = 0;
+        const json layout = load(argv[2]); // kept alive for the loop
+        for (const json& r : layout.at("runs")) n += r.at("window").get<std::string>() == argv[3];
+        std::cout << n << " text runs in " << argv[3] << "\n";
+        if (n < std::stoi(argv[4])) {
+            std::cerr << "FAIL: expected at least " << argv[4] << "\n";
             return 1;
         }
         return 0;

@@ -124,6 +124,9 @@ TEST_CASE("text runs group glyphs per line and find overlaps and cut-off text", 
     const std::string p = layout_problems(runs, 100, 100);
     CHECK(p.find("overlap") != std::string::npos);
     CHECK(p.find("cut off") != std::string::npos);
+    // A tooltip over the text is on top on purpose.
+    runs[2].list_name = "##Tooltip_00";
+    CHECK(overlapping_runs(runs).empty());
 }
 
 TEST_CASE("image measurements: ruler distance and dB statistics of a region", "[ui][measure]") {
