@@ -174,6 +174,9 @@ void Viewer::frame(int index) {
     int fb_w = 0, fb_h = 0, win_w = 0, win_h = 0;
     glfwGetFramebufferSize(window_, &fb_w, &fb_h);
     glfwGetWindowSize(window_, &win_w, &win_h);
+    float csx = 1, csy = 1; // the window may have moved to a monitor of another content scale
+    glfwGetWindowContentScale(window_, &csx, &csy);
+    content_scale_ = std::max(1.0f, std::max(csx, csy));
     update_scale();
     layout_ = viewer_layout(win_w, win_h, font_scale_);
 
