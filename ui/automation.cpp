@@ -59,17 +59,20 @@ void Viewer::script_actions(int index, int fb_w, int fb_h) {
         if (c == "trajectory_save") save_trajectory(trajectory_.track, st.args[0]);
         if (c == "trajectory_load") {
             trajectory_.track = load_trajectory(st.args[0]);
-            trajectory_snapshots(st.args[0]);
+            trajectory_.t_s = 0;
+            if (!trajectory_.track.empty())
+                session_.edit([&](SceneDesc& s) { s.sonar.pose = trajectory_.track.samples().front().pose; });
         }
+        if (c == "trajectory_snapshots") trajectory_snapshots(st.args[0]);
     }
 }
 
-void Viewer::trajectory_snapshots(const std::string& csv) {
-    // Playback of a loaded trajectory, one snapshot per pose: CSV.<k> (the images `render --pose` gives).
+void Viewer::trajectory_snapshots(const std::string& prefix) {
+    // Playback of the trajectory, one snapshot per pose: PREFIX.<k> (the images `render --pose` gives).
     const auto& samples = trajectory_.track.samples();
     for (size_t k = 0; k < samples.size(); ++k) {
         session_.edit([&](SceneDesc& s) { s.sonar.pose = samples[k].pose; });
-        take_snapshot(csv + "." + std::to_string(k));
+        take_snapshot(prefix + "." + std::to_string(k));
     }
 }
 

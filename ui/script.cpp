@@ -35,11 +35,23 @@ int button_of(const std::string& s) {
 }
 
 size_t arg_count(const std::string& c) {
-    static const std::map<std::string, size_t> n = {
-        {"move", 2},       {"press", 1}, {"release", 1},         {"click", 2},
-        {"wheel", 1},      {"key", 1},   {"keydown", 1},         {"keyup", 1},
-        {"screenshot", 1}, {"state", 1}, {"layout", 1},          {"snapshot", 1},
-        {"quit", 0},       {"open", 1},  {"trajectory_save", 1}, {"trajectory_load", 1}};
+    static const std::map<std::string, size_t> n = {{"move", 2},
+                                                    {"press", 1},
+                                                    {"release", 1},
+                                                    {"click", 2},
+                                                    {"wheel", 1},
+                                                    {"key", 1},
+                                                    {"keydown", 1},
+                                                    {"keyup", 1},
+                                                    {"screenshot", 1},
+                                                    {"state", 1},
+                                                    {"layout", 1},
+                                                    {"snapshot", 1},
+                                                    {"quit", 0},
+                                                    {"open", 1},
+                                                    {"trajectory_save", 1},
+                                                    {"trajectory_load", 1},
+                                                    {"trajectory_snapshots", 1}};
     auto it = n.find(c);
     return it == n.end() ? size_t(-1) : it->second;
 }

@@ -5,8 +5,9 @@
 // comment. Input: `move X Y`, `press left|right|middle`, `release left|right|middle`, `click X Y` (move,
 // press, release), `wheel STEPS`, `key NAME` (press and release, e.g. `key S`, `key ctrl+shift+z`),
 // `keydown NAME`, `keyup NAME`. Actions: `screenshot FILE.png`, `state FILE.json`, `layout FILE.json`,
-// `snapshot PREFIX`, `trajectory_save FILE.csv`, `trajectory_load FILE.csv` (then one snapshot per pose:
-// FILE.csv.K.*), `open FILE` (a scene or mesh, as if dropped on the window), `quit`.
+// `snapshot PREFIX`, `trajectory_save FILE.csv`, `trajectory_load FILE.csv` (as the panel's Load: the sonar
+// goes to the first pose), `trajectory_snapshots PREFIX` (playback with one snapshot per pose: PREFIX.K.*),
+// `open FILE` (a scene or mesh, as if dropped on the window), `quit`.
 // Several steps may share a frame: they all arrive before that frame is drawn (a quick click or tap).
 #pragma once
 #include "input_events.hpp"
