@@ -178,3 +178,17 @@ TEST_CASE("the wheel zooms only inside the view", "[ui][controller]") {
     r.c.handle(e, r.ctx());
     CHECK(r.c.camera.distance_m == Approx(d * 0.88));
 }
+
+TEST_CASE("the housing and the handle are grabbable and the field of view shell is not", "[ui][controller]") {
+    Rig r;
+    glm::dvec3 body(0);
+    const TriMesh housing = sonar_body(r.scene.sonar);
+    for (const auto& p : housing.vertices) body += glm::dvec3(p) / double(housing.vertices.size());
+    r.c.hover(r.pixel_of(body), r.ctx());
+    CHECK(r.c.sonar_hot());
+    r.c.hover(r.pixel_of(frustum_handles(r.scene)[0]), r.ctx());
+    CHECK(r.c.sonar_hot());
+    // Inside the field of view, in open water, away from both handles: not the sonar.
+    r.c.hover(r.pixel_of(sonar_point(r.scene.sonar, 1.2, 8, 3)), r.ctx());
+    CHECK_FALSE(r.c.sonar_hot());
+}
