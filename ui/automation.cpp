@@ -120,6 +120,7 @@ void Viewer::write_state(const std::string& path) const {
         {"measurement", sonar_->measurement()},
         {"snapshots", snapshots_taken_},
         {"popups_open", ImGui::GetCurrentContext()->OpenPopupStack.Size},
+        {"help_open", show_help_},
         {"undo_steps", undo_.undo_steps()},
         {"redo_steps", undo_.redo_steps()},
         {"trajectory_poses", trajectory_.track.size()},

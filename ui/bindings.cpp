@@ -7,7 +7,7 @@ const std::vector<Binding>& bindings() {
         {"3D view", "left-drag (empty space or floor)", "orbit the camera"},
         {"3D view", "right- or middle-drag", "pan the camera"},
         {"3D view", "wheel", "zoom"},
-        {"3D view", "drag the sonar housing or its far handle", "move the sonar on the horizontal plane"},
+        {"3D view", "drag the sonar housing or its yellow handle", "move the sonar on the horizontal plane"},
         {"3D view", "Shift+drag sonar", "move the sonar up and down"},
         {"3D view", "Ctrl+drag sonar", "turn the sonar: yaw (left/right), pitch (up/down)"},
         {"3D view", "Ctrl+Shift+drag or Alt+drag sonar", "roll the sonar"},

@@ -54,7 +54,7 @@ void Viewer::help_window() {
     ImGui::SetNextWindowSize(ImVec2(std::min(vp->Size.x - 20, 46 * ImGui::GetFontSize()),
                                     std::min(vp->Size.y - 40, 36 * ImGui::GetFontSize())),
                              ImGuiCond_Appearing);
-    if (ImGui::Begin("Controls", &show_help_, ImGuiWindowFlags_NoCollapse)) {
+    if (ImGui::Begin("Mouse and key controls##help", &show_help_, ImGuiWindowFlags_NoCollapse)) {
         if (ImGui::BeginTable("bindings", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
             ImGui::TableSetupColumn("where");
             ImGui::TableSetupColumn("input");
