@@ -10,7 +10,9 @@ constexpr float kControlsW = 310, kSonarW = 430, kHeaderH = 78, kAscanH = 200, k
 
 ViewerLayout viewer_layout(int w, int h, float k) {
     const float W = float(w), H = float(h) - kMenuBarHeight * k, y = kMenuBarHeight * k;
-    const float cw = std::min(kControlsW * k, W * 0.34f), sw = std::min(kSonarW * k, W * 0.4f);
+    // Large windows give the sonar image more room; small ones keep the 3D view at least a quarter.
+    const float cw = std::min(kControlsW * k, W * 0.34f),
+                sw = std::min(std::max(kSonarW * k, W * 0.3f), W * 0.4f);
     ViewerLayout L;
     L.controls = {0, y, cw, H};
     L.sonar = {W - sw, y, sw, H};
@@ -26,7 +28,7 @@ Rect fit_rect(const Rect& box, double aspect) {
 
 SonarPanelLayout sonar_panel_layout(const Rect& p, double aspect, float k) {
     SonarPanelLayout L;
-    const float ascan_h = std::min(kAscanH * k, 0.34f * p.h);
+    const float ascan_h = std::min(std::max(kAscanH * k, 0.25f * p.h), 0.34f * p.h);
     const Rect box{p.x + (kPad + kRangeLabelsW) * k, p.y + (kHeaderH + kLabelH) * k,
                    p.w - (3 * kPad + kRangeLabelsW + kBarW + kBarLabelsW) * k,
                    p.h - (kHeaderH + 2 * kLabelH + 2 * kPad) * k - ascan_h};
