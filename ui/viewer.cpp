@@ -174,9 +174,12 @@ void Viewer::frame(int index) {
     int fb_w = 0, fb_h = 0, win_w = 0, win_h = 0;
     glfwGetFramebufferSize(window_, &fb_w, &fb_h);
     glfwGetWindowSize(window_, &win_w, &win_h);
-    float csx = 1, csy = 1; // the window may have moved to a monitor of another content scale
+    // The window may have moved to a monitor of another content scale. Where the framebuffer is already
+    // larger than the window (macOS), that part of the scale is done by the framebuffer.
+    float csx = 1, csy = 1;
     glfwGetWindowContentScale(window_, &csx, &csy);
-    content_scale_ = std::max(1.0f, std::max(csx, csy));
+    const float fb_ratio = win_w > 0 ? std::max(1.0f, float(fb_w) / float(win_w)) : 1.0f;
+    content_scale_ = std::max(1.0f, std::max(csx, csy) / fb_ratio);
     update_scale();
     layout_ = viewer_layout(win_w, win_h, font_scale_);
 
