@@ -5,6 +5,7 @@
 
 #include "viewer_app.hpp"
 
+#include "controls_panel.hpp"
 #include "gl_util.hpp"
 #include "sonar_geometry.hpp"
 #include "text_layout.hpp"
@@ -37,10 +38,26 @@ void Viewer::script_input(int index) {
         e.type = index == 1 ? InputEvent::Type::Press : InputEvent::Type::Release;
         if (index == 1 || index == opt_.frames - 1) input_->inject(e);
     }
-    for (size_t i = script_pos_; i < script_.size() && script_[i].frame <= index; ++i)
-        if (is_input_command(script_[i].command))
+    for (size_t i = script_pos_; i < script_.size() && script_[i].frame <= index; ++i) {
+        const ScriptStep& st = script_[i];
+        if (st.command == "move_to") {
+            const auto& rects = controls_item_rects();
+            const auto it = rects.find(st.args[0]);
+            if (it == rects.end())
+                throw InputError(opt_.script, "line " + std::to_string(st.line),
+                                 "no widget for " + st.args[0]);
+            const Rect& r = it->second;
+            script_mouse_ = {r.x + std::stod(st.args[1]) * r.w, r.y + std::stod(st.args[2]) * r.h};
+            InputEvent e;
+            e.pos = script_mouse_;
+            e.mods = script_mods_;
+            input_->inject(e);
+            continue;
+        }
+        if (is_input_command(st.command))
             for (const InputEvent& e : step_events(script_[i], script_mouse_, script_mods_))
                 input_->inject(e);
+    }
 }
 
 void Viewer::script_actions(int index, int fb_w, int fb_h) {

@@ -55,6 +55,13 @@ void same_line_if_fits(const char* next) {
     if (right <= ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x) ImGui::SameLine();
 }
 
+std::map<std::string, Rect> g_item_rects;
+
+void remember_rect(const std::string& key) {
+    const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+    g_item_rects[key] = {a.x, a.y, b.x - a.x, b.y - a.y};
+}
+
 /// Labels go beside the fields when the widest fits beside a field of half the panel, else above them.
 bool g_labels_above = false;
 
@@ -98,6 +105,7 @@ bool slider(const ValueSpec& spec, double current, double& value) {
         value = v;
         if (fine_drag(r, current, value)) changed = true;
     }
+    remember_rect(spec.key);
     help_tooltip(spec);
     return changed;
 }
@@ -259,6 +267,10 @@ float footer_height(const Session& session, float width) {
 }
 
 } // namespace
+
+const std::map<std::string, Rect>& controls_item_rects() {
+    return g_item_rects;
+}
 
 void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, TrajectoryUi& trajectory) {
     ImGui::SetNextWindowPos(ImVec2(area.x, area.y));

@@ -5,6 +5,7 @@
 #include "session.hpp"
 #include "trajectory_panel.hpp"
 
+#include <map>
 #include <string>
 
 namespace sonarsim::ui {
@@ -23,6 +24,9 @@ struct ControlsUi {
 
 /// Slider drags move 1/kFineDrag as far per pixel while Shift is held.
 constexpr double kFineDrag = 10.0;
+
+/// Where each parameter's widget was drawn last frame (key -> window px), for `--script move_to`.
+const std::map<std::string, Rect>& controls_item_rects();
 
 /// The panel: its sections scroll; errors and status stay visible in a footer below them.
 void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, TrajectoryUi& trajectory);

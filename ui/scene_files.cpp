@@ -19,8 +19,12 @@ bool looks_like_scene_file(const std::string& path) {
     ss << f.rdbuf();
     const json j = json::parse(ss.str(), nullptr, false);
     if (j.is_discarded() || !j.is_object()) return false;
-    static const std::set<std::string> sections = {"sonar",   "water",    "sampling",
-                                                   "display", "seafloor", "objects"};
+    // The sections of core's parameter table (sonar, water, sensor, ...), objects and the seafloor.
+    static const std::set<std::string> sections = [] {
+        std::set<std::string> s = {"seafloor", "objects"};
+        for (const ParamSpec& p : scene_params()) s.insert(p.key.substr(0, p.key.find('.')));
+        return s;
+    }();
     for (auto it = j.begin(); it != j.end(); ++it)
         if (!sections.count(it.key())) return false;
     return true;

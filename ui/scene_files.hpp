@@ -5,8 +5,8 @@
 
 namespace sonarsim::ui {
 
-/// True when `path` holds a JSON object whose top-level keys are all scene sections (sonar, water,
-/// sampling, display, seafloor, objects). Unreadable, oversized or unparsable files are not scenes.
+/// True when `path` holds a JSON object whose top-level keys are all scene sections (those of core's
+/// parameter table, seafloor, objects). Unreadable, oversized or unparsable files are not scenes.
 bool looks_like_scene_file(const std::string& path);
 
 } // namespace sonarsim::ui

@@ -49,6 +49,8 @@ size_t arg_count(const std::string& c) {
                                                     {"snapshot", 1},
                                                     {"quit", 0},
                                                     {"open", 1},
+                                                    {"move_to", 3},
+                                                    {"move_by", 2},
                                                     {"trajectory_save", 1},
                                                     {"trajectory_load", 1},
                                                     {"trajectory_snapshots", 1}};
@@ -98,8 +100,8 @@ KeyChord parse_key_chord(const std::string& text, const std::string& file, int l
 }
 
 bool is_input_command(const std::string& c) {
-    return c == "move" || c == "press" || c == "release" || c == "click" || c == "wheel" || c == "key" ||
-           c == "keydown" || c == "keyup";
+    return c == "move" || c == "move_to" || c == "move_by" || c == "press" || c == "release" ||
+           c == "click" || c == "wheel" || c == "key" || c == "keydown" || c == "keyup";
 }
 
 std::vector<ScriptStep> parse_script(const std::string& text, const std::string& file) {
@@ -128,8 +130,9 @@ std::vector<ScriptStep> parse_script(const std::string& text, const std::string&
         if (n == size_t(-1)) throw InputError(file, where, "unknown command \"" + st.command + "\"");
         if (st.args.size() != n)
             throw InputError(file, where, st.command + " takes " + std::to_string(n) + " argument(s)");
-        if (st.command == "move" || st.command == "click" || st.command == "wheel")
+        if (st.command == "move" || st.command == "click" || st.command == "wheel" || st.command == "move_by")
             for (auto& a : st.args) number(a, file, line);
+        if (st.command == "move_to") number(st.args[1], file, line), number(st.args[2], file, line);
         if ((st.command == "press" || st.command == "release") && button_of(st.args[0]) < 0)
             throw InputError(file, where, "expected left, right or middle");
         if (st.command == "key" || st.command == "keydown" || st.command == "keyup")
@@ -169,6 +172,10 @@ std::vector<InputEvent> step_events(const ScriptStep& st, glm::dvec2& pos, int& 
     const std::string& c = st.command;
     if (c == "move" || c == "click") {
         pos = {std::stod(st.args[0]), std::stod(st.args[1])};
+        out.push_back(ev(T::Move));
+    }
+    if (c == "move_by") {
+        pos += glm::dvec2(std::stod(st.args[0]), std::stod(st.args[1]));
         out.push_back(ev(T::Move));
     }
     if (c == "press" || c == "click") {

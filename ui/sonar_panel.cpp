@@ -59,7 +59,7 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
     const Frame& f = *shown->frame;
     const SonarParams& s = shown->scene.sonar;
     if (uploaded_count_ != session.shown_count() || uploaded_polar_ != polar) {
-        texture_.upload(polar ? polar_color_image(f.polar(), shown->scene.display)
+        texture_.upload(polar ? polar_color_image(f.polar(), f.display)
                               : no_echo_.paint(f.sector(), f.polar(), s, shown->scene.display.colormap));
         uploaded_count_ = session.shown_count(), uploaded_polar_ = polar;
     }
@@ -152,7 +152,7 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
         ImGui::PopTextWrapPos();
     }
     draw_measure(L.image, *shown);
-    draw_colorbar(L.colorbar, shown->scene.display);
+    draw_colorbar(L.colorbar, f.display); // the range shown (display.auto: from the image)
     draw_ascan(L.ascan, *shown);
     ImGui::End();
 }

@@ -94,7 +94,7 @@ void SonarPanel::draw_colorbar(const Rect& r, const DisplayParams& d) {
 
 void SonarPanel::draw_ascan(const Rect& r, const RenderResult& shown) {
     const SonarParams& s = shown.scene.sonar;
-    const DisplayParams& d = shown.scene.display;
+    const DisplayParams& d = shown.frame->display;
     const PolarImage& img = shown.frame->polar();
     if (ascan_beam_ >= 0 && ascan_beams_ != img.beams) {
         // The beam count changed: the beam nearest the azimuth it showed.

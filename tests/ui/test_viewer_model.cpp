@@ -75,6 +75,11 @@ TEST_CASE("scripts parse into timed steps and keys into the events GLFW sends", 
     CHECK_THROWS_AS(parse_script("2 key S\n1 key S\n", "s.txt"), InputError);
     CHECK_THROWS_AS(parse_script("0 key shift+q+z\n", "s.txt"), InputError);
     CHECK_THROWS_AS(parse_script("0 fly 1 2\n", "s.txt"), InputError);
+    CHECK_THROWS_AS(parse_script("0 move_to sonar.beams x 0.5\n", "s.txt"), InputError);
+    const auto rel = parse_script("0 move_by 5 -2\n", "s.txt");
+    glm::dvec2 at{10, 10};
+    step_events(rel[0], at, held);
+    CHECK(at == glm::dvec2(15, 8));
 }
 
 TEST_CASE("trajectories round-trip through CSV exactly and interpolate between samples", "[ui][trajectory]") {
