@@ -22,6 +22,8 @@ struct ViewOptions {
     int width = 1280, height = 800;
     std::string snapshot;
     std::vector<double> mouse, drag;
+    std::string script, state, layout;
+    float ui_scale = 1.0f;
 };
 
 int run_view(const ViewOptions& o) {
@@ -36,6 +38,10 @@ int run_view(const ViewOptions& o) {
     v.width = o.width;
     v.height = o.height;
     v.snapshot = o.snapshot;
+    v.script = o.script;
+    v.state = o.state;
+    v.layout = o.layout;
+    v.ui_scale = o.ui_scale;
     if (o.mouse.size() == 2) v.mouse = glm::dvec2(o.mouse[0], o.mouse[1]);
     if (o.drag.size() == 4)
         v.drag =
@@ -77,6 +83,20 @@ void register_view(CLI::App& app, std::function<int()>& run) {
            "--drag", o->drag,
            "Script a left-button drag from window pixel X0 Y0 to X1 Y1 over the frames (tests, demos)")
         ->expected(4);
+    cmd->add_option("--script", o->script,
+                    "Replay timed mouse and key events (and actions) from FILE through the window's event "
+                    "callbacks; runs until the script's last frame (see ui/script.hpp for the format)");
+    cmd->add_option(
+        "--state", o->state,
+        "After the last frame, write the camera, pose, objects, selection, snapshot count and undo "
+        "depth as JSON");
+    cmd->add_option(
+        "--layout", o->layout,
+        "After the last frame, write every text run on screen as JSON with overlapping or cut-off "
+        "text listed under \"problems\"");
+    cmd->add_option("--ui-scale", o->ui_scale,
+                    "UI scale (fonts and widgets), times the monitor's content scale (HiDPI)")
+        ->check(CLI::Range(0.75, 2.5));
     cmd->add_option("--width", o->width, "Window width [px]")->check(CLI::Range(640, 8192));
     cmd->add_option("--height", o->height, "Window height [px]")->check(CLI::Range(480, 8192));
     cmd->callback([o, &run] { run = [o] { return run_view(*o); }; });

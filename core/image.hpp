@@ -31,6 +31,8 @@ constexpr double kAutoDisplaySpanDb = 50;
 
 /// RGB of a colour map at t in [0, 1].
 std::array<std::uint8_t, 3> colormap_rgb(Colormap map, double t);
+/// The colour a viewer shows for cells where nothing echoes (L_EN = -inf), distinct from the map's low end.
+std::array<std::uint8_t, 3> no_echo_rgb(Colormap map);
 
 /// The raw image as gray: range grows upward (row 0 of the data at the bottom), beam 0 (port) on the left.
 Image8 polar_gray_image(const PolarImage& img, const DisplayParams& display);

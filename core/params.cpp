@@ -259,8 +259,8 @@ std::vector<ParamSpec> build_scene_params() {
                        "L_EN shown as black", [](S s) -> double& { return s.display.lo_db; }));
     t.push_back(number("display.hi_db", "dB", -1000, 1000, false, false, Stage::Display,
                        "L_EN shown as white", [](S s) -> double& { return s.display.hi_db; }));
-    t.push_back(enumeration<Colormap>("display.colormap", {"gray", "viridis"}, Stage::Display,
-                                      "Colour map of the image",
+    t.push_back(enumeration<Colormap>("display.colormap", {"gray", "viridis", "copper", "hot"},
+                                      Stage::Display, "Colour map of the image (copper: ARIS-like)",
                                       [](S s) -> Colormap& { return s.display.colormap; }));
     t.push_back(
         sensor(boolean("display.auto", Stage::Display,

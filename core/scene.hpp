@@ -54,7 +54,7 @@ struct SamplingParams {
     int max_rays = 2000000;    ///< adaptive scheme's budget of rays per image, refinement included
 };
 
-enum class Colormap { Gray, Viridis };
+enum class Colormap { Gray, Viridis, Copper, Hot };
 
 struct DisplayParams {
     double lo_db = 80.0;

@@ -3,7 +3,9 @@
 #pragma once
 #include "layout.hpp"
 #include "session.hpp"
+#include "trajectory_panel.hpp"
 
+#include <map>
 #include <string>
 
 namespace sonarsim::ui {
@@ -16,8 +18,17 @@ struct ControlsUi {
     // Requests raised by the panel, handled by the viewer.
     bool want_snapshot = false, want_open = false, want_add_mesh = false, want_save = false;
     bool want_reset_camera = false;
+    float ui_scale = 1.0f;          ///< the user's UI scale, times the monitor's content scale
+    bool annotated_snapshot = true; ///< snapshots also write PREFIX_annotated.png (the panel as on screen)
 };
 
-void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui);
+/// Slider drags move 1/kFineDrag as far per pixel while Shift is held.
+constexpr double kFineDrag = 10.0;
+
+/// Where each parameter's widget was drawn last frame (key -> window px), for `--script move_to`.
+const std::map<std::string, Rect>& controls_item_rects();
+
+/// The panel: its sections scroll; errors and status stay visible in a footer below them.
+void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, TrajectoryUi& trajectory);
 
 } // namespace sonarsim::ui

@@ -19,8 +19,9 @@ std::string lower(std::string s) {
 } // namespace
 
 void FileDialog::open(const std::string& title, bool save, std::vector<std::string> extensions,
-                      const std::string& start_dir) {
-    title_ = title, save_ = save, ext_ = std::move(extensions), open_ = true;
+                      const std::string& start_dir, std::function<bool(const std::string&)> accept) {
+    title_ = title, save_ = save, ext_ = std::move(extensions), open_ = true, accept_ = std::move(accept);
+    close_ = false;
     std::error_code ec;
     dir_ = fs::absolute(start_dir.empty() ? "." : start_dir, ec).lexically_normal().string();
     name_.clear();
@@ -48,7 +49,7 @@ bool FileDialog::draw(std::string& path) {
                 dirs.push_back(*it);
             } else if (ext_.empty() || std::find(ext_.begin(), ext_.end(),
                                                  lower(it->path().extension().string())) != ext_.end()) {
-                files.push_back(*it);
+                if (!accept_ || accept_(it->path().string())) files.push_back(*it);
             }
         }
         auto by_name = [](const fs::directory_entry& a, const fs::directory_entry& b) {
@@ -72,8 +73,8 @@ bool FileDialog::draw(std::string& path) {
         if (ImGui::InputText("##name", &name_, ImGuiInputTextFlags_EnterReturnsTrue)) chosen = true;
         if (ImGui::Button(save_ ? "Save" : "Open")) chosen = true;
         ImGui::SameLine();
-        if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
-            visible_ = false;
+        if (ImGui::Button("Cancel") || close_) {
+            visible_ = close_ = false;
             ImGui::CloseCurrentPopup();
         }
         if (chosen && !name_.empty()) {

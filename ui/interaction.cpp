@@ -27,12 +27,6 @@ std::optional<double> ray_triangle(const Ray& ray, const glm::dvec3& a, const gl
 
 namespace {
 
-template <class Points> void nearest_in_soup(const Ray& ray, const Points& tri, std::optional<double>& best) {
-    for (size_t k = 0; k + 2 < tri.size(); k += 3)
-        if (auto t = ray_triangle(ray, glm::dvec3(tri[k]), glm::dvec3(tri[k + 1]), glm::dvec3(tri[k + 2])))
-            if (!best || *t < *best) best = t;
-}
-
 double wrap180(double deg) {
     deg = std::fmod(deg + 180.0, 360.0);
     if (deg < 0) deg += 360.0;
@@ -40,16 +34,6 @@ double wrap180(double deg) {
 }
 
 } // namespace
-
-std::optional<double> pick_sonar(const Ray& ray, const SonarParams& sonar) {
-    std::optional<double> best;
-    nearest_in_soup(ray, frustum_shell(sonar, 8, 4).triangles, best);
-    const TriMesh body = sonar_body(sonar);
-    for (auto& t : body.triangles)
-        if (auto h = ray_triangle(ray, body.vertices[t.x], body.vertices[t.y], body.vertices[t.z]))
-            if (!best || *h < *best) best = h;
-    return best;
-}
 
 std::optional<SurfaceHit> pick_surface(const Ray& ray, const SceneGeometry& geometry,
                                        const std::optional<Seafloor>& floor) {

@@ -1,5 +1,5 @@
-// Non-GL picking and dragging in the 3D view: which thing a mouse ray hits (the sonar and its frustum, or a
-// scene surface) and how a drag of the frustum changes the sonar pose.
+// Non-GL picking and dragging in the 3D view: which scene surface a mouse ray hits and how a drag of the
+// frustum changes the sonar pose.
 #pragma once
 #include "camera.hpp"
 #include "core/geometry.hpp"
@@ -14,9 +14,6 @@ namespace sonarsim::ui {
 /// Nearest t > 0 at which the ray meets a triangle (a, b, c) (both sides), or nullopt.
 std::optional<double> ray_triangle(const Ray& ray, const glm::dvec3& a, const glm::dvec3& b,
                                    const glm::dvec3& c);
-
-/// Distance along the ray to the sonar housing or its field-of-view shell; nullopt on a miss.
-std::optional<double> pick_sonar(const Ray& ray, const SonarParams& sonar);
 
 /// First scene surface the ray meets: an object mesh or the seafloor.
 struct SurfaceHit {

@@ -9,7 +9,7 @@ struct Rect {
     bool contains(double px, double py) const { return px >= x && px < x + w && py >= y && py < y + h; }
 };
 
-/// Height of the main menu bar (ImGui's default font: 13 px + 2 x 3 px frame padding).
+/// Height of the main menu bar at UI scale 1 (ImGui's default font: 13 px + 2 x 3 px frame padding).
 constexpr float kMenuBarHeight = 19.0f;
 
 struct ViewerLayout {
@@ -17,7 +17,8 @@ struct ViewerLayout {
     Rect view3d;   ///< middle: the 3D view
     Rect sonar;    ///< right: the sonar image panel
 };
-ViewerLayout viewer_layout(int width_px, int height_px);
+/// `scale`: the UI scale (monitor content scale x the user's setting); panels widen with it.
+ViewerLayout viewer_layout(int width_px, int height_px, float scale = 1.0f);
 
 /// The largest rectangle of aspect w/h inside `box`, centred horizontally, at the top.
 Rect fit_rect(const Rect& box, double w_over_h);
@@ -28,6 +29,8 @@ struct SonarPanelLayout {
     Rect ascan;    ///< the A-scan plot below
 };
 /// Layout inside the sonar panel for an image of aspect w/h.
-SonarPanelLayout sonar_panel_layout(const Rect& panel, double image_w_over_h);
+/// Room is left for the labels: range labels left of the image, bearings above and below, the colour bar's
+/// ticks right of it.
+SonarPanelLayout sonar_panel_layout(const Rect& panel, double image_w_over_h, float scale = 1.0f);
 
 } // namespace sonarsim::ui

@@ -67,6 +67,7 @@ const glm::vec4 kFootprint{0.75f, 1.0f, 1.0f, 1.0f};
 const glm::vec4 kArc{1.0f, 0.88f, 0.1f, 1.0f};
 const glm::vec4 kEcho{1.0f, 0.25f, 0.85f, 1.0f};
 const glm::vec4 kMarker{1.0f, 0.2f, 0.2f, 1.0f};
+const glm::vec4 kHandle{1.0f, 0.85f, 0.2f, 1.0f};
 const glm::vec4 kHits{0.3f, 1.0f, 0.5f, 0.6f};
 
 glm::vec4 object_color(size_t i) {
@@ -269,6 +270,14 @@ void SceneRenderer::draw(const SceneDesc& scene, const OrbitCamera& cam, int x, 
     if (!v.empty()) {
         overlay_points_.upload(v);
         use(points_, mvp, light, 7.0f);
+        overlay_points_.draw(GL_POINTS);
+    }
+    if (!ov.handles.empty()) { // the frustum's grab handles
+        v.clear();
+        const glm::vec4 c = ov.sonar_hot ? glm::vec4(1, 1, 1, 1) : kHandle;
+        for (auto& p : ov.handles) v.push_back({glm::vec3(p), {}, c});
+        overlay_points_.upload(v);
+        use(points_, mvp, light, 13.0f);
         overlay_points_.draw(GL_POINTS);
     }
     glDepthMask(GL_TRUE);

@@ -19,6 +19,7 @@ struct ViewOverlay {
     std::vector<glm::vec3> echo_points; ///< traced points that echo into the hovered pixel
     std::optional<glm::dvec3> marker;   ///< hovered surface point
     std::vector<glm::vec3> hit_points;  ///< optional: every traced hit (teaching: shadows)
+    std::vector<glm::dvec3> handles;    ///< where the sonar can be grabbed besides its housing
     bool sonar_hot = false;             ///< frustum under the mouse or being dragged
     int selected_object = -1;
 };

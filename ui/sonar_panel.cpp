@@ -1,6 +1,12 @@
+// The sonar image panel: header (view, colour map), the fan or raw polar image with its labels, hover and
+// 3D-marker feedback. Plots and measurement are in sonar_plots.cpp.
 #include "sonar_panel.hpp"
 
 #include "image_views.hpp"
+#include "sonar_panel_style.hpp"
+#include "measure.hpp"
+
+#include "core/params.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,22 +15,31 @@
 #include <limits>
 
 namespace sonarsim::ui {
-namespace {
+using namespace panel;
 
-constexpr ImU32 kGridColor = IM_COL32(255, 255, 255, 70);
-constexpr ImU32 kLabelColor = IM_COL32(225, 230, 240, 220);
-constexpr ImU32 kMarkerColor = IM_COL32(255, 60, 60, 255);
-constexpr ImU32 kHoverColor = IM_COL32(255, 224, 25, 255);
-
-void text_at(ImDrawList* dl, ImVec2 p, ImU32 col, const char* text, float align_x = 0, float align_y = 0) {
-    const ImVec2 sz = ImGui::CalcTextSize(text);
-    dl->AddText(ImVec2(p.x - align_x * sz.x, p.y - align_y * sz.y), col, text);
+void SonarPanel::draw_header(const Session& session, Session& edit) {
+    int view = polar ? 1 : 0;
+    ImGui::RadioButton("fan", &view, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("raw polar (P)", &view, 1);
+    polar = view == 1;
+    // The colour maps of core's parameter table.
+    const std::string now = find_param("display.colormap")->get(session.scene()).get<std::string>();
+    const float room = ImGui::GetContentRegionAvail().x - ImGui::GetCursorPosX();
+    if (room > 9 * ImGui::GetFontSize()) ImGui::SameLine();
+    ImGui::SetNextItemWidth(7 * ImGui::GetFontSize());
+    if (ImGui::BeginCombo("##cmap", now.c_str())) {
+        for (const std::string& c : find_param("display.colormap")->choices)
+            if (ImGui::Selectable(c.c_str(), c == now)) edit.set("display.colormap", c);
+        ImGui::EndCombo();
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("colour map (display.colormap)");
 }
 
-} // namespace
-
-void SonarPanel::draw(const Rect& area, Session& session, const std::optional<glm::dvec3>& marker) {
+void SonarPanel::draw(const Rect& area, Session& session, const std::optional<glm::dvec3>& marker,
+                      float scale) {
     hovered_.reset();
+    scale_ = scale;
     ImGui::SetNextWindowPos(ImVec2(area.x, area.y));
     ImGui::SetNextWindowSize(ImVec2(area.w, area.h));
     const ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
@@ -33,19 +48,8 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
                                    ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoBackground;
     ImGui::Begin("Sonar image", nullptr, flags);
     const RenderResult* shown = session.shown();
-
-    // Header: view toggle and colour map.
-    int view = polar ? 1 : 0;
-    ImGui::RadioButton("fan", &view, 0);
-    ImGui::SameLine();
-    ImGui::RadioButton("raw polar (P)", &view, 1);
-    polar = view == 1;
-    ImGui::SameLine(0, 20);
-    const DisplayParams& disp = session.scene().display;
-    int cmap = disp.colormap == Colormap::Viridis ? 1 : 0;
-    if (ImGui::RadioButton("gray", &cmap, 0)) session.set("display.colormap", "gray");
-    ImGui::SameLine();
-    if (ImGui::RadioButton("viridis", &cmap, 1)) session.set("display.colormap", "viridis");
+    draw_header(session, session);
+    const float info_y = ImGui::GetCursorScreenPos().y;
 
     if (!shown) {
         ImGui::TextDisabled("rendering the first image...");
@@ -55,11 +59,16 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
     const Frame& f = *shown->frame;
     const SonarParams& s = shown->scene.sonar;
     if (uploaded_count_ != session.shown_count() || uploaded_polar_ != polar) {
-        texture_.upload(polar ? polar_color_image(f.polar(), f.display) : f.sector());
+        texture_.upload(polar ? polar_color_image(f.polar(), f.display)
+                              : no_echo_.paint(f.sector(), f.polar(), s, shown->scene.display.colormap));
         uploaded_count_ = session.shown_count(), uploaded_polar_ = polar;
     }
     const double aspect = double(f.sector().width) / f.sector().height;
-    const SonarPanelLayout L = sonar_panel_layout(area, aspect);
+    const SonarPanelLayout L = sonar_panel_layout(area, aspect, scale);
+    const float lh = ImGui::GetTextLineHeight();
+    annotated_ = {L.image.x - 36 * scale, L.image.y - lh - 8,
+                  L.colorbar.x + L.colorbar.w + 48 * scale - (L.image.x - 36 * scale),
+                  L.image.h + 2 * lh + 12};
     ImDrawList* dl = ImGui::GetWindowDrawList();
     ImGui::SetCursorScreenPos(ImVec2(L.image.x, L.image.y));
     ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(texture_.id())),
@@ -71,13 +80,17 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
     // Hover: the place under the mouse.
     const ImVec2 mouse = ImGui::GetIO().MousePos;
     if (ImGui::IsWindowHovered() && L.image.contains(mouse.x, mouse.y)) {
-        const double u = (mouse.x - L.image.x) / L.image.w, v = (mouse.y - L.image.y) / L.image.h;
-        if (polar)
-            hovered_ = polar_pixel_place(s, u * s.beams, v * s.range_bins);
-        else
-            hovered_ = sector_pixel_place(SectorLayout(s, f.sector().height), s, u * f.sector().width,
-                                          v * f.sector().height);
-        if (hovered_) ascan_beam_ = hovered_->beam;
+        hovered_ = place_at(L.image, *shown, mouse);
+        if (measuring_ && hovered_) {
+            if (ImGui::IsMouseClicked(0))
+                measure_a_ = measure_b_ = hovered_;
+            else if (ImGui::IsMouseDown(0) && measure_a_)
+                measure_b_ = hovered_;
+        }
+        if (hovered_) {
+            ascan_beam_ = hovered_->beam, ascan_beams_ = s.beams;
+            ascan_azimuth_deg_ = hovered_->azimuth_deg;
+        }
     }
     if (polar)
         draw_polar_overlay(L.image, *shown);
@@ -85,7 +98,12 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
         draw_fan_overlay(L.image, *shown);
 
     // The pixel of the hovered 3D surface point.
-    if (marker) {
+    if (measuring_ && !last_measure_.empty()) {
+        ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, info_y));
+        ImGui::PushTextWrapPos(area.w - 8 * scale); // window-local
+        ImGui::TextColored(ImVec4(0.3f, 1, 0.65f, 1), "%s", last_measure_.c_str());
+        ImGui::PopTextWrapPos();
+    } else if (marker) {
         const SectorLayout SL(s, f.sector().height);
         const PointInImage p = locate_world_point(s, SL, *marker);
         ImVec2 q;
@@ -109,8 +127,10 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
                       p.in_view                                             ? ""
                       : std::abs(p.elevation_deg) > s.elevation_fov_deg / 2 ? " (el out of beam)"
                                                                             : " (out of view)");
-        ImGui::SetCursorScreenPos(ImVec2(area.x + 8, area.y + 34));
+        ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, info_y));
+        ImGui::PushTextWrapPos(area.w - 8 * scale); // window-local
         ImGui::TextColored(ImVec4(1, 0.5f, 0.5f, 1), "%s", buf);
+        ImGui::PopTextWrapPos();
     } else if (hovered_) {
         const float level = f.polar().at(hovered_->bin, hovered_->beam);
         char lvl[32], buf[160];
@@ -120,13 +140,19 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
             std::snprintf(lvl, sizeof lvl, "no echo");
         std::snprintf(buf, sizeof buf, "r %.3f m  az %+.2f deg  bin %d beam %d: %s", hovered_->range_m,
                       hovered_->azimuth_deg, hovered_->bin, hovered_->beam, lvl);
-        ImGui::SetCursorScreenPos(ImVec2(area.x + 8, area.y + 34));
+        ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, info_y));
+        ImGui::PushTextWrapPos(area.w - 8 * scale); // window-local
         ImGui::TextColored(ImVec4(1, 0.9f, 0.3f, 1), "%s", buf);
+        ImGui::PopTextWrapPos();
     } else {
-        ImGui::SetCursorScreenPos(ImVec2(area.x + 8, area.y + 34));
-        ImGui::TextDisabled("hover the image: its elevation arc shows in 3D");
+        ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, info_y));
+        ImGui::PushTextWrapPos(area.w - 8 * scale); // window-local
+        ImGui::TextDisabled(measuring_ ? "measuring: drag on the image (Esc ends)"
+                                       : "hover the image: its elevation arc shows in 3D");
+        ImGui::PopTextWrapPos();
     }
-    draw_colorbar(L.colorbar, f.display); // display.auto: the range the frame was shown with
+    draw_measure(L.image, *shown);
+    draw_colorbar(L.colorbar, f.display); // the range shown (display.auto: from the image)
     draw_ascan(L.ascan, *shown);
     ImGui::End();
 }
@@ -136,7 +162,8 @@ void SonarPanel::draw_fan_overlay(const Rect& r, const RenderResult& shown) {
     const Frame& f = *shown.frame;
     const SectorLayout L(s, f.sector().height);
     ImDrawList* dl = ImGui::GetWindowDrawList();
-    dl->PushClipRect(ImVec2(r.x - 60, r.y - 4), ImVec2(r.x + r.w + 60, r.y + r.h + 4), true);
+    dl->PushClipRect(ImVec2(r.x - 60, r.y - 2 * ImGui::GetTextLineHeight()),
+                     ImVec2(r.x + r.w + 60, r.y + r.h + 4), true);
     auto to_screen = [&](double range, double az) {
         double px, py;
         L.polar_to_pixel(range, az, px, py);
@@ -159,11 +186,14 @@ void SonarPanel::draw_fan_overlay(const Rect& r, const RenderResult& shown) {
     }
     // Bearing lines (port = positive azimuth on the left).
     const double astep = nice_step(s.azimuth_fov_deg, 4);
-    for (double a = -std::floor(half / astep) * astep; a <= half + 1e-9; a += astep) {
+    float free_x = -1e9f; // labels left to right (port first); one that would overlap the last is left out
+    for (double a = std::floor(half / astep) * astep; a >= -half - 1e-9; a -= astep) {
         dl->AddLine(to_screen(s.range_min_m, a), to_screen(s.range_max_m, a), kGridColor, 1.0f);
         std::snprintf(buf, sizeof buf, "%+g deg", std::abs(a) < 1e-9 ? 0.0 : a);
-        const ImVec2 p = to_screen(s.range_max_m, a);
-        text_at(dl, ImVec2(p.x, p.y + 2), kLabelColor, buf, 0.5f, 0.0f);
+        const ImVec2 p = to_screen(s.range_max_m, a), sz = ImGui::CalcTextSize(buf);
+        if (p.x - sz.x / 2 < free_x) continue;
+        text_at(dl, ImVec2(p.x, p.y - 2), kLabelColor, buf, 0.5f, 1.0f);
+        free_x = p.x + sz.x / 2 + 4;
     }
     if (hovered_) {
         // The hovered cell's outline: its range bin x beam.
@@ -195,107 +225,21 @@ void SonarPanel::draw_polar_overlay(const Rect& r, const RenderResult& shown) {
         text_at(dl, ImVec2(r.x - 3, y_of(rr)), kLabelColor, buf, 1.0f, 0.5f);
     }
     const double half = s.azimuth_fov_deg / 2, astep = nice_step(s.azimuth_fov_deg, 4);
-    for (double a = -std::floor(half / astep) * astep; a <= half + 1e-9; a += astep) {
+    float free_x = -1e9f;
+    for (double a = std::floor(half / astep) * astep; a >= -half - 1e-9; a -= astep) {
         dl->AddLine(ImVec2(x_of(a), r.y), ImVec2(x_of(a), r.y + r.h), kGridColor);
-        std::snprintf(buf, sizeof buf, "%+g", std::abs(a) < 1e-9 ? 0.0 : a);
+        std::snprintf(buf, sizeof buf, "%+g deg", std::abs(a) < 1e-9 ? 0.0 : a);
+        const float w = ImGui::CalcTextSize(buf).x;
+        if (x_of(a) - w / 2 < free_x) continue;
         text_at(dl, ImVec2(x_of(a), r.y - 2), kLabelColor, buf, 0.5f, 1.0f);
+        free_x = x_of(a) + w / 2 + 4;
     }
-    text_at(dl, ImVec2(r.x + r.w + 2, r.y - 2), kLabelColor, "deg", 0.0f, 1.0f);
     if (hovered_) {
         const double dr = (s.range_max_m - s.range_min_m) / s.range_bins, da = s.azimuth_fov_deg / s.beams;
         const double r0 = s.range_min_m + hovered_->bin * dr, a0 = half - hovered_->beam * da;
         dl->AddRect(ImVec2(x_of(a0) - 1, y_of(r0 + dr) - 1), ImVec2(x_of(a0 - da) + 1, y_of(r0) + 1),
                     kHoverColor);
     }
-}
-
-void SonarPanel::draw_colorbar(const Rect& r, const DisplayParams& d) {
-    ImDrawList* dl = ImGui::GetWindowDrawList();
-    const int n = 48;
-    for (int k = 0; k < n; ++k) {
-        const auto c0 = colormap_rgb(d.colormap, 1.0 - double(k) / n);
-        const auto c1 = colormap_rgb(d.colormap, 1.0 - double(k + 1) / n);
-        dl->AddRectFilledMultiColor(ImVec2(r.x, r.y + r.h * k / n),
-                                    ImVec2(r.x + r.w, r.y + r.h * (k + 1) / n),
-                                    IM_COL32(c0[0], c0[1], c0[2], 255), IM_COL32(c0[0], c0[1], c0[2], 255),
-                                    IM_COL32(c1[0], c1[1], c1[2], 255), IM_COL32(c1[0], c1[1], c1[2], 255));
-    }
-    dl->AddRect(ImVec2(r.x, r.y), ImVec2(r.x + r.w, r.y + r.h), IM_COL32(200, 200, 200, 120));
-    const double span = d.hi_db - d.lo_db;
-    char buf[32];
-    if (std::abs(span) > 1e-9) {
-        const double step = nice_step(std::abs(span), 6);
-        const double lo = std::min(d.lo_db, d.hi_db), hi = std::max(d.lo_db, d.hi_db);
-        for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + 1e-9; v += step) {
-            const float y = r.y + float((d.hi_db - v) / span) * r.h;
-            dl->AddLine(ImVec2(r.x + r.w, y), ImVec2(r.x + r.w + 4, y), kLabelColor);
-            std::snprintf(buf, sizeof buf, "%g", v);
-            text_at(dl, ImVec2(r.x + r.w + 6, y), kLabelColor, buf, 0.0f, 0.5f);
-        }
-    }
-    text_at(dl, ImVec2(r.x + r.w / 2, r.y - 2), kLabelColor, "L_EN dB", 0.5f, 1.0f);
-}
-
-void SonarPanel::draw_ascan(const Rect& r, const RenderResult& shown) {
-    const SonarParams& s = shown.scene.sonar;
-    const DisplayParams& d = shown.frame->display;
-    const PolarImage& img = shown.frame->polar();
-    if (ascan_beam_ < 0 || ascan_beam_ >= img.beams) ascan_beam_ = strongest_beam(img);
-    const std::vector<float> lv = beam_levels(img, ascan_beam_);
-    ImDrawList* dl = ImGui::GetWindowDrawList();
-    const double a = s.azimuth_fov_deg / 2 - (ascan_beam_ + 0.5) * s.azimuth_fov_deg / s.beams;
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "A-scan: beam %d (az %+.2f deg): L_EN [dB] vs range [m]", ascan_beam_, a);
-    text_at(dl, ImVec2(r.x, r.y), kLabelColor, buf);
-    const Rect p{r.x + 40, r.y + 18, r.w - 48, r.h - 36};
-    dl->AddRectFilled(ImVec2(p.x, p.y), ImVec2(p.x + p.w, p.y + p.h), IM_COL32(16, 18, 24, 255));
-
-    double lo = std::min(d.lo_db, d.hi_db) - 10, hi = std::max(d.lo_db, d.hi_db) + 10;
-    for (float v : lv)
-        if (std::isfinite(v)) lo = std::min(lo, double(v)), hi = std::max(hi, double(v));
-    const double ystep = nice_step(hi - lo, 4);
-    lo = std::floor(lo / ystep) * ystep, hi = std::ceil(hi / ystep) * ystep;
-    auto X = [&](double range) {
-        return p.x + float((range - s.range_min_m) / (s.range_max_m - s.range_min_m)) * p.w;
-    };
-    auto Y = [&](double db) { return p.y + float((hi - db) / (hi - lo)) * p.h; };
-    // Display window lo..hi as a band.
-    dl->AddRectFilled(ImVec2(p.x, Y(std::max(d.lo_db, d.hi_db))),
-                      ImVec2(p.x + p.w, Y(std::min(d.lo_db, d.hi_db))), IM_COL32(80, 90, 120, 60));
-    for (double v = lo; v <= hi + 1e-9; v += ystep) {
-        dl->AddLine(ImVec2(p.x, Y(v)), ImVec2(p.x + p.w, Y(v)), IM_COL32(255, 255, 255, 30));
-        std::snprintf(buf, sizeof buf, "%g", v);
-        text_at(dl, ImVec2(p.x - 4, Y(v)), kLabelColor, buf, 1.0f, 0.5f);
-    }
-    const double rstep = nice_step(s.range_max_m - s.range_min_m, 6);
-    for (double rr = std::ceil(s.range_min_m / rstep - 1e-9) * rstep; rr <= s.range_max_m + 1e-9;
-         rr += rstep) {
-        dl->AddLine(ImVec2(X(rr), p.y), ImVec2(X(rr), p.y + p.h), IM_COL32(255, 255, 255, 30));
-        std::snprintf(buf, sizeof buf, "%g", rr);
-        text_at(dl, ImVec2(X(rr), p.y + p.h + 2), kLabelColor, buf, 0.5f, 0.0f);
-    }
-    // The curve, broken where nothing echoes.
-    const double dr = (s.range_max_m - s.range_min_m) / s.range_bins;
-    std::vector<ImVec2> run;
-    auto flush = [&] {
-        if (run.size() >= 2)
-            dl->AddPolyline(run.data(), int(run.size()), IM_COL32(120, 220, 255, 255), 0, 1.5f);
-        else if (run.size() == 1)
-            dl->AddCircleFilled(run[0], 1.5f, IM_COL32(120, 220, 255, 255));
-        run.clear();
-    };
-    dl->PushClipRect(ImVec2(p.x, p.y), ImVec2(p.x + p.w, p.y + p.h), true);
-    for (size_t k = 0; k < lv.size(); ++k) {
-        if (!std::isfinite(lv[k])) {
-            flush();
-            continue;
-        }
-        run.push_back(ImVec2(X(s.range_min_m + (k + 0.5) * dr), Y(lv[k])));
-    }
-    flush();
-    if (hovered_)
-        dl->AddLine(ImVec2(X(hovered_->range_m), p.y), ImVec2(X(hovered_->range_m), p.y + p.h), kHoverColor);
-    dl->PopClipRect();
 }
 
 } // namespace sonarsim::ui

@@ -24,6 +24,10 @@ struct ViewerOptions {
     std::optional<glm::dvec2> mouse; ///< headless: hold the mouse at this window pixel (hover feedback)
     /// Headless: a scripted left-button drag from `drag[0]` to `drag[1]` (window pixels) over the frames.
     std::optional<std::array<glm::dvec2, 2>> drag;
+    std::string script;    ///< timed mouse and key events replayed through the GLFW callbacks (script.hpp)
+    std::string state;     ///< after the last frame: camera, pose, objects, selection, undo depth as JSON
+    float ui_scale = 1.0f; ///< the user's UI scale (View -> UI scale), times the monitor's content scale
+    std::string layout;    ///< after the last frame: every text run on screen as JSON, with overlaps found
 };
 
 /// Opens the window and runs until it is closed (or `frames` have been drawn). Returns the exit status.

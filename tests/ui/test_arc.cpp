@@ -91,7 +91,7 @@ TEST_CASE("image helpers: polar colour image, tick steps, A-scan", "[ui][image]"
     REQUIRE(c.height == 3);
     CHECK(int(c.pixels[0]) == 64);                // top-left: bin 2, beam 0 = 90 dB
     CHECK(int(c.pixels[(2 * 2 + 1) * 3]) == 128); // bottom-right: bin 0 beam 1 = 100 dB
-    CHECK(int(c.pixels[(2 * 2 + 0) * 3]) == 0);   // -inf: black
+    CHECK(int(c.pixels[(2 * 2 + 0) * 3]) == no_echo_rgb(Colormap::Gray)[0]); // -inf: the no-echo colour
     CHECK(nice_step(4.5, 5) == Approx(1.0));
     CHECK(nice_step(32, 4) == Approx(10.0));
     CHECK(nice_step(40, 6) == Approx(5.0));

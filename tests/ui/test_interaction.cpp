@@ -39,17 +39,6 @@ TEST_CASE("ray_triangle hits inside, misses outside and behind", "[ui][pick]") {
     CHECK_FALSE(ray_triangle({{0.2, 0.2, 1}, {0, 0, 1}}, a, b, c));
 }
 
-TEST_CASE("the frustum and the housing are pickable, empty water is not", "[ui][pick]") {
-    const SceneDesc s = default_scene();
-    const glm::dvec3 eye(3, 4, 2);
-    const glm::dvec3 inside = sonar_point(s.sonar, 2.0, 5.0, 2.0);
-    auto t = pick_sonar(ray_to(eye, inside), s.sonar);
-    REQUIRE(t);
-    CHECK(*t <= glm::length(inside - eye) + 1e-9); // it meets the shell before (or at) the inner point
-    CHECK(pick_sonar(ray_to(eye, to_glm(s.sonar.pose.position_m)), s.sonar));
-    CHECK_FALSE(pick_sonar(ray_to(eye, eye + glm::dvec3(0, 1, 1)), s.sonar));
-}
-
 TEST_CASE("pick_surface finds the prism before the floor, and the floor elsewhere", "[ui][pick]") {
     const SceneDesc s = default_scene();
     const SceneGeometry geometry(s);

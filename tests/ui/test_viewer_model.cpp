@@ -1,0 +1,206 @@
+// GL-free parts of the viewer: undo stack, script parsing, trajectories, text layout checks, measurements,
+// the Open dialog's scene filter, the bindings table and the no-echo colour.
+#include "support.hpp"
+
+#include "ui/bindings.hpp"
+#include "ui/image_views.hpp"
+#include "ui/measure.hpp"
+#include "ui/scene_files.hpp"
+#include "ui/script.hpp"
+#include "ui/text_layout.hpp"
+#include "ui/trajectory.hpp"
+#include "ui/undo.hpp"
+
+#include "core/errors.hpp"
+#include "core/image.hpp"
+#include "core/scene_io.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <fstream>
+#include <set>
+
+using namespace sonarsim;
+using namespace sonarsim::ui;
+
+TEST_CASE("undo and redo walk the recorded scenes and a new edit drops the redo states", "[ui][undo]") {
+    SceneDesc a = default_scene(), b = a, c = a;
+    b.sonar.pose.position_m[0] += 0.5;
+    c.objects[0].scale = {2, 2, 2};
+    UndoStack u(a);
+    CHECK_FALSE(u.record(a)); // unchanged: no step
+    CHECK(u.record(b));
+    CHECK(u.record(c));
+    CHECK(u.undo_steps() == 2);
+    auto s = u.undo();
+    REQUIRE(s);
+    CHECK(same_scene(*s, b));
+    s = u.undo();
+    REQUIRE(s);
+    CHECK(same_scene(*s, a));
+    CHECK_FALSE(u.undo());
+    s = u.redo();
+    REQUIRE(s);
+    CHECK(same_scene(*s, b));
+    SceneDesc d = a;
+    d.sonar.beams = 64;
+    CHECK(u.record(d));
+    CHECK(u.redo_steps() == 0);
+    CHECK_FALSE(u.redo());
+    CHECK(same_scene(*u.undo(), b));
+}
+
+TEST_CASE("scripts parse into timed steps and keys into the events GLFW sends", "[ui][script]") {
+    const auto steps =
+        parse_script("# comment\n0 move 10 20\n2 press left\n2 release left\n3 key ctrl+shift+z\n"
+                     "3 screenshot out.png\n",
+                     "s.txt");
+    REQUIRE(steps.size() == 5);
+    CHECK(steps[1].frame == 2);
+    glm::dvec2 pos{0};
+    int held = 0;
+    auto ev = step_events(steps[0], pos, held);
+    REQUIRE(ev.size() == 1);
+    CHECK(pos == glm::dvec2(10, 20));
+    ev = step_events(steps[3], pos, held);
+    // Ctrl down, Shift down, Z down, Z up, Ctrl up, Shift up.
+    REQUIRE(ev.size() == 6);
+    CHECK(ev[2].key == key::Z);
+    CHECK(ev[2].key_down);
+    CHECK(ev[2].mods == (mods::Control | mods::Shift));
+    CHECK_FALSE(ev[3].key_down);
+    CHECK(held == 0);
+    CHECK_FALSE(is_input_command("screenshot"));
+    CHECK_THROWS_AS(parse_script("1 move 10\n", "s.txt"), InputError);
+    CHECK_THROWS_AS(parse_script("2 key S\n1 key S\n", "s.txt"), InputError);
+    CHECK_THROWS_AS(parse_script("0 key shift+q+z\n", "s.txt"), InputError);
+    CHECK_THROWS_AS(parse_script("0 fly 1 2\n", "s.txt"), InputError);
+    CHECK_THROWS_AS(parse_script("0 move_to sonar.beams x 0.5\n", "s.txt"), InputError);
+    const auto rel = parse_script("0 move_by 5 -2\n", "s.txt");
+    glm::dvec2 at{10, 10};
+    step_events(rel[0], at, held);
+    CHECK(at == glm::dvec2(15, 8));
+}
+
+TEST_CASE("trajectories round-trip through CSV exactly and interpolate between samples", "[ui][trajectory]") {
+    Trajectory t;
+    Pose p;
+    t.add(0, p);
+    t.add(0.5, p); // unchanged: skipped while recording
+    p.position_m = {1.0 / 3, 2, 0.9};
+    p.orientation_deg = {0, 30, 170};
+    t.add(1, p);
+    p.orientation_deg[2] = -170; // 20 deg further round, across +-180
+    t.add(2, p);
+    REQUIRE(t.size() == 3);
+    const std::string csv = trajectory_csv(t);
+    CHECK(csv.rfind("t,x,y,z,roll_deg,pitch_deg,yaw_deg\n", 0) == 0);
+    const Trajectory back = parse_trajectory_csv(csv, "t.csv");
+    REQUIRE(back.size() == 3);
+    CHECK(back.samples()[1].pose.position_m[0] == 1.0 / 3); // bit-exact
+    CHECK(back.at(1.5).orientation_deg[2] == Approx(180).margin(1e-9));
+    CHECK(back.at(0.5).position_m[0] == Approx((Pose{}.position_m[0] + 1.0 / 3) / 2));
+    CHECK(back.at(-1).position_m == Pose{}.position_m);
+    CHECK_THROWS_AS(parse_trajectory_csv("t,x,y\n", "t.csv"), InputError);
+    CHECK_THROWS_AS(
+        parse_trajectory_csv(std::string(kTrajectoryHeader) + "\n1,0,0,0,0,0,0\n0,0,0,0,0,0,0\n", "t.csv"),
+        InputError);
+    CHECK_THROWS_AS(parse_trajectory_csv(std::string(kTrajectoryHeader) + "\n1,0,0,x,0,0,0\n", "t.csv"),
+                    InputError);
+}
+
+TEST_CASE("text runs group glyphs per line and find overlaps and cut-off text", "[ui][layout]") {
+    const Rect clip{0, 0, 100, 100};
+    std::vector<Glyph> g;
+    for (int i = 0; i < 5; ++i) g.push_back({{10.0f + 7 * i, 10, 7, 13}, clip, 0}); // "hello"
+    for (int i = 0; i < 3; ++i) g.push_back({{10.0f + 7 * i, 30, 7, 13}, clip, 0}); // next line
+    auto runs = text_runs(g);
+    REQUIRE(runs.size() == 2);
+    CHECK(runs[0].glyphs == 5);
+    CHECK(runs[0].box.w == Approx(35));
+    CHECK(overlapping_runs(runs).empty());
+    CHECK(layout_problems(runs, 100, 100).empty());
+    // Another window's text drawn over the first line, and a glyph cut by its clip rectangle.
+    g.push_back({{30, 14, 7, 13}, clip, 1});
+    g.push_back({{95, 60, 7, 13}, clip, 0});
+    runs = text_runs(g);
+    REQUIRE(runs.size() == 4);
+    CHECK(overlapping_runs(runs).size() == 1);
+    const std::string p = layout_problems(runs, 100, 100);
+    CHECK(p.find("overlap") != std::string::npos);
+    CHECK(p.find("cut off") != std::string::npos);
+    // A tooltip over the text is on top on purpose.
+    runs[2].list_name = "##Tooltip_00";
+    CHECK(overlapping_runs(runs).empty());
+}
+
+TEST_CASE("image measurements: ruler distance and dB statistics of a region", "[ui][measure]") {
+    SonarParams s;
+    s.beams = 4, s.range_bins = 4, s.range_min_m = 1, s.range_max_m = 5, s.azimuth_fov_deg = 40;
+    ImagePlace a, b;
+    a.range_m = 2, a.azimuth_deg = 10, b.range_m = 2, b.azimuth_deg = -10;
+    CHECK(image_distance_m(a, b) == Approx(2 * 2 * std::sin(10 * M_PI / 180)));
+    PolarImage img;
+    img.beams = 4, img.bins = 4;
+    img.level_db.assign(16, -INFINITY);
+    img.level_db[1 * 4 + 1] = 100; // bin 1 (1.5..2.5 m... centre 2.5 m), beam 1 (az +5)
+    img.level_db[1 * 4 + 2] = 90;  // beam 2 (az -5)
+    a.range_m = 2.2, a.azimuth_deg = 12, b.range_m = 2.8, b.azimuth_deg = -12;
+    const RegionStats st = region_stats(img, s, a, b);
+    CHECK(st.cells == 2);
+    CHECK(st.echo_cells == 2);
+    CHECK(st.max_db == 100);
+    CHECK(st.min_db == 90);
+    CHECK(st.median_db == Approx(95));
+    CHECK(st.mean_db == Approx(10 * std::log10((1e10 + 1e9) / 2)));
+}
+
+TEST_CASE("the Open dialog lists scene files and not render metadata", "[ui][files]") {
+    const std::string scene = test::ui_out_path("filter_scene.json"),
+                      meta = test::ui_out_path("filter_meta.json");
+    std::ofstream(scene) << scene_to_json(default_scene()).dump();
+    std::ofstream(meta) << R"({"rays_traced": 10, "sonar": {}})";
+    CHECK(looks_like_scene_file(scene));
+    CHECK_FALSE(looks_like_scene_file(meta));
+    CHECK_FALSE(looks_like_scene_file(test::ui_out_path("no_such.json")));
+}
+
+TEST_CASE("no echo has its own colour in every map and the maps differ", "[ui][colormap]") {
+    PolarImage img;
+    img.beams = 2, img.bins = 1;
+    img.level_db = {-INFINITY, 50}; // 50 dB is below lo: the map's low end
+    DisplayParams d;
+    std::set<std::array<std::uint8_t, 3>> tops;
+    for (Colormap m : {Colormap::Gray, Colormap::Viridis, Colormap::Copper, Colormap::Hot}) {
+        d.colormap = m;
+        const Image8 out = polar_color_image(img, d);
+        const std::array<std::uint8_t, 3> none{out.pixels[0], out.pixels[1], out.pixels[2]},
+            low{out.pixels[3], out.pixels[4], out.pixels[5]};
+        CHECK(none == no_echo_rgb(m));
+        CHECK(none != low);
+        tops.insert(colormap_rgb(m, 0.6));
+    }
+    CHECK(tops.size() == 4);
+}
+
+TEST_CASE("every binding has an input and an action and README names each input", "[ui][bindings]") {
+    std::ifstream f(std::string(SONARSIM_SOURCE_DIR) + "/README.md");
+    const std::string readme((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    REQUIRE(!readme.empty());
+    for (const Binding& b : bindings()) {
+        CHECK(std::string(b.input).size() > 0);
+        CHECK(std::string(b.action).size() > 0);
+        INFO(b.input);
+        CHECK(readme.find(b.input) != std::string::npos);
+    }
+}
+
+TEST_CASE("the A-scan keeps its azimuth when the beam count changes", "[ui][ascan]") {
+    // +1.2 deg is in beam 59 of 128 over 32 deg (0.25 deg each), beam 29 of 64, beam 118 of 256.
+    const double az = 1.2;
+    CHECK(beam_at_azimuth(az, 32, 128) == 59);
+    CHECK(beam_at_azimuth(az, 32, 64) == 29);
+    CHECK(beam_at_azimuth(az, 32, 256) == 118);
+    CHECK(beam_at_azimuth(40, 32, 64) == 0);   // beyond port: the nearest beam
+    CHECK(beam_at_azimuth(-40, 32, 64) == 63); // beyond starboard
+}
