@@ -4,6 +4,8 @@
 #include "bindings.hpp"
 #include "scene_files.hpp"
 
+#include "core/devices.hpp"
+
 #include <filesystem>
 #include <imgui.h>
 #include <imgui_internal.h>
@@ -22,6 +24,8 @@ void Viewer::menu_bar() {
         ImGui::Separator();
         if (ImGui::MenuItem("Snapshot", "S")) ui_.want_snapshot = true;
         ImGui::MenuItem("Annotated snapshot PNG", nullptr, &ui_.annotated_snapshot);
+        bool gt = session_.ground_truth();
+        if (ImGui::MenuItem("Ground truth (snapshots, hover)", nullptr, &gt)) session_.set_ground_truth(gt);
         ImGui::Separator();
         if (ImGui::MenuItem("Quit", "Ctrl+Q")) quit_ = true;
         ImGui::EndMenu();
@@ -38,6 +42,23 @@ void Viewer::menu_bar() {
         if (ImGui::MenuItem("Measure on the image", "M")) sonar_->start_measure();
         ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
         ImGui::SliderFloat("UI scale", &ui_.ui_scale, 0.75f, 2.5f, "%.2f");
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Device")) {
+        // sonar.device presets (assets/devices) and the sensor model: the same keys as the panel's.
+        const SceneDesc& s = session_.scene();
+        for (const std::string& name : device_choices()) {
+            const DevicePreset* p = find_device(name);
+            if (ImGui::MenuItem(p ? (name + "  " + p->title).c_str() : "none (keep the values)", nullptr,
+                                s.sonar.device == name))
+                session_.set("sonar.device", name);
+        }
+        ImGui::Separator();
+        if (ImGui::MenuItem("Ideal sensor", nullptr, s.sensor.model == SensorModel::Ideal))
+            session_.set("sensor.model", "ideal");
+        if (ImGui::MenuItem("Device sensor (beam patterns, speckle, noise, TVG)", nullptr,
+                            s.sensor.model == SensorModel::Device))
+            session_.set("sensor.model", "device");
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Help")) {

@@ -23,12 +23,12 @@ RenderWorker::~RenderWorker() {
     thread_.join();
 }
 
-std::uint64_t RenderWorker::request(const SceneDesc& scene, bool preview) {
+std::uint64_t RenderWorker::request(const SceneDesc& scene, bool preview, bool ground_truth) {
     std::uint64_t id;
     {
         std::lock_guard<std::mutex> lock(mutex_);
         id = next_id_++;
-        queued_ = Job{id, scene, preview};
+        queued_ = Job{id, scene, preview, ground_truth};
         // Restart on change: a full render of an outdated scene is stopped inside its trace. A running
         // preview is let finish (a few ms): cancelling previews in favour of newer previews while the user
         // drags would show nothing at all.
@@ -101,6 +101,9 @@ void RenderWorker::loop() {
             control.preview = job.preview;
             r.frame = sim->render(control); // shares its stages with the simulator: no copy
             r.scene = sim->scene();
+            if (job.ground_truth && !job.preview)
+                r.ground_truth =
+                    std::make_shared<const GroundTruth>(compute_ground_truth(r.frame->hits(), r.scene));
             r.stage = std::min(r.stage, carried);
             carried = Stage::None;
         } catch (const TraceCancelled&) {

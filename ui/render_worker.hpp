@@ -4,6 +4,7 @@
 // shared immutable frames. The UI never waits unless it asks to.
 #pragma once
 #include "core/mesh.hpp"
+#include "core/ground_truth.hpp"
 #include "core/simulator.hpp"
 
 #include <atomic>
@@ -24,9 +25,10 @@ struct RenderResult {
     std::uint64_t id = 0;               ///< the request it answers
     SceneDesc scene;                    ///< the scene the frame was made from (on error: the rejected one)
     std::shared_ptr<const Frame> frame; ///< null on error; frame->preview(): a coarse preview
-    std::string error;                  ///< InputError::what() (or another exception's) on failure
-    Stage stage = Stage::None;          ///< first stage recomputed (Stage::Geometry: meshes rebuilt)
-    double wall_ms = 0;                 ///< set_scene + render, as measured by the worker
+    std::shared_ptr<const GroundTruth> ground_truth; ///< when requested, for full-quality frames only
+    std::string error;         ///< InputError::what() (or another exception's) on failure
+    Stage stage = Stage::None; ///< first stage recomputed (Stage::Geometry: meshes rebuilt)
+    double wall_ms = 0;        ///< set_scene + render, as measured by the worker
 };
 
 class RenderWorker {
@@ -39,7 +41,7 @@ class RenderWorker {
     /// Queues a scene; replaces a queued one that has not started and cancels a running full render.
     /// `preview`: the adaptive sampler's base grid only (TraceControl::preview). Returns the request id
     /// (increasing).
-    std::uint64_t request(const SceneDesc& scene, bool preview = false);
+    std::uint64_t request(const SceneDesc& scene, bool preview = false, bool ground_truth = false);
     /// The newest finished result not yet taken, if any (older unread results are dropped).
     std::optional<RenderResult> take();
     /// Waits until the result of request `id` (or a newer one) is done; false on timeout.
@@ -63,6 +65,7 @@ class RenderWorker {
         std::uint64_t id = 0;
         SceneDesc scene;
         bool preview = false;
+        bool ground_truth = false;
     };
     std::optional<Job> queued_;
     std::optional<RenderResult> result_;

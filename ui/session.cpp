@@ -123,13 +123,13 @@ std::uint64_t Session::submit(bool interacting, Clock::time_point now) {
         dirty_ = false;
         last_change_ = now;
         full_pending_ = interacting;
-        requested_id_ = worker_.request(scene_, interacting);
+        requested_id_ = worker_.request(scene_, interacting, ground_truth_);
         return requested_id_;
     }
     if (full_pending_ && (!interacting || now - last_change_ >= kRest)) {
         // The input rests: the same scene again, in full quality (the worker re-traces a preview).
         full_pending_ = false;
-        requested_id_ = worker_.request(scene_, false);
+        requested_id_ = worker_.request(scene_, false, ground_truth_);
         return requested_id_;
     }
     return 0;
@@ -174,6 +174,12 @@ bool Session::busy() const {
     return dirty_ || full_pending_ || worker_.busy();
 }
 
+void Session::set_ground_truth(bool on) {
+    if (on == ground_truth_) return;
+    ground_truth_ = on;
+    if (on) dirty_ = true; // the shown frame has none: render it again with it
+}
+
 bool Session::snapshot(const std::string& prefix, const Bytes& view3d_png) {
     if (!shown_) {
         error_ = "no sonar image yet: nothing to snapshot";
@@ -184,7 +190,12 @@ bool Session::snapshot(const std::string& prefix, const Bytes& view3d_png) {
         return false;
     }
     try {
-        const auto paths = write_snapshot(prefix, shown_->scene, *shown_->frame, view3d_png);
+        if (ground_truth_ && !shown_->ground_truth && !wait_full(std::chrono::milliseconds(60000))) {
+            error_ = "snapshot: the ground truth is not ready";
+            return false;
+        }
+        const auto paths = write_snapshot(prefix, shown_->scene, *shown_->frame, view3d_png,
+                                          ground_truth_ ? shown_->ground_truth.get() : nullptr);
         status_ = "snapshot:";
         for (auto& p : paths) status_ += " " + std::filesystem::path(p).filename().string();
         error_.clear();

@@ -82,6 +82,10 @@ class Session {
     /// preview on screen is first replaced by the full-quality image (wait_full).
     /// Returns false (and sets error()) when there is nothing to save or writing fails.
     bool snapshot(const std::string& prefix, const Bytes& view3d_png);
+    /// Ground truth per pixel for full-quality frames (computed by the worker): shown by the hover readout
+    /// and written by snapshots as PREFIX_gt_<name>.npy. Turning it on re-requests the shown scene.
+    void set_ground_truth(bool on);
+    bool ground_truth() const { return ground_truth_; }
 
   private:
     void set_scene(SceneDesc next);
@@ -93,6 +97,7 @@ class Session {
     std::unique_ptr<SceneGeometry> geometry_;
     std::uint64_t meshes_version_ = 0;
     bool dirty_ = true;
+    bool ground_truth_ = false;
     std::uint64_t requested_id_ = 0, shown_count_ = 0;
     bool full_pending_ = false;       ///< the last request for scene_ was a preview
     Clock::time_point last_change_{}; ///< when the last changed scene was sent

@@ -140,9 +140,23 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
             std::snprintf(lvl, sizeof lvl, "no echo");
         std::snprintf(buf, sizeof buf, "r %.3f m  az %+.2f deg  bin %d beam %d: %s", hovered_->range_m,
                       hovered_->azimuth_deg, hovered_->bin, hovered_->beam, lvl);
+        std::string text = buf;
+        if (const GroundTruth* gt = shown->ground_truth.get()) { // File > Ground truth
+            const size_t at = size_t(hovered_->bin) * size_t(gt->beams) + size_t(hovered_->beam);
+            if (gt->object_id[at] >= 0) {
+                std::snprintf(
+                    buf, sizeof buf,
+                    "\nbehind it: el %+.2f deg (%+.2f ... %+.2f), %s, incidence %.1f deg, %d surface%s",
+                    gt->elevation_deg[at], gt->elevation_min_deg[at], gt->elevation_max_deg[at],
+                    gt->object_id[at] == 0 ? "seafloor"
+                                           : ("object " + std::to_string(gt->object_id[at] - 1)).c_str(),
+                    gt->incidence_deg[at], gt->surfaces[at], gt->surfaces[at] == 1 ? "" : "s");
+                text += buf;
+            }
+        }
         ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, info_y));
         ImGui::PushTextWrapPos(area.w - 8 * scale); // window-local
-        ImGui::TextColored(ImVec4(1, 0.9f, 0.3f, 1), "%s", buf);
+        ImGui::TextColored(ImVec4(1, 0.9f, 0.3f, 1), "%s", text.c_str());
         ImGui::PopTextWrapPos();
     } else {
         ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, info_y));

@@ -240,3 +240,20 @@ TEST_CASE("a preview request of a scheme without previews needs no second render
     CHECK_FALSE(session.shown()->frame->preview());
     CHECK_FALSE(session.full_pending());
 }
+
+TEST_CASE("with ground truth on the worker adds it to full frames and snapshots write it", "[ui][session]") {
+    ui::Session session(default_scene());
+    session.submit();
+    REQUIRE(session.wait_latest(60s));
+    CHECK_FALSE(session.shown()->ground_truth); // only when asked for
+    session.set_ground_truth(true);
+    REQUIRE(session.submit() != 0); // the shown scene again, with it
+    REQUIRE(session.wait_latest(60s));
+    const auto* shown = session.shown();
+    REQUIRE(shown->ground_truth);
+    const GroundTruth expect = compute_ground_truth(shown->frame->hits(), shown->scene);
+    CHECK(shown->ground_truth->object_id == expect.object_id);
+    const std::string prefix = test::ui_out_path("ground_truth");
+    REQUIRE(session.snapshot(prefix, {}));
+    for (auto& [path, bytes] : ground_truth_files(prefix, expect)) CHECK(test::read_bytes(path) == bytes);
+}
