@@ -125,8 +125,7 @@ void write_aris(const std::string& path, const SceneDesc& s, const Trajectory& t
         // Sample-major; ARIS beam 0 is the starboard-most, our column 0 the port-most.
         for (int r = 0; r < samples; ++r)
             for (int b = 0; b < beams; ++b)
-                data[size_t(r) * size_t(beams) + size_t(b)] =
-                    aris_byte(double(img.at(r, beams - 1 - b)));
+                data[size_t(r) * size_t(beams) + size_t(b)] = aris_byte(double(img.at(r, beams - 1 - b)));
         out.write(frame_header(s, mode, tm, trajectory, k));
         out.write(data);
     }
