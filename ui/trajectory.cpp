@@ -37,58 +37,14 @@ Pose Trajectory::at(double t) const {
 }
 
 std::string trajectory_csv(const Trajectory& tr) {
-    std::string out = std::string(kTrajectoryHeader) + "\n";
-    char buf[512];
-    for (const TrajectorySample& s : tr.samples()) {
-        const Vec3d &x = s.pose.position_m, &r = s.pose.orientation_deg;
-        std::snprintf(buf, sizeof buf, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", s.t_s, x[0], x[1], x[2],
-                      r[0], r[1], r[2]);
-        out += buf;
-    }
-    return out;
+    sonarsim::Trajectory rows; // core's CSV: the one format batch, Python and the viewer share
+    for (const TrajectorySample& s : tr.samples()) rows.push_back({s.t_s, s.pose});
+    return trajectory_to_csv(rows);
 }
 
 Trajectory parse_trajectory_csv(const std::string& text, const std::string& file) {
-    std::istringstream in(text);
-    std::string row;
-    int line = 0;
     Trajectory tr;
-    double last_t = -INFINITY;
-    while (std::getline(in, row)) {
-        ++line;
-        if (!row.empty() && row.back() == '\r') row.pop_back();
-        const std::string where = "line " + std::to_string(line);
-        if (line == 1) {
-            if (row != kTrajectoryHeader)
-                throw InputError(file, where, std::string("expected the header ") + kTrajectoryHeader);
-            continue;
-        }
-        if (row.find_first_not_of(" \t") == std::string::npos) continue;
-        std::stringstream ss(row);
-        std::string cell;
-        double v[7];
-        int n = 0;
-        while (std::getline(ss, cell, ',')) {
-            if (n == 7) throw InputError(file, where, "more than 7 columns");
-            try {
-                size_t used = 0;
-                v[n] = std::stod(cell, &used);
-                if (cell.find_first_not_of(" \t", used) != std::string::npos) throw std::invalid_argument("");
-            } catch (const std::exception&) {
-                throw InputError(file, where, "\"" + cell + "\" is not a number");
-            }
-            if (!std::isfinite(v[n])) throw InputError(file, where, "values must be finite");
-            ++n;
-        }
-        if (n != 7) throw InputError(file, where, "expected 7 columns: " + std::string(kTrajectoryHeader));
-        if (v[0] < last_t) throw InputError(file, where, "t must not decrease");
-        last_t = v[0];
-        Pose p;
-        p.position_m = {v[1], v[2], v[3]};
-        p.orientation_deg = {v[4], v[5], v[6]};
-        tr.add(v[0], p, false);
-    }
-    if (line == 0) throw InputError(file, "line 1", std::string("expected the header ") + kTrajectoryHeader);
+    for (const TrajectoryPoint& p : sonarsim::parse_trajectory_csv(text, file)) tr.add(p.t_s, p.pose, false);
     return tr;
 }
 

@@ -3,13 +3,12 @@
 // seconds (non-decreasing), positions in metres, angles in degrees. GL-free.
 #pragma once
 #include "core/scene.hpp"
+#include "core/trajectory.hpp"
 
 #include <string>
 #include <vector>
 
 namespace sonarsim::ui {
-
-constexpr const char* kTrajectoryHeader = "t,x,y,z,roll_deg,pitch_deg,yaw_deg";
 
 struct TrajectorySample {
     double t_s = 0;
@@ -35,7 +34,8 @@ class Trajectory {
 
 /// CSV text with the header and full precision (parsing it gives the same doubles).
 std::string trajectory_csv(const Trajectory& trajectory);
-/// Parses CSV text; throws InputError(file, "line N", ...) on a bad header, row, number or time order.
+/// Parses CSV text with core's parser (parse_trajectory_csv in core/trajectory.hpp): throws InputError on a
+/// bad header, row, number or time order.
 Trajectory parse_trajectory_csv(const std::string& text, const std::string& file);
 Trajectory load_trajectory(const std::string& path);
 /// Writes the CSV atomically; throws std::runtime_error.

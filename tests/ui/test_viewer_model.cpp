@@ -83,7 +83,7 @@ TEST_CASE("scripts parse into timed steps and keys into the events GLFW sends", 
 }
 
 TEST_CASE("trajectories round-trip through CSV exactly and interpolate between samples", "[ui][trajectory]") {
-    Trajectory t;
+    ui::Trajectory t;
     Pose p;
     t.add(0, p);
     t.add(0.5, p); // unchanged: skipped while recording
@@ -95,17 +95,17 @@ TEST_CASE("trajectories round-trip through CSV exactly and interpolate between s
     REQUIRE(t.size() == 3);
     const std::string csv = trajectory_csv(t);
     CHECK(csv.rfind("t,x,y,z,roll_deg,pitch_deg,yaw_deg\n", 0) == 0);
-    const Trajectory back = parse_trajectory_csv(csv, "t.csv");
+    const ui::Trajectory back = ui::parse_trajectory_csv(csv, "t.csv");
     REQUIRE(back.size() == 3);
     CHECK(back.samples()[1].pose.position_m[0] == 1.0 / 3); // bit-exact
     CHECK(back.at(1.5).orientation_deg[2] == Approx(180).margin(1e-9));
     CHECK(back.at(0.5).position_m[0] == Approx((Pose{}.position_m[0] + 1.0 / 3) / 2));
     CHECK(back.at(-1).position_m == Pose{}.position_m);
-    CHECK_THROWS_AS(parse_trajectory_csv("t,x,y\n", "t.csv"), InputError);
-    CHECK_THROWS_AS(
-        parse_trajectory_csv(std::string(kTrajectoryHeader) + "\n1,0,0,0,0,0,0\n0,0,0,0,0,0,0\n", "t.csv"),
-        InputError);
-    CHECK_THROWS_AS(parse_trajectory_csv(std::string(kTrajectoryHeader) + "\n1,0,0,x,0,0,0\n", "t.csv"),
+    CHECK_THROWS_AS(ui::parse_trajectory_csv("t,x,y\n", "t.csv"), InputError);
+    CHECK_THROWS_AS(ui::parse_trajectory_csv(
+                        std::string(kTrajectoryHeader) + "\n1,0,0,0,0,0,0\n0,0,0,0,0,0,0\n", "t.csv"),
+                    InputError);
+    CHECK_THROWS_AS(ui::parse_trajectory_csv(std::string(kTrajectoryHeader) + "\n1,0,0,x,0,0,0\n", "t.csv"),
                     InputError);
 }
 
