@@ -3,6 +3,8 @@
 #include "pose.hpp"
 
 #include <algorithm>
+#include <memory>
+#include <mutex>
 #include <cmath>
 #include <numeric>
 
@@ -97,6 +99,19 @@ ArrayPattern::ArrayPattern(AzimuthWindow window, double taylor_sidelobe_db) {
     for (int i = 0; i < n; ++i) table_[size_t(i)] = array_intensity(w, 2 * psi3 * i / kStepsPerWidth);
 }
 
+const ArrayPattern& array_pattern(AzimuthWindow window, double taylor_sidelobe_db) {
+    // A few hundred thousand cosines per table: built once per (window, level) in the process, not on
+    // every run of the sensor stage. Entries are never removed, so references stay valid.
+    static std::mutex m;
+    static std::vector<std::pair<std::pair<AzimuthWindow, double>, std::unique_ptr<const ArrayPattern>>> made;
+    const double level = window == AzimuthWindow::Taylor ? taylor_sidelobe_db : 0;
+    std::lock_guard<std::mutex> lock(m);
+    for (auto& [key, pattern] : made)
+        if (key.first == window && key.second == level) return *pattern;
+    made.emplace_back(std::pair{window, level}, std::make_unique<const ArrayPattern>(window, level));
+    return *made.back().second;
+}
+
 double ArrayPattern::operator()(double x) const {
     const double t = std::abs(x) * kStepsPerWidth;
     const size_t i = size_t(t);
@@ -129,7 +144,7 @@ AzimuthBeamforming make_azimuth_beamforming(const SceneDesc& s) {
     AzimuthBeamforming f;
     const int N = s.sonar.beams, S = azimuth_subcolumns(s);
     f.beams = N, f.sub = S;
-    const ArrayPattern pattern(s.sensor.azimuth_window, s.sensor.taylor_sidelobe_db);
+    const ArrayPattern& pattern = array_pattern(s.sensor.azimuth_window, s.sensor.taylor_sidelobe_db);
     const double theta = deg2rad(s.sonar.azimuth_fov_deg), spacing = theta / N;
     const double bw = deg2rad(azimuth_beamwidth_deg(s));
     const bool array = s.sensor.beamformer == Beamformer::Array;

@@ -48,6 +48,9 @@ class ArrayPattern {
     std::vector<double> table_; ///< at x = i / kStepsPerWidth
 };
 
+/// The pattern of a window (and, for taylor, its sidelobe level), made once per process and shared.
+const ArrayPattern& array_pattern(AzimuthWindow window, double taylor_sidelobe_db);
+
 /// The pattern is applied out to where it stays below kAzimuthPatternFloorDb, at most this many -3 dB widths
 /// either side of a beam's axis (rect: sidelobes there are still at about -30 dB; hann: 4.6 widths).
 constexpr double kAzimuthPatternExtent = 12.0;
