@@ -5,6 +5,7 @@
 #include "reference.hpp"
 #include "shade.hpp"
 #include "trace.hpp"
+#include "multipath.hpp"
 #include "trace_detail.hpp"
 
 #include <algorithm>
@@ -67,6 +68,8 @@ struct Context {
     const SceneDesc& s;
     const TraceControl& control;
     detail::RayFrame frame;
+    bool multipath; ///< ghosts to find (sampling.bounces and a mirror)
+    detail::Multipath mp;
     ShadeConstants k;
     double phi, jump_db, range_jump_db, bin_m, gap_m;
     double tol_rel_db; ///< 10 log10 of the relative error per bin that tolerance_db allows, 10^(tol/10) - 1
@@ -77,9 +80,9 @@ struct Context {
     /// possible error is judged. Empty: every flagged pair counts.
     std::vector<float> base_db; ///< [beam * range_bins + bin]: echo [dB, as cell_echo_db] of the base grid
     Context(const SceneGeometry& geo, const SceneDesc& scene, const TraceControl& c)
-        : g(geo), s(scene), control(c), frame(scene), k(shade_constants(scene)),
-          phi(frame.elevation_weight.traced_fov_rad()), jump_db(10 * scene.sampling.tolerance_db),
-          range_jump_db(4 * scene.sampling.tolerance_db),
+        : g(geo), s(scene), control(c), frame(scene), multipath(detail::multipath_active(scene)),
+          mp(geo, scene, frame), k(shade_constants(scene)), phi(frame.elevation_weight.traced_fov_rad()),
+          jump_db(10 * scene.sampling.tolerance_db), range_jump_db(4 * scene.sampling.tolerance_db),
           bin_m((scene.sonar.range_max_m - scene.sonar.range_min_m) / scene.sonar.range_bins),
           gap_m(0.5 * bin_m),
           tol_rel_db(10 * std::log10((std::pow(10.0, scene.sampling.tolerance_db / 10) - 1) / kErrorsPerBin)),
@@ -128,7 +131,7 @@ struct Context {
     bool surface_edge(const Hit& x, const glm::dvec3& px, const Hit& y, const glm::dvec3& py,
                       EdgeRay&& edge_ray) const {
         if (x.material != y.material) return true;
-        if (x.material == kFloorMaterial || x.prim == y.prim) return false;
+        if (x.material == kFloorMaterial || x.material == kSurfaceMaterial || x.prim == y.prim) return false;
         const glm::dvec3 d_edge = edge_ray();
         const double rx = detail::plane_range(frame.origin, px, x.normal, d_edge);
         const double ry = detail::plane_range(frame.origin, py, y.normal, d_edge);
@@ -328,8 +331,11 @@ struct Context {
         }
     }
 
-    /// Cells of a column; `coarse` merges every complete sibling triple into its middle cell (one level up).
-    void cells_of(const Column& c, bool coarse, double da, std::vector<Cell>& out) const {
+    /// Cells of a column, and their multipath ghosts (with multipath); `coarse` merges every complete
+    /// sibling triple into its middle cell (one level up). Returns the ghosts' rays.
+    std::uint64_t cells_of(const Column& c, bool coarse, double da, std::vector<Cell>& out,
+                           std::vector<GhostCell>& ghosts) const {
+        std::uint64_t rays = 0;
         const Angle a(c.a), a_lo(c.a - da / 2), a_hi(c.a + da / 2);
         // Cell widths come in a few sizes (de0 / 3^k): keep sin and cos of their halves.
         std::array<std::pair<double, Angle>, 12> halves{};
@@ -350,6 +356,7 @@ struct Context {
             lo.rad = e.rad - h.rad, lo.c = e.c * h.c + e.s * h.s, lo.s = e.s * h.c - e.c * h.s;
             hi.rad = e.rad + h.rad, hi.c = e.c * h.c - e.s * h.s, hi.s = e.s * h.c + e.c * h.s;
             out.push_back(detail::make_cell(frame, *n.hit, a, e, a_lo, a_hi, lo, hi));
+            if (multipath) rays += mp.ghosts(*n.hit, a, e, a_lo, a_hi, lo, hi, ghosts);
         };
         for (size_t n = 0; n < c.nodes.size();) {
             if (coarse && n + 2 < c.nodes.size() && c.nodes[n].group == c.nodes[n + 1].group &&
@@ -361,6 +368,7 @@ struct Context {
                 ++n;
             }
         }
+        return rays;
     }
 };
 
@@ -516,28 +524,42 @@ TraceResult trace_pass(Context& ctx, int M0, TraceResult::ErrorEstimate& est) {
     if (ctx.control.cancelled()) throw TraceCancelled();
     // The error estimate compares the image with the same cells one level coarser on every
     // kEstimateStride-th beam (all beams of narrow images): a sample of the image, at a quarter of the cost.
-    const int stride = N >= 8 * kEstimateStride ? kEstimateStride : 1, sampled = (N + stride - 1) / stride;
+    // With multipath every beam: ghosts arrive in beams other than their rays'.
+    const int stride = N >= 8 * kEstimateStride && !ctx.multipath ? kEstimateStride : 1,
+              sampled = (N + stride - 1) / stride;
     TraceResult fine, coarse;
     fine.beams = N, coarse.beams = sampled;
     coarse.cells.resize(size_t(sampled)), fine.cells.resize(size_t(N));
+    std::vector<std::vector<GhostCell>> fine_ghosts(static_cast<size_t>(N)),
+        coarse_ghosts(static_cast<size_t>(sampled));
+    std::vector<std::uint64_t> ghost_rays(static_cast<size_t>(N), 0);
     tbb::parallel_for(0, N, [&](int i) {
         const auto& cols = beams[size_t(i)];
-        for (auto& c : cols) ctx.cells_of(c, false, c.da, fine.cells[size_t(i)]);
+        for (auto& c : cols)
+            ghost_rays[size_t(i)] +=
+                ctx.cells_of(c, false, c.da, fine.cells[size_t(i)], fine_ghosts[size_t(i)]);
         if (ctx.control.preview || i % stride) return;
         auto& coarse_cells = coarse.cells[size_t(i / stride)];
+        auto& coarse_ghost = coarse_ghosts[size_t(i / stride)];
         // One level coarser everywhere: sibling column triples -> the middle column (3 da), and within each
         // column sibling elevation triples -> the middle cell.
         for (size_t k = 0; k < cols.size();) {
             if (k + 2 < cols.size() && cols[k].group == cols[k + 1].group &&
                 cols[k].group == cols[k + 2].group) {
-                ctx.cells_of(cols[k + 1], true, 3 * cols[k + 1].da, coarse_cells);
+                ghost_rays[size_t(i)] +=
+                    ctx.cells_of(cols[k + 1], true, 3 * cols[k + 1].da, coarse_cells, coarse_ghost);
                 k += 3;
             } else {
-                ctx.cells_of(cols[k], true, cols[k].da, coarse_cells);
+                ghost_rays[size_t(i)] += ctx.cells_of(cols[k], true, cols[k].da, coarse_cells, coarse_ghost);
                 ++k;
             }
         }
     });
+    if (ctx.multipath) {
+        fine.ghosts = detail::gather_ghosts(fine_ghosts, N);
+        coarse.ghosts = detail::gather_ghosts(coarse_ghosts, sampled);
+        for (auto r : ghost_rays) fine.multipath_rays += r;
+    }
     for (auto& b : beams)
         for (auto& c : b) fine.rays_traced += c.rays;
     beams.clear(); // the nodes are no longer needed: free them before shading
@@ -571,13 +593,14 @@ TraceResult trace_pass(Context& ctx, int M0, TraceResult::ErrorEstimate& est) {
 
 TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control) {
     Context ctx(g, s, control);
-    std::uint64_t rays = 0;
+    std::uint64_t rays = 0, multipath_rays = 0;
     int M0 = s.sampling.elevation_rays;
     TraceResult out;
     for (int pass = 1;; ++pass) {
         TraceResult::ErrorEstimate est;
         out = trace_pass(ctx, M0, est);
         rays += out.rays_traced;
+        multipath_rays += out.multipath_rays;
         est.passes = pass;
         est.budget_reached = ctx.budget_hit.load();
         out.error_estimate = est;
@@ -594,6 +617,7 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
         M0 *= 3;
     }
     out.rays_traced = rays;
+    out.multipath_rays = multipath_rays;
     return out;
 }
 

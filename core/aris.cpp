@@ -85,12 +85,6 @@ void check_aris_beams(const SceneDesc& s, const std::string& origin) {
     aris_mode(s.sonar.beams, origin);
 }
 
-double sound_speed_m_s(double t, double z) {
-    const double salinity = 35;
-    return 1449.2 + 4.6 * t - 0.055 * t * t + 0.00029 * t * t * t + (1.34 - 0.01 * t) * (salinity - 35) +
-           0.016 * z;
-}
-
 ArisTiming aris_timing(const SonarParams& sonar, double c_water) {
     ArisTiming t;
     const double bin_m = (sonar.range_max_m - sonar.range_min_m) / sonar.range_bins;

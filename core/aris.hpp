@@ -2,6 +2,7 @@
 // frame a 1024-byte frame header and BeamCount x SamplesPerBeam bytes, sample-major, beam 0 the
 // starboard-most. Packed little-endian.
 #pragma once
+#include "physics.hpp" // sound_speed_m_s
 #include "polar_image.hpp"
 #include "scene.hpp"
 #include "trajectory.hpp"
@@ -22,9 +23,6 @@ struct ArisTiming {
     double window_start_m = 0, window_length_m = 0; ///< first sample's range, samples x sample length
 };
 ArisTiming aris_timing(const SonarParams& sonar, double water_sound_speed_m_s);
-
-/// Speed of sound in sea water (salinity 35) [m/s], Medwin's formula: temperature [degC], depth [m].
-double sound_speed_m_s(double temperature_c, double depth_m);
 
 /// The byte of image level `level_db`: 255/80 clamp(L, 0, 80), rounded; 0 where nothing echoes.
 /// The image level is what the frame's .npy holds: the sensor's output, its TVG and gain (sensor.tvg,

@@ -357,4 +357,16 @@ std::optional<Hit> intersect_floor(const Seafloor& f, const glm::dvec3& o, const
     return h;
 }
 
+std::optional<Hit> intersect_surface(double height_m, const glm::dvec3& o, const glm::dvec3& d,
+                                     double t_max) {
+    if (!(d.z > 0)) return std::nullopt;
+    const double t = (height_m - o.z) / d.z;
+    if (!(t > 0) || t > t_max) return std::nullopt;
+    Hit h;
+    h.t = t;
+    h.normal = {0, 0, -1};
+    h.material = kSurfaceMaterial;
+    return h;
+}
+
 } // namespace sonarsim

@@ -17,6 +17,8 @@ constexpr double kMinHitRange_m = 1e-5;
 
 /// Material index of the seafloor; object i has material index i + 1.
 constexpr unsigned kFloorMaterial = 0;
+/// Material index of the water surface (water.surface_height_m): -2 as a signed ground-truth id.
+constexpr unsigned kSurfaceMaterial = 0xFFFFFFFEu;
 
 struct Hit {
     double t = 0;          ///< range along the unit ray [m]
@@ -75,5 +77,9 @@ class SceneGeometry {
 /// First hit on the seafloor plane z = height (seen from either side), t in (0, t_max].
 std::optional<Hit> intersect_floor(const Seafloor& floor, const glm::dvec3& origin, const glm::dvec3& dir,
                                    double t_max);
+
+/// First hit on the water surface z = height from below (normal -z), t in (0, t_max].
+std::optional<Hit> intersect_surface(double height_m, const glm::dvec3& origin, const glm::dvec3& dir,
+                                     double t_max);
 
 } // namespace sonarsim

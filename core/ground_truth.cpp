@@ -1,6 +1,7 @@
 #include "ground_truth.hpp"
 
 #include "footprint.hpp"
+#include "geometry.hpp"
 #include "physics.hpp"
 #include "pose.hpp"
 #include "shade.hpp"
@@ -9,6 +10,7 @@
 #include <bitset>
 #include <cmath>
 #include <limits>
+#include <tuple>
 #include <tbb/parallel_for.h>
 
 namespace sonarsim {
@@ -19,12 +21,13 @@ struct Accumulator {
     double w = 0, e = 0, inc = 0;
     double e_min = std::numeric_limits<double>::infinity(), e_max = -e_min;
     glm::dvec3 p{0};
-    std::bitset<64> materials; ///< the floor and objects 0 ... 62 have a bit each; later objects share bit 63
+    std::bitset<64>
+        materials; ///< the floor and objects 0 ... 61 a bit each, later objects 62, the surface 63
     /// Echo per surface (material index), for the strongest one; a ninth surface in one cell is not counted
     /// there (it still counts in `materials`).
-    std::array<std::pair<std::uint32_t, double>, 8> share{};
+    std::array<std::pair<std::uint64_t, double>, 8> share{}; ///< key: bounces << 32 | material index
     int shares = 0;
-    void add_share(std::uint32_t m, double v) {
+    void add_share(std::uint64_t m, double v) {
         for (int n = 0; n < shares; ++n)
             if (share[size_t(n)].first == m) {
                 share[size_t(n)].second += v;
@@ -32,20 +35,23 @@ struct Accumulator {
             }
         if (shares < int(share.size())) share[size_t(shares++)] = {m, v};
     }
-    std::int32_t strongest() const {
+    /// The strongest (material index as a signed id, bounces); (-1, 0) when none.
+    std::pair<std::int32_t, std::int32_t> strongest() const {
         int best = 0;
         for (int n = 1; n < shares; ++n)
             if (share[size_t(n)].second > share[size_t(best)].second) best = n;
-        return shares ? std::int32_t(share[size_t(best)].first) : -1;
+        if (!shares) return {-1, 0};
+        const std::uint64_t key = share[size_t(best)].first;
+        return {std::int32_t(std::uint32_t(key & 0xFFFFFFFFu)), std::int32_t(key >> 32)};
     }
 };
 
 } // namespace
 
 const std::vector<std::string>& ground_truth_names() {
-    static const std::vector<std::string> names = {"elevation_deg", "elevation_min_deg", "elevation_max_deg",
-                                                   "point_m",       "object_id",         "incidence_deg",
-                                                   "surfaces"};
+    static const std::vector<std::string> names = {
+        "elevation_deg", "elevation_min_deg", "elevation_max_deg", "point_m",
+        "object_id",     "incidence_deg",     "surfaces",          "bounces"};
     return names;
 }
 
@@ -66,15 +72,19 @@ GroundTruth compute_ground_truth(const TraceResult& hits, const SceneDesc& s) {
     gt.point_m.assign(cells * 3, nan);
     gt.object_id.assign(cells, -1);
     gt.surfaces.assign(cells, 0);
+    gt.bounces.assign(cells, 0);
     tbb::parallel_for(0, std::min(N, hits.beams), [&](int i) {
-        const auto& beam_cells = hits.cells[size_t(i)];
+        const BeamContributions beam_cells(hits, i);
         // Levels as shade() computes them, then weights relative to the beam's strongest cell.
         std::vector<double> x;
-        const double x_max = cell_levels(beam_cells, s, k, x);
+        const double x_max = contribution_levels(beam_cells, s, k, x);
         if (!std::isfinite(x_max)) return;
         std::vector<Accumulator> acc(static_cast<size_t>(K));
         for (size_t n = 0; n < beam_cells.size(); ++n) {
             const Cell& c = beam_cells[n];
+            const GhostCell* ghost = beam_cells.ghost(n);
+            const std::uint64_t key = std::uint64_t(ghost ? ghost->order() : 0) << 32 | c.material;
+            const unsigned bit = c.material == kSurfaceMaterial ? 63u : std::min(c.material, 62u);
             const double w = std::exp(x[n] - x_max);
             if (!(w > 0)) continue;
             const double inc = rad2deg(std::acos(std::clamp(double(c.cos_incidence), 0.0, 1.0)));
@@ -85,9 +95,10 @@ GroundTruth compute_ground_truth(const TraceResult& hits, const SceneDesc& s) {
                 Accumulator& a = acc[size_t(b)];
                 a.w += v, a.e += v * e, a.inc += v * inc;
                 a.e_min = std::min(a.e_min, e), a.e_max = std::max(a.e_max, e);
-                a.p += v * (origin + r * (R * sonar_direction(c.azimuth_rad, e)));
-                a.add_share(c.material, v);
-                a.materials.set(std::min<std::uint32_t>(c.material, 63));
+                a.p +=
+                    v * (ghost ? glm::dvec3(c.point) : origin + r * (R * sonar_direction(c.azimuth_rad, e)));
+                a.add_share(key, v);
+                a.materials.set(bit);
             });
         }
         for (int b = 0; b < K; ++b) {
@@ -98,7 +109,7 @@ GroundTruth compute_ground_truth(const TraceResult& hits, const SceneDesc& s) {
             gt.elevation_min_deg[at] = float(rad2deg(a.e_min));
             gt.elevation_max_deg[at] = float(rad2deg(a.e_max));
             for (int axis = 0; axis < 3; ++axis) gt.point_m[at * 3 + axis] = float(a.p[axis] / a.w);
-            gt.object_id[at] = a.strongest(); // material index: 0 the floor, i + 1 objects[i]
+            std::tie(gt.object_id[at], gt.bounces[at]) = a.strongest(); // 0 the floor, i + 1 objects[i]
             gt.incidence_deg[at] = float(a.inc / a.w);
             gt.surfaces[at] = std::int32_t(a.materials.count());
         }
@@ -122,7 +133,8 @@ std::vector<std::pair<std::string, Bytes>> ground_truth_files(const std::string&
             {p + "point_m.npy", f32(gt.point_m, {shape[0], shape[1], 3})},
             {p + "object_id.npy", i32(gt.object_id)},
             {p + "incidence_deg.npy", f32(gt.incidence_deg, shape)},
-            {p + "surfaces.npy", i32(gt.surfaces)}};
+            {p + "surfaces.npy", i32(gt.surfaces)},
+            {p + "bounces.npy", i32(gt.bounces)}};
 }
 
 } // namespace sonarsim

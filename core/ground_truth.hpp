@@ -15,16 +15,20 @@ namespace sonarsim {
 
 /// Arrays of the raw image's shape (range_bins, beams), row 0 nearest; point_m has a last axis of 3.
 /// Each contribution is a cell's echo in the bin (as shaded) at the elevation where its surface crosses the
-/// bin's centre range; NaN (object_id -1, surfaces 0) where nothing echoes.
+/// bin's centre range; NaN (object_id -1, surfaces 0) where nothing echoes. A multipath ghost counts where it
+/// arrives (its elevation is the arrival direction's); its point is the scatterer's, not the apparent one.
 struct GroundTruth {
     int bins = 0, beams = 0;
     std::vector<float> elevation_deg;     ///< echo-weighted mean elevation [deg]
     std::vector<float> elevation_min_deg; ///< lowest elevation echoing into the cell [deg]: the ambiguity
     std::vector<float> elevation_max_deg; ///< highest [deg]
     std::vector<float> point_m;           ///< echo-weighted centroid, world coordinates [m], x y z per cell
-    std::vector<std::int32_t> object_id; ///< strongest contribution: -1 nothing, 0 seafloor, i + 1 objects[i]
-    std::vector<float> incidence_deg;    ///< echo-weighted mean incidence angle [deg]
-    std::vector<std::int32_t> surfaces;  ///< distinct surfaces contributing (the floor and each object once)
+    /// Strongest contribution: -1 nothing, 0 seafloor, i + 1 objects[i], -2 the water surface.
+    std::vector<std::int32_t> object_id;
+    std::vector<float> incidence_deg;   ///< echo-weighted mean incidence angle [deg]
+    std::vector<std::int32_t> surfaces; ///< distinct surfaces contributing (the floor and each object once)
+    /// Specular reflections (out and back) on the strongest contribution's path: 0 direct, > 0 a ghost.
+    std::vector<std::int32_t> bounces;
 };
 
 GroundTruth compute_ground_truth(const TraceResult& hits, const SceneDesc& scene);

@@ -8,6 +8,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
 #include <sstream>
 
 namespace sonarsim {
@@ -33,6 +36,22 @@ ParamSpec number(std::string key, std::string unit, double lo, double hi, bool l
     p.help = std::move(help);
     p.get = [ref](const SceneDesc& s) { return json(ref(const_cast<SceneDesc&>(s))); };
     p.put = [ref](SceneDesc& s, const json& v) { ref(s) = v.get<double>(); };
+    return p;
+}
+
+/// A number that may be absent (null): std::optional in the scene.
+ParamSpec optional_number(std::string key, std::string unit, double lo, double hi, Stage stage,
+                          std::string help, std::function<std::optional<double>&(SceneDesc&)> ref) {
+    ParamSpec p = number(std::move(key), std::move(unit), lo, hi, false, false, stage, std::move(help),
+                         [](SceneDesc&) -> double& { throw std::logic_error("optional"); });
+    p.optional = true;
+    p.get = [ref](const SceneDesc& s) {
+        const auto& v = ref(const_cast<SceneDesc&>(s));
+        return v ? json(*v) : json(nullptr);
+    };
+    p.put = [ref](SceneDesc& s, const json& v) {
+        ref(s) = v.is_null() ? std::nullopt : std::optional<double>(v.get<double>());
+    };
     return p;
 }
 
@@ -233,6 +252,14 @@ std::vector<ParamSpec> build_scene_params() {
                        [](S s) -> double& { return s.water.temperature_c; }));
     t.push_back(number("water.depth_m", "m", 0, 7000, false, false, Stage::Shade,
                        "Water depth D (absorption)", [](S s) -> double& { return s.water.depth_m; }));
+    t.push_back(optional_number("water.surface_height_m", "m", -1e6, 1e6, Stage::Trace,
+                                "Multipath: height z of the water surface, a pressure-release mirror that "
+                                "also backscatters (water.surface_material); null: no surface",
+                                [](S s) -> std::optional<double>& { return s.water.surface_height_m; }));
+    t.push_back(number("water.surface_roughness_m", "m", 0, 1, false, false, Stage::Shade,
+                       "Multipath: rms height sigma of the surface; coherent reflection |R|^2 = "
+                       "exp(-2 (2 k sigma cos theta)^2)",
+                       [](S s) -> double& { return s.water.surface_roughness_m; }));
     t.push_back(integer("sampling.elevation_rays", 1, 1000000, Stage::Trace, "Elevation rays M per beam",
                         [](S s) -> int& { return s.sampling.elevation_rays; }));
     t.push_back(integer("sampling.azimuth_rays", 1, 1024, Stage::Trace, "Azimuth rays per beam",
@@ -255,6 +282,10 @@ std::vector<ParamSpec> build_scene_params() {
                         "adaptive: budget of rays per image, refinement and passes included; when reached, "
                         "refinement stops and the metadata says so (about 300 bytes of memory per ray)",
                         [](S s) -> int& { return s.sampling.max_rays; }));
+    t.push_back(integer("sampling.bounces", 0, 2, Stage::Trace,
+                        "Multipath: specular reflections followed per leg on mirrors (the water surface, "
+                        "materials with reflection_db); 0: direct paths only",
+                        [](S s) -> int& { return s.sampling.bounces; }));
     t.push_back(number("display.lo_db", "dB", -1000, 1000, false, false, Stage::Display,
                        "L_EN shown as black", [](S s) -> double& { return s.display.lo_db; }));
     t.push_back(number("display.hi_db", "dB", -1000, 1000, false, false, Stage::Display,
@@ -272,12 +303,21 @@ std::vector<ParamSpec> build_scene_params() {
     return t;
 }
 
+MaterialSpec optional_material(MaterialSpec m) {
+    m.optional = true;
+    return m;
+}
+
 std::vector<MaterialSpec> build_material_params() {
     return {
         material("nu_db", "dB", -200, 50, false, "Lambert strength 10 log10 nu", &Material::nu_db),
         material("q", "", 0, 1000, false, "Lambert exponent q (fall-off at grazing)", &Material::q),
         material("mu", "", 0, 1e6, false, "Specular amplitude mu (linear; 0 = off)", &Material::mu),
         material("h_deg", "deg", 0, 90, true, "Specular lobe width h", &Material::h_deg),
+        optional_material(material("reflection_db", "dB", 0, 200, false,
+                                   "Multipath: energy lost per specular reflection, -10 log10 |R|^2; absent "
+                                   "(null): not a mirror",
+                                   &Material::reflection_db)),
     };
 }
 
@@ -333,10 +373,24 @@ std::string allowed_text(const ValueSpec& spec) {
     if (spec.type == ParamType::Bool) return "true or false";
     if (spec.type == ParamType::Integer) return "an integer in " + range;
     if (spec.type == ParamType::Vec3) return "an array of 3 finite numbers in " + range + unit;
-    return "a finite number in " + range + unit;
+    return "a finite number in " + range + unit + (spec.optional ? ", or null (absent)" : "");
+}
+
+double MaterialSpec::value_of(const json& v) const {
+    return v.is_null() ? std::numeric_limits<double>::infinity() : v.get<double>();
+}
+
+json MaterialSpec::get(const Material& m) const {
+    const double v = m.*field;
+    return std::isfinite(v) ? json(v) : json(nullptr);
+}
+
+Stage MaterialSpec::stage_of_change(double before, double after) const {
+    return optional && std::isfinite(before) != std::isfinite(after) ? Stage::Trace : stage;
 }
 
 json validate_value(const ValueSpec& spec, const json& v, const std::string& file, const std::string& key) {
+    if (spec.optional && v.is_null()) return v;
     switch (spec.type) {
     case ParamType::Number:
         if (!v.is_number())
@@ -419,6 +473,21 @@ void apply_device(SceneDesc& scene) {
 
 } // namespace
 
+std::string material_keys_text() {
+    std::string keys;
+    for (auto& p : material_params()) keys += (keys.empty() ? "" : ", ") + p.key;
+    return keys;
+}
+
+Stage set_material(Material& m, const std::string& field, const json& value, const std::string& file,
+                   const std::string& key) {
+    const MaterialSpec* spec = find_material_param(field);
+    if (!spec) throw InputError(file, key, "unknown key; allowed: " + material_keys_text());
+    const double before = m.*(spec->field);
+    m.*(spec->field) = spec->value_of(validate_value(*spec, value, file, key));
+    return spec->stage_of_change(before, m.*(spec->field));
+}
+
 Stage apply_setting(SceneDesc& scene, const std::string& key, const json& value, const std::string& file) {
     if (auto* p = find_param(key)) {
         p->put(scene, validate_value(*p, value, file, key));
@@ -426,14 +495,14 @@ Stage apply_setting(SceneDesc& scene, const std::string& key, const json& value,
         if (key == "sensor.model") apply_sensor_model(scene);
         return is_group_key(key) ? Stage::Geometry : p->stage;
     }
-    const std::string floor_prefix = "seafloor.material.";
+    const std::string floor_prefix = "seafloor.material.", surface_prefix = "water.surface_material.";
     if (key.rfind(floor_prefix, 0) == 0) {
-        auto* m = find_material_param(key.substr(floor_prefix.size()));
-        if (!m) throw InputError(file, key, "unknown material key; allowed: nu_db, q, mu, h_deg");
         if (!scene.seafloor) throw InputError(file, key, "the scene has no seafloor");
-        scene.seafloor->material.*(m->field) = validate_value(*m, value, file, key).get<double>();
-        return Stage::Shade;
+        return set_material(scene.seafloor->material, key.substr(floor_prefix.size()), value, file, key);
     }
+    if (key.rfind(surface_prefix, 0) == 0)
+        return set_material(scene.water.surface_material, key.substr(surface_prefix.size()), value, file,
+                            key);
     if (key == "seafloor.height_m") {
         ValueSpec s;
         s.key = key, s.unit = "m", s.min = -1e6, s.max = 1e6;
@@ -452,12 +521,8 @@ Stage apply_setting(SceneDesc& scene, const std::string& key, const json& value,
                              "object index must be in [0, " + std::to_string(scene.objects.size()) + ")");
         const std::string field = dot == std::string::npos ? "" : rest.substr(dot + 1);
         ObjectDesc& o = scene.objects[idx];
-        if (field.rfind("material.", 0) == 0) {
-            auto* m = find_material_param(field.substr(9));
-            if (!m) throw InputError(file, key, "unknown material key; allowed: nu_db, q, mu, h_deg");
-            o.material.*(m->field) = validate_value(*m, value, file, key).get<double>();
-            return Stage::Shade;
-        }
+        if (field.rfind("material.", 0) == 0)
+            return set_material(o.material, field.substr(9), value, file, key);
         ValueSpec s;
         s.key = key, s.type = ParamType::Vec3, s.min = -1e6, s.max = 1e6;
         if (field == "position") {
@@ -475,7 +540,7 @@ Stage apply_setting(SceneDesc& scene, const std::string& key, const json& value,
     for (auto& p : scene_params()) known += (known.empty() ? "" : ", ") + p.key;
     throw InputError(file, key,
                      "unknown key; allowed: " + known +
-                         ", seafloor.height_m, seafloor.material.*, objects.N.*");
+                         ", seafloor.height_m, seafloor.material.*, water.surface_material.*, objects.N.*");
 }
 
 std::pair<std::string, json> parse_setting_text(const std::string& text, const std::string& origin) {
@@ -550,6 +615,16 @@ void validate_scene(const SceneDesc& s, const std::string& file) {
                          "value " + fmt(s.sensor.range_resolution_m) +
                              " m is coarser than a quarter of the range window; allowed: [0, " +
                              fmt((s.sonar.range_max_m - s.sonar.range_min_m) / 4) + "] m");
+    if (const auto& h = s.water.surface_height_m) {
+        if (!(s.sonar.pose.position_m[2] < *h))
+            throw InputError(file, "water.surface_height_m",
+                             "the sonar (z = " + fmt(s.sonar.pose.position_m[2]) +
+                                 " m) must be below the water surface (z = " + fmt(*h) + " m)");
+        if (s.seafloor && !(s.seafloor->height_m < *h))
+            throw InputError(file, "water.surface_height_m",
+                             "the seafloor (z = " + fmt(s.seafloor->height_m) +
+                                 " m) must be below the water surface (z = " + fmt(*h) + " m)");
+    }
     if (!(s.display.lo_db < s.display.hi_db))
         throw InputError(file, "display.lo_db", "lo_db must be below hi_db");
     for (size_t i = 0; i < s.objects.size(); ++i) {

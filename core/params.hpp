@@ -28,6 +28,7 @@ struct ValueSpec {
     std::vector<std::string> choices; ///< for Enum
     std::string help;
     Stage stage = Stage::Trace;
+    bool optional = false; ///< null (or absent from a scene file) is allowed: the value is absent
 };
 
 /// A scene-level parameter with accessors into SceneDesc.
@@ -43,15 +44,31 @@ struct ParamSpec : ValueSpec {
 /// effects). A scene applies them before all its other keys, so that explicit keys override what they chose.
 bool is_group_key(const std::string& key);
 
-/// A per-material parameter with accessors into Material.
+/// A per-material parameter with accessors into Material. An optional one (reflection_db) is absent as
+/// +infinity.
 struct MaterialSpec : ValueSpec {
     double Material::*field = nullptr;
+    /// The field's value from a validated JSON value (null: absent).
+    double value_of(const json& validated) const;
+    /// The field as JSON (null when absent).
+    json get(const Material& m) const;
+    /// What changing the field from `before` to `after` invalidates: a mirror appearing or disappearing
+    /// changes the traced paths, any other change the shading.
+    Stage stage_of_change(double before, double after) const;
 };
 
 const std::vector<ParamSpec>& scene_params();
 const std::vector<MaterialSpec>& material_params();
 const ParamSpec* find_param(const std::string& key);
 const MaterialSpec* find_material_param(const std::string& key);
+
+/// Sets material field `field` ("nu_db", "reflection_db", ...) from `value`; returns the stage it
+/// invalidates. `key` names the whole key path in errors.
+Stage set_material(Material& m, const std::string& field, const json& value, const std::string& file,
+                   const std::string& key);
+
+/// "nu_db, q, mu, h_deg, reflection_db": the material keys, for error messages.
+std::string material_keys_text();
 
 /// Check `value` against `spec`; throws InputError(file, key_path, "... allowed ...") when it does not fit.
 /// Returns the value in canonical form (integers as integers, vec3 as 3 numbers).

@@ -17,6 +17,12 @@ double absorption_db_per_m(double f_khz, double t_c, double depth_m) {
     return 0.00049 * f_khz * f_khz * std::exp(-(t_c / 27.0 + depth_m / 1000.0 / 17.0)) / 1000.0;
 }
 
+double sound_speed_m_s(double t, double z) {
+    const double salinity = 35;
+    return 1449.2 + 4.6 * t - 0.055 * t * t + 0.00029 * t * t * t + (1.34 - 0.01 * t) * (salinity - 35) +
+           0.016 * z;
+}
+
 double transmission_loss_db(double r, double alpha) {
     return 20.0 * std::log10(r) + alpha * r;
 }
@@ -39,7 +45,8 @@ double backscatter_db(const Material& m, double cos_inc) {
 
 ShadeConstants shade_constants(const SceneDesc& s) {
     return {s.sonar.source_level_db, s.sonar.noise_level_db,
-            absorption_db_per_m(s.sonar.frequency_khz, s.water.temperature_c, s.water.depth_m)};
+            absorption_db_per_m(s.sonar.frequency_khz, s.water.temperature_c, s.water.depth_m),
+            2 * kPi * s.sonar.frequency_khz * 1e3 / sound_speed_m_s(s.water.temperature_c, s.water.depth_m)};
 }
 
 double cell_echo_db(const ShadeConstants& c, const Material& m, double r, double cos_inc, double d_omega) {

@@ -8,6 +8,9 @@ namespace sonarsim {
 /// fixed).
 double absorption_db_per_m(double frequency_khz, double temperature_c, double depth_m);
 
+/// Speed of sound in sea water [m/s] (Medwin 1975, salinity 35 ppt): T [degC], depth z [m].
+double sound_speed_m_s(double temperature_c, double depth_m);
+
 /// One-way transmission loss L_TL = 20 log10 R + alpha R [dB] (eq. 6).
 double transmission_loss_db(double range_m, double alpha_db_per_m);
 
@@ -18,6 +21,7 @@ double backscatter_db(const Material& m, double cos_incidence);
 /// Physics constants of one image, derived once per shade.
 struct ShadeConstants {
     double source_level_db, noise_level_db, alpha_db_per_m;
+    double wavenumber_rad_per_m; ///< k = 2 pi f / c (the surface's roughness loss)
 };
 ShadeConstants shade_constants(const SceneDesc& scene);
 

@@ -2,6 +2,7 @@
 // Every field with a unit carries it in its name. Defaults are the paper's (Tables I-II, ARIS Explorer 3000).
 #pragma once
 #include <array>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,10 @@ struct Material {
     double q = 2.0;       ///< Lambert exponent [-]
     double mu = 0.0;      ///< specular amplitude [linear]; 0 turns the specular term off
     double h_deg = 5.0;   ///< specular lobe width [deg]
+    /// Energy lost per specular reflection, -10 log10 |R|^2 [dB]; infinite (absent in a scene file): not a
+    /// mirror. Multipath only (sampling.bounces > 0).
+    double reflection_db = std::numeric_limits<double>::infinity();
+    bool is_mirror() const { return reflection_db < std::numeric_limits<double>::infinity(); }
 };
 
 struct Pose {
@@ -40,6 +45,11 @@ struct SonarParams {
 struct WaterParams {
     double temperature_c = 10.0;
     double depth_m = 3.0;
+    /// The water surface: the plane z = surface_height_m [m], a pressure-release mirror (R = -1) that also
+    /// backscatters (surface_material). Absent: no surface.
+    std::optional<double> surface_height_m;
+    double surface_roughness_m = 0.0; ///< rms height sigma: coherent |R|^2 = exp(-2 (2 k sigma cos theta)^2)
+    Material surface_material{-50.0, 2.0, 0.0, 5.0};
 };
 
 enum class NormalSource { Mesh, Paper };
@@ -52,6 +62,7 @@ struct SamplingParams {
     SamplingScheme scheme = SamplingScheme::Adaptive;
     double tolerance_db = 0.1; ///< adaptive scheme's target error [dB]
     int max_rays = 2000000;    ///< adaptive scheme's budget of rays per image, refinement included
+    int bounces = 0;           ///< specular reflections followed per leg (multipath); 0: direct paths only
 };
 
 enum class Colormap { Gray, Viridis, Copper, Hot };

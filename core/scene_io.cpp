@@ -87,9 +87,7 @@ Material parse_material(const json& v, const std::string& file, const std::strin
     require_object(v, file, key);
     Material m;
     for (auto& [k, val] : v.items()) {
-        const MaterialSpec* spec = find_material_param(k);
-        if (!spec) throw InputError(file, key + "." + k, "unknown key; allowed: nu_db, q, mu, h_deg");
-        m.*(spec->field) = validate_value(*spec, val, file, key + "." + k).get<double>();
+        set_material(m, k, val, file, key + "." + k);
     }
     return m;
 }
@@ -200,12 +198,17 @@ SceneDesc parse_scene(const std::string& text, const std::string& file, const st
             for (auto& [k, val] : body.items()) {
                 const std::string key = section + "." + k;
                 if (is_group_key(key)) continue;
+                if (key == "water.surface_material") {
+                    scene.water.surface_material = parse_material(val, file, key);
+                    continue;
+                }
                 const ParamSpec* p = find_param(key);
                 if (!p) {
                     std::string allowed;
                     for (auto& q : scene_params())
                         if (q.key.rfind(section + ".", 0) == 0)
                             allowed += (allowed.empty() ? "" : ", ") + q.key.substr(section.size() + 1);
+                    if (section == "water") allowed += ", surface_material";
                     throw InputError(file, key, "unknown key; allowed: " + allowed);
                 }
                 p->put(scene, validate_value(*p, val, file, key));
@@ -271,9 +274,10 @@ json scene_to_json(const SceneDesc& s) {
     }
     auto material = [](const Material& m) {
         json o;
-        for (auto& p : material_params()) o[p.key] = m.*(p.field);
+        for (auto& p : material_params()) o[p.key] = p.get(m);
         return o;
     };
+    if (s.water.surface_height_m) j["water"]["surface_material"] = material(s.water.surface_material);
     if (s.seafloor)
         j["seafloor"] = {{"height_m", s.seafloor->height_m}, {"material", material(s.seafloor->material)}};
     j["objects"] = json::array();

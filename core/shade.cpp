@@ -1,6 +1,7 @@
 #include "shade.hpp"
 
 #include "footprint.hpp"
+#include "geometry.hpp"
 #include "pose.hpp"
 #include "sensor_patterns.hpp"
 
@@ -32,7 +33,8 @@ struct LogSum {
 
 const Material& material_of(const SceneDesc& s, unsigned m) {
     static const Material none{};
-    if (m == 0) return s.seafloor ? s.seafloor->material : none;
+    if (m == kFloorMaterial) return s.seafloor ? s.seafloor->material : none;
+    if (m == kSurfaceMaterial) return s.water.surface_material;
     return s.objects.at(m - 1).material;
 }
 
@@ -43,14 +45,47 @@ double cell_fraction_in(const Cell& c, SamplingScheme scheme, double r0, double 
     return f.cdf(r1) - f.cdf(r0);
 }
 
-double cell_levels(const std::vector<Cell>& cells, const SceneDesc& s, const ShadeConstants& k,
-                   std::vector<double>& x) {
-    x.resize(cells.size());
+double reflection_gain_db(const ShadeConstants& k, const SceneDesc& s, unsigned m, double cos_inc) {
+    if (m != kSurfaceMaterial) return -material_of(s, m).reflection_db;
+    const double g = 2 * k.wavenumber_rad_per_m * s.water.surface_roughness_m * cos_inc; // Rayleigh parameter
+    return -2 * g * g / kLn10Over10; // 10 log10 exp(-2 g^2)
+}
+
+double ghost_echo_db(const ShadeConstants& k, const SceneDesc& s, const GhostCell& g) {
+    const Cell& c = g.cell;
+    const double cos_in = std::min(1.0, double(c.cos_incidence)),
+                 cos_out = std::min(1.0, double(g.cos_other));
+    if (!(c.range_m > 0) || !(cos_in > 0) || !(c.solid_angle_sr > 0) || !(g.other_leg_m > 0)) return kNegInf;
+    const Material& m = material_of(s, c.material);
+    double bs = 0;
+    if (!g.mixed()) {
+        bs = backscatter_db(m, cos_in);
+    } else {
+        if (!(cos_out > 0)) return kNegInf;
+        bs = m.nu_db + (m.q == 0 ? 0.0 : 0.5 * m.q * (std::log(cos_in) + std::log(cos_out)) / kLn10Over10);
+    }
+    double refl = 0;
+    for (int j = 0; j < g.mirrors; ++j)
+        refl += (g.mixed() ? 1 : 2) * reflection_gain_db(k, s, g.mirror_material[j], g.mirror_cos[j]);
+    return k.source_level_db - 2.0 * k.alpha_db_per_m * c.range_m - 20.0 * std::log10(double(g.other_leg_m)) +
+           std::log(c.solid_angle_sr / cos_in) / kLn10Over10 + bs + refl;
+}
+
+BeamContributions::BeamContributions(const TraceResult& hits, int beam)
+    : cells_(hits.cells[size_t(beam)]),
+      ghosts_(size_t(beam) < hits.ghosts.size() ? &hits.ghosts[size_t(beam)] : nullptr) {}
+
+double contribution_levels(const BeamContributions& beam, const SceneDesc& s, const ShadeConstants& k,
+                           std::vector<double>& x) {
+    x.resize(beam.size());
     double x_max = kNegInf;
-    for (size_t n = 0; n < cells.size(); ++n) {
-        const Cell& c = cells[n];
-        x[n] = cell_echo_db(k, material_of(s, c.material), c.range_m, c.cos_incidence, c.solid_angle_sr) *
-               kLn10Over10;
+    for (size_t n = 0; n < beam.size(); ++n) {
+        const Cell& c = beam[n];
+        const GhostCell* g = beam.ghost(n);
+        x[n] =
+            (g ? ghost_echo_db(k, s, *g)
+               : cell_echo_db(k, material_of(s, c.material), c.range_m, c.cos_incidence, c.solid_angle_sr)) *
+            kLn10Over10;
         if (std::isnan(x[n])) x[n] = kNegInf;
         x_max = std::max(x_max, x[n]);
     }
@@ -67,10 +102,10 @@ PolarImage shade(const TraceResult& hits, const SceneDesc& s) {
     img.bins = K, img.beams = N;
     img.level_db.assign(size_t(K) * size_t(N), -std::numeric_limits<float>::infinity());
     tbb::parallel_for(0, std::min(N, hits.beams), [&](int i) {
-        const auto& cells = hits.cells[size_t(i)];
+        const BeamContributions cells(hits, i);
         // Each cell's level, then a linear sum scaled by the beam's peak: one exp per cell.
         std::vector<double> x;
-        const double x_max = cell_levels(cells, s, k, x);
+        const double x_max = contribution_levels(cells, s, k, x);
         if (x_max == kNegInf) return;
         std::vector<double> lin(static_cast<size_t>(K), 0.0);
         std::vector<char> hit(static_cast<size_t>(K), 0);
@@ -108,6 +143,36 @@ PolarImage shade(const TraceResult& hits, const SceneDesc& s) {
     return img;
 }
 
+std::vector<double> path_order_energy_db(const TraceResult& hits, const SceneDesc& s) {
+    const ShadeConstants k = shade_constants(s);
+    const int K = s.sonar.range_bins, N = std::min(s.sonar.beams, hits.beams);
+    const double r_min = s.sonar.range_min_m, r_max = s.sonar.range_max_m, dr = (r_max - r_min) / K;
+    const bool spread = s.sampling.scheme != SamplingScheme::Uniform;
+    const size_t orders = size_t(2 * std::max(0, s.sampling.bounces) + 1);
+    std::vector<std::vector<LogSum>> per_beam(static_cast<size_t>(N), std::vector<LogSum>(orders));
+    tbb::parallel_for(0, N, [&](int i) {
+        const BeamContributions cells(hits, i);
+        std::vector<double> x;
+        contribution_levels(cells, s, k, x);
+        for (size_t n = 0; n < cells.size(); ++n) {
+            if (x[n] == kNegInf) continue;
+            double inside = 0;
+            detail::for_each_bin(cells[n], spread, K, r_min, r_max, dr, [&](int, double f) { inside += f; });
+            const GhostCell* g = cells.ghost(n);
+            const size_t order = std::min(orders - 1, size_t(g ? g->order() : 0));
+            if (inside > 0) per_beam[size_t(i)][order].add(x[n] + std::log(inside));
+        }
+    });
+    std::vector<double> out(orders);
+    for (size_t o = 0; o < orders; ++o) {
+        LogSum total;
+        for (auto& b : per_beam)
+            if (b[o].s > 0) total.add(b[o].log_value());
+        out[o] = total.log_value() / kLn10Over10;
+    }
+    return out;
+}
+
 bool needs_sensor_inputs(const SceneDesc& s) {
     return azimuth_subcolumns(s) > 1 || s.sensor.speckle != Speckle::Off;
 }
@@ -129,9 +194,9 @@ SensorInputs shade_sensor_inputs(const TraceResult& hits, const SceneDesc& s) {
     }
     if (elevation) in.elevation_rad.assign(size_t(K) * size_t(N), nan);
     tbb::parallel_for(0, std::min(N, hits.beams), [&](int i) {
-        const auto& cells = hits.cells[size_t(i)];
+        const BeamContributions cells(hits, i);
         std::vector<double> x;
-        const double x_max = cell_levels(cells, s, k, x);
+        const double x_max = contribution_levels(cells, s, k, x);
         if (x_max == kNegInf) return;
         const double a_top = theta / 2 - i * spacing; // the beam's port edge
         std::vector<double> lin(fine ? size_t(K) * S : 0, 0.0), wsum(elevation ? size_t(K) : 0, 0.0),

@@ -23,7 +23,8 @@ Stage changed_stage(const SceneDesc& a, const SceneDesc& b) {
     const Stage shaping = adaptive ? Stage::Trace : Stage::Shade;
     for (auto& p : scene_params())
         if (p.get(a) != p.get(b))
-            mark(p.key == "sonar.frequency_khz" || p.key == "water.temperature_c" || p.key == "water.depth_m"
+            mark(p.key == "sonar.frequency_khz" || p.key == "water.temperature_c" ||
+                         p.key == "water.depth_m" || p.key == "water.surface_roughness_m"
                      ? shaping
                      : p.stage);
     auto material_stage = [&](const Material& x, const Material& y) {
@@ -31,7 +32,11 @@ Stage changed_stage(const SceneDesc& a, const SceneDesc& b) {
         // nu sets a material's level against the others', which decides where the adaptive sampler's
         // refinement is worth its rays.
         if (x.nu_db != y.nu_db) mark(shaping);
+        // A mirror appearing or going changes the traced paths; its loss, the ghosts' levels.
+        if (x.is_mirror() != y.is_mirror()) mark(Stage::Trace);
+        if (x.is_mirror() && x.reflection_db != y.reflection_db) mark(shaping);
     };
+    material_stage(a.water.surface_material, b.water.surface_material);
     if (a.objects.size() != b.objects.size()) {
         mark(Stage::Geometry);
     } else {

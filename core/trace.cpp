@@ -1,5 +1,6 @@
 #include "trace.hpp"
 
+#include "multipath.hpp"
 #include "timing.hpp"
 #include "trace_detail.hpp"
 
@@ -63,6 +64,10 @@ TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s, const Trac
     TraceResult out;
     out.beams = N;
     out.cells.resize(size_t(N));
+    const bool multipath = detail::multipath_active(s);
+    const detail::Multipath mp(g, s, frame);
+    std::vector<std::vector<GhostCell>> ghosts(multipath ? size_t(N) : 0);
+    std::vector<std::uint64_t> ghost_rays(static_cast<size_t>(N), 0);
     tbb::parallel_for(0, N, [&](int i) {
         if (control.cancelled()) return;
         auto& cells = out.cells[size_t(i)];
@@ -77,6 +82,10 @@ TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s, const Trac
                 Cell c = detail::make_cell(frame, *h, a, e_mid[size_t(j)], a_lo, a_hi, e_edge[size_t(j) + 1],
                                            e_edge[size_t(j)]);
                 c.elevation_index = std::uint32_t(k * M + j);
+                if (multipath)
+                    ghost_rays[size_t(i)] +=
+                        mp.ghosts(*h, a, e_mid[size_t(j)], a_lo, a_hi, e_edge[size_t(j) + 1],
+                                  e_edge[size_t(j)], ghosts[size_t(i)]);
                 if (paper) {
                     const size_t gi = size_t(i * K + k) * M + size_t(j);
                     grid_point[gi] = glm::vec3(h->t * d), grid_hit[gi] = 1; // p - o
@@ -87,6 +96,10 @@ TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s, const Trac
     });
     if (control.cancelled()) throw TraceCancelled();
     out.rays_traced = std::uint64_t(N) * K * M;
+    if (multipath) {
+        out.ghosts = detail::gather_ghosts(ghosts, N);
+        for (auto r : ghost_rays) out.multipath_rays += r;
+    }
     if (paper) apply_paper_normals(out, s, grid_point, grid_hit);
     return out;
 }

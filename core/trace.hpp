@@ -30,10 +30,34 @@ struct Cell {
     std::uint32_t elevation_index;
 };
 
+/// An echo that reached a scatterer by way of specular reflections (multipath.cpp), on the beam it arrives
+/// in. `cell` is the cell as seen from the image sonar (the sonar mirrored in each mirror of the chain):
+/// range_m and its footprint are half the whole path length, azimuth and elevation the arrival direction,
+/// point the scatterer, cos_incidence the incidence of the leg whose solid angle the cell stands for (the
+/// `area leg`), solid_angle_sr that solid angle times sqrt(B_v(transmit) B_v(receive)).
+/// Paths: double (area leg and other leg both by the mirrors: the image sonar's monostatic echo), or mixed
+/// (one leg by the mirrors, one direct; the two directions are two ghosts of equal energy).
+struct GhostCell {
+    Cell cell;
+    float other_leg_m; ///< length of the leg that is not the area leg [m] (double paths: range_m)
+    float cos_other;   ///< cos of that leg's incidence at the scatterer (double paths: cos_incidence)
+    std::uint8_t tx_bounces = 0, rx_bounces = 0; ///< reflections on the way out and back
+    std::uint8_t mirrors = 0;                    ///< mirrors of the chain (max of the two)
+    std::uint32_t beam = 0;                      ///< the beam it arrives in
+    std::uint32_t mirror_material[2] = {0, 0};   ///< the chain's mirrors, sonar side first
+    float mirror_cos[2] = {1, 1};                ///< cos of the incidence at each mirror
+    glm::vec3 mirror_point[2] = {};              ///< where the path meets each mirror [m, world]
+    int order() const { return tx_bounces + rx_bounces; }
+    bool mixed() const { return tx_bounces != rx_bounces; }
+};
+
 struct TraceResult {
     int beams = 0;
     std::vector<std::vector<Cell>> cells; ///< per beam: the cells whose ray hit something within reach
+    /// Per beam: multipath echoes arriving in it (empty without mirrors or with sampling.bounces 0).
+    std::vector<std::vector<GhostCell>> ghosts;
     std::uint64_t rays_traced = 0;
+    std::uint64_t multipath_rays = 0; ///< continuation and shadow rays of the multipath ghosts
     /// Set when the tracer already shaded its cells with the scene it was given (adaptive does, to estimate
     /// its error); the L_EN image of those cells.
     std::optional<PolarImage> shaded;

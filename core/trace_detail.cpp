@@ -9,6 +9,8 @@ std::optional<Hit> first_hit(const SceneGeometry& g, const SceneDesc& s, const g
     std::optional<Hit> out;
     if (s.seafloor)
         if ((out = intersect_floor(*s.seafloor, o, d, t_max))) t_max = out->t;
+    if (s.water.surface_height_m)
+        if (auto h = intersect_surface(*s.water.surface_height_m, o, d, t_max)) out = h, t_max = h->t;
     if (!g.has_meshes()) return out;
     // Slab test against the scene bounds first: most rays of a typical scene only see the floor.
     double t0 = 0, t1 = t_max;

@@ -110,6 +110,13 @@ bool slider(const ValueSpec& spec, double current, double& value) {
     return changed;
 }
 
+/// The value an optional parameter takes when switched on: the water surface half a metre above the
+/// sonar.
+double optional_default(const SceneDesc& s, const ParamSpec& p) {
+    if (p.key == "water.surface_height_m") return s.sonar.pose.position_m[2] + 0.5;
+    return std::max(p.min, 0.0);
+}
+
 void section_params(Session& session, const std::string& section) {
     for (const ParamSpec& p : scene_params()) {
         if (param_section(p) != section) continue;
@@ -130,6 +137,13 @@ void section_params(Session& session, const std::string& section) {
             if (ImGui::Checkbox((param_label(p) + "##" + p.key).c_str(), &on)) session.set(p.key, on);
             help_tooltip(p);
             continue;
+        }
+        if (p.optional) { // absent (null) or a value: a checkbox, then the slider when present
+            bool on = !cur.is_null();
+            if (ImGui::Checkbox((param_label(p) + "##on_" + p.key).c_str(), &on))
+                session.set(p.key, on ? json(optional_default(session.scene(), p)) : json(nullptr));
+            help_tooltip(p);
+            if (cur.is_null()) continue;
         }
         double v = 0;
         if (slider(p, cur.get<double>(), v))
@@ -191,7 +205,15 @@ void material_section(Session& session, ControlsUi& ui) {
     for (const MaterialSpec& spec : material_params()) {
         double v = 0;
         ImGui::PushID(spec.key.c_str());
-        if (slider(spec, m.*(spec.field), v)) session.set(prefix + spec.key, v);
+        const bool present = std::isfinite(m.*(spec.field));
+        if (spec.optional) { // reflection_db: a checkbox (a mirror or not), then its slider
+            bool on = present;
+            if (ImGui::Checkbox((param_label(spec) + "##on").c_str(), &on))
+                session.set(prefix + spec.key, on ? json(3.0) : json(nullptr));
+            help_tooltip(spec);
+        }
+        if ((present || !spec.optional) && slider(spec, m.*(spec.field), v))
+            session.set(prefix + spec.key, v);
         ImGui::PopID();
     }
     if (ui.selected >= 0) {

@@ -109,7 +109,7 @@ TEST_CASE("ground truth files have the image's shape", "[ground_truth]") {
     gt.bins = 2, gt.beams = 3;
     for (auto* v : {&gt.elevation_deg, &gt.elevation_min_deg, &gt.elevation_max_deg, &gt.incidence_deg})
         v->assign(6, 1.0f);
-    gt.point_m.assign(18, 2.0f), gt.object_id.assign(6, 1), gt.surfaces.assign(6, 1);
+    gt.point_m.assign(18, 2.0f), gt.object_id.assign(6, 1), gt.surfaces.assign(6, 1), gt.bounces.assign(6, 0);
     const auto files = ground_truth_files("x", gt);
     REQUIRE(files.size() == ground_truth_names().size());
     for (size_t n = 0; n < files.size(); ++n) {
@@ -117,7 +117,8 @@ TEST_CASE("ground truth files have the image's shape", "[ground_truth]") {
         const std::string header(files[n].second.begin() + 10, files[n].second.begin() + 80);
         const bool point = ground_truth_names()[n] == "point_m";
         CHECK(header.find(point ? "'shape': (2, 3, 3)" : "'shape': (2, 3)") != std::string::npos);
-        const bool integer = ground_truth_names()[n] == "object_id" || ground_truth_names()[n] == "surfaces";
+        const bool integer = ground_truth_names()[n] == "object_id" ||
+                             ground_truth_names()[n] == "surfaces" || ground_truth_names()[n] == "bounces";
         CHECK(header.find(integer ? "'<i4'" : "'<f4'") != std::string::npos);
     }
 }

@@ -127,7 +127,9 @@ TEST_CASE("every slider has a sensible range inside the table's bounds", "[ui][p
         CHECK(r.lo >= p.min);
         CHECK(r.hi <= p.max);
         CHECK(!ui::param_label(p).empty());
-        const double v = p.get(SceneDesc{}).get<double>();
+        const json jv = p.get(SceneDesc{});
+        if (jv.is_null()) continue; // absent by default (the water surface): nothing on the slider yet
+        const double v = jv.get<double>();
         CHECK(v >= r.lo); // the paper value is on the slider
         CHECK(v <= r.hi);
     }
@@ -158,10 +160,22 @@ TEST_CASE("every slider visibly changes the image", "[ui][params]") {
             if (p.key == "sensor.taylor_sidelobe_db") before.sensor.azimuth_window = AzimuthWindow::Taylor;
             if (p.key == "sensor.speckle_k_shape") before.sensor.speckle = Speckle::K;
         }
-        const Bytes ref_before = p.key.rfind("sensor.", 0) == 0 ? image(before) : ref;
+        // Multipath: the floor a mirror, so that rays it reflects reach the water surface 0.6 m above the
+        // sonar, and two bounces, so that paths reflect on the surface (its roughness shows).
+        const bool multipath = p.key.rfind("water.surface", 0) == 0 || p.key == "sampling.bounces";
+        if (multipath) {
+            before.water.surface_height_m = before.sonar.pose.position_m[2] + 0.6;
+            before.seafloor->material.reflection_db = 3;
+            before.sampling.bounces = p.key == "sampling.bounces" ? 0 : 2;
+            // Long paths: a wider window, little absorption, a surface that echoes well.
+            before.sonar.range_max_m = 12, before.sonar.frequency_khz = 900;
+            before.water.surface_material.nu_db = -20;
+        }
+        const Bytes ref_before = p.key.rfind("sensor.", 0) == 0 || multipath ? image(before) : ref;
         const double v0 = p.get(before).get<double>();
         double v = v0 + 0.2 * (r.hi - r.lo);
         if (v > r.hi) v = v0 - 0.2 * (r.hi - r.lo);
+        if (p.key == "sampling.bounces") v = 1;
         if (p.key == "sonar.range_min_m") v = 1.0;
         if (p.key == "display.lo_db") v = 95.0; // stays below hi_db
         SceneDesc after = before;
@@ -178,6 +192,8 @@ TEST_CASE("every slider visibly changes the image", "[ui][params]") {
         SceneDesc before = base;
         before.objects[0].material.h_deg = 30;
         if (m.key == "h_deg") before.objects[0].material.mu = 1e-4;
+        if (m.key == "reflection_db") // the prism a mirror: its reflections reach the floor
+            before.objects[0].material.reflection_db = 3, before.sampling.bounces = 1;
         SceneDesc after = before;
         after.objects[0].material.*(m.field) += 0.2 * (r.hi - r.lo);
         INFO("objects.0.material." << m.key);
