@@ -117,6 +117,39 @@ GroundTruth compute_ground_truth(const TraceResult& hits, const SceneDesc& s) {
     return gt;
 }
 
+EchoPath strongest_path(const TraceResult& hits, const SceneDesc& s, int bin, int beam) {
+    EchoPath out;
+    const int K = s.sonar.range_bins;
+    if (beam < 0 || beam >= std::min(s.sonar.beams, hits.beams) || bin < 0 || bin >= K) return out;
+    const double r_min = s.sonar.range_min_m, r_max = s.sonar.range_max_m, dr = (r_max - r_min) / K;
+    const bool spread = s.sampling.scheme != SamplingScheme::Uniform;
+    const BeamContributions cells(hits, beam);
+    std::vector<double> x;
+    if (!std::isfinite(contribution_levels(cells, s, shade_constants(s), x))) return out;
+    double best = -std::numeric_limits<double>::infinity();
+    size_t best_n = cells.size();
+    for (size_t n = 0; n < cells.size(); ++n) {
+        if (!std::isfinite(x[n])) continue;
+        detail::for_each_bin(cells[n], spread, K, r_min, r_max, dr, [&](int b, double frac) {
+            if (b == bin && frac > 0 && x[n] + std::log(frac) > best)
+                best = x[n] + std::log(frac), best_n = n;
+        });
+    }
+    if (best_n == cells.size()) return out;
+    const Cell& c = cells[best_n];
+    const GhostCell* g = cells.ghost(best_n);
+    auto add = [&](const glm::vec3& p) { out.points_m.push_back({double(p.x), double(p.y), double(p.z)}); };
+    const auto& o = s.sonar.pose.position_m;
+    out.points_m.push_back(o);
+    for (int k = 0; g && k < g->tx_bounces; ++k) add(g->mirror_point[k]);
+    add(c.point);
+    for (int k = g ? g->rx_bounces - 1 : -1; k >= 0; --k) add(g->mirror_point[k]);
+    out.points_m.push_back(o);
+    out.bounces = g ? g->order() : 0;
+    out.object_id = std::int32_t(c.material);
+    return out;
+}
+
 std::vector<std::pair<std::string, Bytes>> ground_truth_files(const std::string& prefix,
                                                               const GroundTruth& gt) {
     const std::vector<std::size_t> shape{std::size_t(gt.bins), std::size_t(gt.beams)};

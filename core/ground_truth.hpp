@@ -6,6 +6,7 @@
 #include "scene.hpp"
 #include "trace.hpp"
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -32,6 +33,16 @@ struct GroundTruth {
 };
 
 GroundTruth compute_ground_truth(const TraceResult& hits, const SceneDesc& scene);
+
+/// The path of the strongest contribution to raw image cell (bin, beam), for drawing: world points from the
+/// sonar out to the scatterer and back (sonar, mirrors out, scatterer, mirrors back, sonar); no points
+/// where nothing echoes.
+struct EchoPath {
+    std::vector<std::array<double, 3>> points_m;
+    int bounces = 0;             ///< reflections out and back
+    std::int32_t object_id = -1; ///< the scatterer, as GroundTruth::object_id
+};
+EchoPath strongest_path(const TraceResult& hits, const SceneDesc& scene, int bin, int beam);
 
 /// PREFIX_gt_<name>.npy for each array (float32, int32 for object_id and surfaces).
 std::vector<std::pair<std::string, Bytes>> ground_truth_files(const std::string& prefix,
