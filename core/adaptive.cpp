@@ -50,6 +50,10 @@ struct Node {
     bool refine = false;
     bool alone_checked = false; ///< needs_split_alone() depends on the node only: evaluate it once
     Angle angle;                ///< e with its sine and cosine
+    /// Multipath: what the specular continuation of a mirror hit meets, its echo per steradian as a double
+    /// path (reflection losses aside) and |d range / d elevation| there.
+    detail::Multipath::Continuation via;
+    double via_density_db = 0, via_dr_de = 0;
 };
 
 struct Column {
@@ -118,8 +122,40 @@ struct Context {
             const glm::dvec3 d_e = frame.R * glm::dvec3(-n.angle.s * a.c, -n.angle.s * a.s, n.angle.c);
             n.dr_de = std::abs(n.hit->t * glm::dot(n.hit->normal, d_e) / glm::dot(n.hit->normal, d));
             set_width(n, de);
+            if (multipath) trace_continuation(n, a);
         }
         return n;
+    }
+
+    void trace_continuation(Node& n, const Angle& a) const {
+        n.via = mp.continuation(*n.hit, a, n.angle);
+        if (!n.via.hit) return;
+        const Hit& v = *n.via.hit;
+        const double c = n.via.cos_at_hit;
+        n.via_density_db = cell_echo_db(k, material_of(s, v.material), v.t, c, frame.elevation_weight(n.e));
+        n.via_dr_de =
+            v.t * std::min(1.0 / kLn10Over10, std::sqrt(std::max(0.0, 1 - c * c)) / std::max(c, 1e-9));
+    }
+
+    /// Multipath: the continuations of neighbouring mirror cells x and y meet different surfaces, or one
+    /// meets nothing, or their levels step, where that matters against the image (as for direct cells).
+    bool via_discontinuous(const Node& x, const Column& cx, const Node& y, const Column& cy) const {
+        if (!x.via.reflected && !y.via.reflected) return false;
+        const bool hx = bool(x.via.hit), hy = bool(y.via.hit);
+        if (hx != hy) return significant_via(hx ? x : y, hx ? cx : cy, 0.5);
+        if (!hx) return false;
+        const Hit &a = *x.via.hit, &b = *y.via.hit;
+        const double reach = x.via_dr_de * x.de + y.via_dr_de * y.de + gap_m; // what a smooth surface spans
+        const bool edge = a.material != b.material || (a.prim != b.prim && std::abs(a.t - b.t) > reach);
+        if (edge) return significant_via(x, cx, 0.5) || significant_via(y, cy, 0.5);
+        const double step_db = std::abs(x.via_density_db - y.via_density_db);
+        if (step_db <= jump_db) return false;
+        const double f = 0.5 * (1 - std::pow(10.0, -0.1 * step_db));
+        return significant_via(x, cx, f) || significant_via(y, cy, f);
+    }
+
+    bool significant_via(const Node& n, const Column& c, double f) const {
+        return n.via.hit && significant_at(n.via_density_db, n.via.hit->t, n.via_dr_de * n.de, n, c, f);
     }
 
     /// True when a surface edge lies between the hits of x and y: another material, or, on one object, hits
@@ -143,12 +179,19 @@ struct Context {
     /// image's bin of that range. Computed in dB, so that no level underflows.
     bool significant(const Node& n, const Column& c, double f) const {
         if (base_db.empty()) return true;
-        if (!n.hit || !(f > 0)) return false;
-        const double b = std::floor((n.hit->t - s.sonar.range_min_m) / bin_m);
+        return n.hit && significant_at(n.density_db, n.hit->t, n.footprint_m, n, c, f);
+    }
+
+    /// The same for an echo of `density_db` per steradian at range r spread over `footprint_m`.
+    bool significant_at(double density_db, double r, double footprint_m, const Node& n, const Column& c,
+                        double f) const {
+        if (base_db.empty()) return true;
+        if (!(f > 0)) return false;
+        const double b = std::floor((r - s.sonar.range_min_m) / bin_m);
         if (!(b >= 0 && b < s.sonar.range_bins)) return false; // outside the window: no bin to spoil
         const double bin_db = base_db[size_t(c.beam) * size_t(s.sonar.range_bins) + size_t(b)]; // may be -inf
-        const double error_db = n.density_db + 10 * std::log10(f * n.angle.c * n.de * c.da /
-                                                               std::max(1.0, n.footprint_m / bin_m));
+        const double error_db =
+            density_db + 10 * std::log10(f * n.angle.c * n.de * c.da / std::max(1.0, footprint_m / bin_m));
         return error_db > tol_rel_db + bin_db;
     }
 
@@ -168,6 +211,12 @@ struct Context {
     template <class EdgeRay>
     bool discontinuous(const Node& x, const Column& cx, const Node& y, const Column& cy,
                        EdgeRay&& edge_ray) const {
+        return discontinuous_direct(x, cx, y, cy, edge_ray) || (multipath && via_discontinuous(x, cx, y, cy));
+    }
+
+    template <class EdgeRay>
+    bool discontinuous_direct(const Node& x, const Column& cx, const Node& y, const Column& cy,
+                              EdgeRay&& edge_ray) const {
         if (bool(x.hit) != bool(y.hit)) return worth_refining(x, cx, y, cy, -1);
         if (!x.hit) return false;
         if (surface_edge(*x.hit, x.p, *y.hit, y.p, edge_ray)) return worth_refining(x, cx, y, cy, -1);
@@ -356,7 +405,7 @@ struct Context {
             lo.rad = e.rad - h.rad, lo.c = e.c * h.c + e.s * h.s, lo.s = e.s * h.c - e.c * h.s;
             hi.rad = e.rad + h.rad, hi.c = e.c * h.c - e.s * h.s, hi.s = e.s * h.c + e.c * h.s;
             out.push_back(detail::make_cell(frame, *n.hit, a, e, a_lo, a_hi, lo, hi));
-            if (multipath) rays += mp.ghosts(*n.hit, a, e, a_lo, a_hi, lo, hi, ghosts);
+            if (multipath) rays += mp.ghosts(*n.hit, a, e, a_lo, a_hi, lo, hi, ghosts, &n.via);
         };
         for (size_t n = 0; n < c.nodes.size();) {
             if (coarse && n + 2 < c.nodes.size() && c.nodes[n].group == c.nodes[n + 1].group &&
@@ -556,8 +605,8 @@ TraceResult trace_pass(Context& ctx, int M0, TraceResult::ErrorEstimate& est) {
         }
     });
     if (ctx.multipath) {
-        fine.ghosts = detail::gather_ghosts(fine_ghosts, N);
-        coarse.ghosts = detail::gather_ghosts(coarse_ghosts, sampled);
+        fine.ghosts = detail::gather_ghosts(fine_ghosts, s);
+        coarse.ghosts = detail::gather_ghosts(coarse_ghosts, s);
         for (auto r : ghost_rays) fine.multipath_rays += r;
     }
     for (auto& b : beams)

@@ -36,31 +36,57 @@ double offset_m(const glm::dvec3& p) {
 }
 } // namespace
 
+glm::dvec3 Multipath::reflect(RayFrame& image, const Hit& hit, const Angle& a, const Angle& e,
+                              glm::dvec3& d2) const {
+    const glm::dvec3 d = image.dir(a, e), x = image.origin + hit.t * d, n = hit.normal;
+    const glm::dmat3 H = glm::dmat3(1.0) - 2.0 * glm::outerProduct(n, n); // reflection in the mirror
+    image.R = H * image.R;
+    image.origin = x + H * (image.origin - x);
+    d2 = H * d;
+    return x;
+}
+
+Multipath::Continuation Multipath::continuation(const Hit& h, const Angle& a, const Angle& e) const {
+    Continuation c;
+    if (!is_mirror(h.material)) return c;
+    c.reflected = true;
+    RayFrame image = f_;
+    glm::dvec3 d2;
+    const glm::dvec3 x = reflect(image, h, a, e, d2);
+    c.cos_incidence = std::min(1.0, std::abs(glm::dot(h.normal, d2)));
+    const double eps = offset_m(x);
+    // Mixed paths may return from up to twice the window's reach (their other leg is direct and shorter).
+    if ((c.hit = first_hit(g_, s_, x + eps * d2, d2, 2 * f_.t_max - h.t - eps))) {
+        c.hit->t += h.t + eps;
+        c.cos_at_hit = std::min(1.0, std::abs(glm::dot(c.hit->normal, d2)));
+    }
+    return c;
+}
+
 std::uint64_t Multipath::ghosts(const Hit& h, const Angle& a, const Angle& e, const Angle& a_lo,
                                 const Angle& a_hi, const Angle& e_lo, const Angle& e_hi,
-                                std::vector<GhostCell>& out) const {
+                                std::vector<GhostCell>& out, const Continuation* first) const {
     RayFrame image = f_; // the sonar mirrored in each mirror of the chain so far
     Hit hit = h;         // t: path length from the image sonar
     GhostCell chain;
     std::uint64_t rays = 0;
-    // Mixed paths may return from up to twice the window's reach (their other leg is direct and shorter).
-    const double reach = 2 * f_.t_max;
     for (int k = 0; k < s_.sampling.bounces && is_mirror(hit.material); ++k) {
-        const glm::dvec3 d = image.dir(a, e), x = image.origin + hit.t * d, n = hit.normal;
-        const glm::dmat3 H = glm::dmat3(1.0) - 2.0 * glm::outerProduct(n, n); // reflection in the mirror
-        image.R = H * image.R;
-        image.origin = x + H * (image.origin - x);
+        glm::dvec3 d2;
+        const glm::dvec3 x = reflect(image, hit, a, e, d2);
         chain.mirror_material[k] = hit.material;
-        chain.mirror_cos[k] = float(std::min(1.0, std::abs(glm::dot(n, d))));
+        chain.mirror_cos[k] = float(std::min(1.0, std::abs(glm::dot(hit.normal, d2))));
         chain.mirror_point[k] = glm::vec3(x);
-        const glm::dvec3 d2 = H * d;
-        const double eps = offset_m(x);
-        ++rays;
-        const auto next = first_hit(g_, s_, x + eps * d2, d2, reach - hit.t - eps);
+        std::optional<Hit> next;
+        if (k == 0 && first) {
+            next = first->hit;
+        } else {
+            const double eps = offset_m(x);
+            ++rays;
+            if ((next = first_hit(g_, s_, x + eps * d2, d2, 2 * f_.t_max - hit.t - eps)))
+                next->t += hit.t + eps;
+        }
         if (!next) break;
-        const double t = hit.t + eps + next->t;
         hit = *next;
-        hit.t = t;
         rays += emit(image, hit, k + 1, chain, a, e, a_lo, a_hi, e_lo, e_hi, out);
     }
     return rays;
@@ -109,22 +135,63 @@ std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, cons
     g.tx_bounces = 0, g.rx_bounces = std::uint8_t(k);
     g.beam = std::uint32_t(beam_of(a.rad));
     out.push_back(g);
-    // Out by the mirrors, back directly: arrives from the scatterer.
+    // Out by the mirrors, back directly: arrives from the scatterer, over the azimuths from which the
+    // sonar sees the cell's footprint (its azimuth edges on the scatterer's plane). gather_ghosts() shares
+    // it among the beams that interval covers.
     g.tx_bounces = std::uint8_t(k), g.rx_bounces = 0;
+    auto azimuth_to = [&](float leg_m, const Angle& aa) {
+        const glm::dvec3 w =
+            glm::transpose(f_.R) * (image.origin + double(leg_m) * image.dir(aa, e) - f_.origin);
+        return std::atan2(w.y, w.x);
+    };
+    const double z0 = azimuth_to(c.range_a_lo_m, a_lo), z1 = azimuth_to(c.range_a_hi_m, a_hi);
     m.azimuth_rad = float(a_p), m.elevation_rad = float(e_p);
+    m.azimuth_width_rad = float(std::clamp(std::abs(z1 - z0), 1e-9, 2 * half_azimuth_rad_));
     g.beam = std::uint32_t(beam_of(a_p));
     out.push_back(g);
     return 1;
 }
 
-std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostCell>>& by_source, int beams) {
+std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostCell>>& by_source,
+                                                  const SceneDesc& s) {
+    const int beams = s.sonar.beams;
+    const double theta = deg2rad(s.sonar.azimuth_fov_deg), w = theta / beams;
     std::vector<std::vector<GhostCell>> out(static_cast<size_t>(beams));
+    // A ghost whose azimuth interval spans beams goes to each, with the share of its solid angle that
+    // falls in it (the mixed path that arrives from the scatterer); the others lie in their ray's beam.
+    auto for_each_share = [&](const GhostCell& g, auto&& add) {
+        const double a0 = g.cell.azimuth_rad - 0.5 * g.cell.azimuth_width_rad,
+                     a1 = a0 + g.cell.azimuth_width_rad;
+        const int i0 = std::clamp(int(std::floor((theta / 2 - a1) / w)), 0, beams - 1);
+        const int i1 = std::clamp(int(std::floor((theta / 2 - a0) / w)), 0, beams - 1);
+        if (i0 == i1 || !g.mixed() || g.rx_bounces != 0) return add(int(g.beam), g, 1.0);
+        for (int i = i0; i <= i1; ++i) {
+            const double hi = theta / 2 - i * w, lo = hi - w;
+            const double f = (std::min(a1, hi) - std::max(a0, lo)) / g.cell.azimuth_width_rad;
+            if (f > 0) add(i, g, f);
+        }
+    };
     std::vector<size_t> count(static_cast<size_t>(beams), 0);
     for (auto& src : by_source)
-        for (auto& g : src) ++count[g.beam];
+        for (auto& g : src) for_each_share(g, [&](int i, const GhostCell&, double) { ++count[size_t(i)]; });
     for (int i = 0; i < beams; ++i) out[size_t(i)].reserve(count[size_t(i)]);
     for (auto& src : by_source) {
-        for (auto& g : src) out[g.beam].push_back(g);
+        for (auto& g : src)
+            for_each_share(g, [&](int i, const GhostCell& whole, double f) {
+                GhostCell part = whole;
+                if (f < 1) {
+                    const double hi = theta / 2 - i * w, lo = hi - w;
+                    const double a0 =
+                        std::max(lo, double(whole.cell.azimuth_rad) - 0.5 * whole.cell.azimuth_width_rad);
+                    const double a1 =
+                        std::min(hi, double(whole.cell.azimuth_rad) + 0.5 * whole.cell.azimuth_width_rad);
+                    part.cell.azimuth_rad = float(0.5 * (a0 + a1)),
+                    part.cell.azimuth_width_rad = float(a1 - a0);
+                    part.cell.solid_angle_sr = float(whole.cell.solid_angle_sr * f);
+                }
+                part.beam = std::uint32_t(i);
+                out[size_t(i)].push_back(part);
+            });
         std::vector<GhostCell>().swap(src);
     }
     return out;

@@ -7,6 +7,7 @@
 #include "trace_detail.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace sonarsim::detail {
@@ -18,17 +19,33 @@ bool multipath_active(const SceneDesc& scene);
 class Multipath {
   public:
     Multipath(const SceneGeometry& geometry, const SceneDesc& scene, const RayFrame& frame);
+    /// The first reflection of the ray (a, e) whose first hit is `h`: what its specular continuation meets
+    /// (t: the whole path length from the sonar; nullopt when it meets nothing within reach), or nothing
+    /// (`reflected` false) when `h` is no mirror. `cos_incidence` is the incidence there.
+    struct Continuation {
+        bool reflected = false;
+        std::optional<Hit> hit;
+        double cos_incidence = 0; ///< at the mirror
+        double cos_at_hit = 0;    ///< at what the continuation meets
+    };
+    Continuation continuation(const Hit& h, const Angle& a, const Angle& e) const;
+
     /// Appends the ghosts of the ray (a, e) standing for the cell [a_lo, a_hi] x [e_lo, e_hi] whose first
-    /// hit is `h` (each with the beam it arrives in) to `out`; returns the rays it traced.
+    /// hit is `h` (each with the beam it arrives in) to `out`; returns the rays it traced. `first`: the
+    /// ray's continuation() when already traced.
     std::uint64_t ghosts(const Hit& h, const Angle& a, const Angle& e, const Angle& a_lo, const Angle& a_hi,
-                         const Angle& e_lo, const Angle& e_hi, std::vector<GhostCell>& out) const;
+                         const Angle& e_lo, const Angle& e_hi, std::vector<GhostCell>& out,
+                         const Continuation* first = nullptr) const;
+    bool is_mirror(unsigned material) const;
 
   private:
     std::uint64_t emit(const RayFrame& image, const Hit& hit, int k, const GhostCell& chain, const Angle& a,
                        const Angle& e, const Angle& a_lo, const Angle& a_hi, const Angle& e_lo,
                        const Angle& e_hi, std::vector<GhostCell>& out) const;
     int beam_of(double azimuth_rad) const;
-    bool is_mirror(unsigned material) const;
+    /// Reflects `image` (the sonar mirrored so far) in the mirror `hit` of its ray (a, e): returns the
+    /// mirror point and sets d2, the reflected direction.
+    glm::dvec3 reflect(RayFrame& image, const Hit& hit, const Angle& a, const Angle& e, glm::dvec3& d2) const;
 
     const SceneGeometry& g_;
     const SceneDesc& s_;
@@ -38,6 +55,8 @@ class Multipath {
 
 /// Moves ghosts collected per source beam to the beams they arrive in, in a fixed order (source beam, then
 /// as produced), so that the result does not depend on threading.
-std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostCell>>& by_source, int beams);
+/// A ghost arriving over several beams' azimuths is shared among them by the part of its interval in each.
+std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostCell>>& by_source,
+                                                  const SceneDesc& scene);
 
 } // namespace sonarsim::detail

@@ -97,7 +97,7 @@ TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s, const Trac
     if (control.cancelled()) throw TraceCancelled();
     out.rays_traced = std::uint64_t(N) * K * M;
     if (multipath) {
-        out.ghosts = detail::gather_ghosts(ghosts, N);
+        out.ghosts = detail::gather_ghosts(ghosts, s);
         for (auto r : ghost_rays) out.multipath_rays += r;
     }
     if (paper) apply_paper_normals(out, s, grid_point, grid_hit);
