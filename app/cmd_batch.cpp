@@ -98,7 +98,7 @@ void register_batch(CLI::App& app, std::function<int()>& run) {
     cmd->add_flag("--resume", o->resume, "Skip frames that are already complete");
     cmd->add_flag("--ground-truth", o->ground_truth,
                   "Also write each frame's NNNNNN_gt_<name>.npy (elevation, point, object id, incidence, "
-                  "surfaces per range bin and beam)");
+                  "surfaces and reflections per range bin and beam)");
     cmd->add_option(
         "--aris", o->aris,
         "Also write the dataset as an ARIS recording (.aris; 48, 64, 96 or 128 beams); needs every frame");

@@ -82,7 +82,7 @@ void register_render(CLI::App& app, std::function<int()>& run) {
     cmd->add_option("--out", o->out, "Output prefix: writes " + render_outputs_text("PREFIX"));
     cmd->add_flag("--ground-truth", o->ground_truth,
                   "Also write PREFIX_gt_<name>.npy: per range bin and beam the elevation (mean, min, max), "
-                  "point, object id, incidence and number of surfaces behind it");
+                  "point, object id, incidence, number of surfaces behind it and reflections (multipath)");
     cmd->add_option(
         "--view3d", o->view3d,
         "Also draw the 3D view (scene, sonar, field of view) into this PNG, with no display (EGL)");

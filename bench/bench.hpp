@@ -50,6 +50,9 @@ std::string write_reports(const json& results, const std::string& out_dir);
 /// `sonarsim_bench sensor`: the sensor stage alone (median of `repeats`), printed as a table.
 int run_sensor_bench(int repeats);
 
+/// `sonarsim_bench multipath`: trace + shade with sampling.bounces 0, 1, 2 on the tank and the wreck.
+int run_multipath_bench(const std::string& repo, int repeats);
+
 /// Peak resident set size of this process so far [MB] (getrusage ru_maxrss).
 double self_peak_rss_mb();
 

@@ -350,7 +350,10 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     terrain->add_option("--out", terrain_out, "PLY file")->required();
     std::string report_in, report_out;
-    int sensor_repeats = 21;
+    int sensor_repeats = 21, multipath_repeats = 7;
+    CLI::App* multipath = app.add_subcommand(
+        "multipath", "Cost of sampling.bounces 0, 1, 2 on the tank and the wreck (median)");
+    multipath->add_option("--repeats", multipath_repeats, "Repeats")->capture_default_str();
     CLI::App* sensor = app.add_subcommand("sensor", "Time the sensor stage alone (median of repeats)");
     sensor->add_option("--repeats", sensor_repeats, "Repeats")->capture_default_str();
     CLI::App* report = app.add_subcommand("report", "Rewrite RESULTS.md and results.csv from a results.json");
@@ -375,6 +378,7 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (*sensor) return run_sensor_bench(sensor_repeats);
+        if (*multipath) return run_multipath_bench(o.paths.repo, multipath_repeats);
         if (*terrain) {
             write_terrain_ply(terrain_out, grid);
             std::cout << "wrote " << terrain_out << " (" << terrain_triangles(grid) << " triangles)\n";

@@ -4,11 +4,13 @@
 #include "pose.hpp"
 #include "scene_io.hpp"
 #include "sensor.hpp"
+#include "shade.hpp"
 
 #include <algorithm>
 #include "timing.hpp"
 
 #include <chrono>
+#include <cmath>
 
 namespace sonarsim {
 namespace {} // namespace
@@ -128,6 +130,18 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
     j["beam_azimuths_deg"] = beam_azimuths_deg(s.sonar);
     j["range_bin_edges_m"] = range_bin_edges_m(s.sonar);
     j["rays_traced"] = f.hits().rays_traced;
+    if (s.sampling.bounces > 0) { // multipath: its extra rays, and the echo of each path order
+        size_t ghosts = 0;
+        for (auto& g : f.hits().ghosts) ghosts += g.size();
+        json orders = json::array();
+        for (double e : path_order_energy_db(f.hits(), s))
+            orders.push_back(std::isfinite(e) ? json(e) : json(nullptr));
+        j["multipath"] = {
+            {"rays", f.hits().multipath_rays},
+            {"ghost_cells", ghosts},
+            {"echo_db_by_order", orders},
+            {"orders", "reflections out and back: 0 direct, then 1 ... 2 x bounces; null: none"}};
+    }
     const auto& est = f.hits().error_estimate;
     if (est.valid)
         j["sampling_error_estimate"] = {

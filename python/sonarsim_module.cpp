@@ -88,6 +88,7 @@ struct PyFrame {
         d["object_id"] = view(gt->object_id, shape);
         d["incidence_deg"] = view(gt->incidence_deg, shape);
         d["surfaces"] = view(gt->surfaces, shape);
+        d["bounces"] = view(gt->bounces, shape);
         return d;
     }
 };
@@ -146,7 +147,7 @@ PYBIND11_MODULE(sonarsim, m) {
                                "with render(ground_truth=True): per (range bin, beam) arrays by name, as the "
                                "files render --ground-truth writes (elevation_deg, elevation_min_deg, "
                                "elevation_max_deg, point_m (bins, beams, 3), object_id, incidence_deg, "
-                               "surfaces); otherwise {}")
+                               "surfaces, bounces); otherwise {}")
         .def_property_readonly("metadata", &PyFrame::metadata, "the metadata `render` writes as JSON");
 
     py::class_<PySimulator>(m, "Simulator")
