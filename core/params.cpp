@@ -315,7 +315,7 @@ std::vector<MaterialSpec> build_material_params() {
         material("mu", "", 0, 1e6, false, "Specular amplitude mu (linear; 0 = off)", &Material::mu),
         material("h_deg", "deg", 0, 90, true, "Specular lobe width h", &Material::h_deg),
         optional_material(material("reflection_db", "dB", 0, 200, false,
-                                   "Multipath: energy lost per specular reflection, -10 log10 |R|^2; absent "
+                                   "Multipath: energy lost per specular reflection, -10 log10 R^2; absent "
                                    "(null): not a mirror",
                                    &Material::reflection_db)),
     };
@@ -655,7 +655,7 @@ std::string params_markdown() {
            << allowed_text(p) << " | " << p.help << " |\n";
     Material m;
     for (auto& p : material_params())
-        md << "| `material." << p.key << "` | " << p.unit << " | `" << m.*(p.field) << "` | "
+        md << "| `material." << p.key << "` | " << p.unit << " | `" << p.get(m).dump() << "` | "
            << allowed_text(p) << " | " << p.help << " |\n";
     return md.str();
 }
