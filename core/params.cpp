@@ -257,7 +257,7 @@ std::vector<ParamSpec> build_scene_params() {
                                 "also backscatters (water.surface_material); null: no surface",
                                 [](S s) -> std::optional<double>& { return s.water.surface_height_m; }));
     t.push_back(number("water.surface_roughness_m", "m", 0, 1, false, false, Stage::Shade,
-                       "Multipath: rms height sigma of the surface; coherent reflection |R|^2 = "
+                       "Multipath: rms height sigma of the surface; coherent reflection (energy) R^2 = "
                        "exp(-2 (2 k sigma cos theta)^2)",
                        [](S s) -> double& { return s.water.surface_roughness_m; }));
     t.push_back(integer("sampling.elevation_rays", 1, 1000000, Stage::Trace, "Elevation rays M per beam",
