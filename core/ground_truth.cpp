@@ -146,6 +146,7 @@ EchoPath strongest_path(const TraceResult& hits, const SceneDesc& s, int bin, in
     for (int k = g ? g->rx_bounces - 1 : -1; k >= 0; --k) add(g->mirror_point[k]);
     out.points_m.push_back(o);
     out.bounces = g ? g->order() : 0;
+    out.out_bounces = g ? g->tx_bounces : 0;
     out.object_id = std::int32_t(c.material);
     return out;
 }

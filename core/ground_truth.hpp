@@ -40,6 +40,7 @@ GroundTruth compute_ground_truth(const TraceResult& hits, const SceneDesc& scene
 struct EchoPath {
     std::vector<std::array<double, 3>> points_m;
     int bounces = 0;             ///< reflections out and back
+    int out_bounces = 0;         ///< those on the way out: points_m[1 + out_bounces] is the scatterer
     std::int32_t object_id = -1; ///< the scatterer, as GroundTruth::object_id
 };
 EchoPath strongest_path(const TraceResult& hits, const SceneDesc& scene, int bin, int beam);

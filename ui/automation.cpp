@@ -119,6 +119,13 @@ void Viewer::write_state(const std::string& path) const {
     json handles = json::array(), centres = json::array();
     for (const glm::dvec3& h : frustum_handles(s)) handles.push_back(on_screen(h));
     for (const ObjectDesc& o : s.objects) centres.push_back(on_screen(to_glm(o.position_m)));
+    json hover = nullptr; // the hovered image cell and its strongest echo path
+    if (const HoveredPath& hp = sonar_->hovered_path(); hp.valid())
+        hover = {{"bin", hp.bin()},
+                 {"beam", hp.beam()},
+                 {"path_points", hp.path().points_m.size()},
+                 {"bounces", hp.path().bounces},
+                 {"object_id", hp.path().object_id}};
     const json j = {
         {"screen",
          {{"housing", on_screen(body)},
@@ -135,6 +142,7 @@ void Viewer::write_state(const std::string& path) const {
         {"selected", ui_.selected},
         {"scene", scene_to_json(s)},
         {"measurement", sonar_->measurement()},
+        {"hover", hover},
         {"snapshots", snapshots_taken_},
         {"popups_open", ImGui::GetCurrentContext()->OpenPopupStack.Size},
         {"help_open", show_help_},

@@ -69,6 +69,12 @@ const glm::vec4 kEcho{1.0f, 0.25f, 0.85f, 1.0f};
 const glm::vec4 kMarker{1.0f, 0.2f, 0.2f, 1.0f};
 const glm::vec4 kHandle{1.0f, 0.85f, 0.2f, 1.0f};
 const glm::vec4 kHits{0.3f, 1.0f, 0.5f, 0.6f};
+const glm::vec4 kSurface{0.35f, 0.68f, 1.0f, 0.16f};
+const glm::vec4 kSurfaceGrid{0.55f, 0.8f, 1.0f, 0.3f};
+const glm::vec4 kPathOut{1.0f, 0.5f, 0.05f, 1.0f};
+const glm::vec4 kPathBack{1.0f, 0.93f, 0.55f, 1.0f};
+const glm::vec4 kMirrorPoint{1.0f, 1.0f, 1.0f, 1.0f};
+const glm::vec4 kScatterer{1.0f, 0.22f, 0.1f, 1.0f};
 
 glm::vec4 object_color(size_t i) {
     static const glm::vec4 palette[] = {{0.95f, 0.55f, 0.15f, 1},
@@ -230,6 +236,14 @@ void SceneRenderer::draw(const SceneDesc& scene, const OrbitCamera& cam, int x, 
     body_.upload(v);
     body_.draw(GL_TRIANGLES);
 
+    // Translucent from here on: the water surface, then the field of view.
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glDepthMask(GL_FALSE);
+    if (scene.water.surface_height_m)
+        draw_water_surface(*scene.water.surface_height_m, std::round(s.pose.position_m[0]),
+                           std::round(s.pose.position_m[1]), std::ceil(std::max(3.0, s.range_max_m + 1.0)));
+
     // Field of view: translucent faces, then the wireframe (faint where hidden behind surfaces).
     const FrustumShell shell = frustum_shell(s);
     const float face_alpha = ov.sonar_hot ? 0.22f : 0.11f;
@@ -239,9 +253,6 @@ void SceneRenderer::draw(const SceneDesc& scene, const OrbitCamera& cam, int x, 
     v.clear();
     for (auto& p : shell.lines) v.push_back({p, {}, glm::vec4(kShell, 1.0f)});
     shell_lines_.upload(v);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    glDepthMask(GL_FALSE);
     shell_faces_.draw(GL_TRIANGLES);
     glUniform4f(u_tint_, 1, 1, 1, ov.sonar_hot ? 1.0f : 0.85f);
     draw_with_hidden(shell_lines_, GL_LINES, 0.22f);
@@ -256,6 +267,7 @@ void SceneRenderer::draw(const SceneDesc& scene, const OrbitCamera& cam, int x, 
         draw_with_hidden(overlay_lines_, GL_LINE_STRIP, 0.35f);
         glLineWidth(1.0f);
     }
+    draw_echo_path(ov);
     glDisable(GL_DEPTH_TEST);
     if (!ov.hit_points.empty()) {
         v.clear();
@@ -266,6 +278,9 @@ void SceneRenderer::draw(const SceneDesc& scene, const OrbitCamera& cam, int x, 
     }
     v.clear();
     for (auto& p : ov.echo_points) v.push_back({p, {}, kEcho});
+    for (size_t i = 1; i + 1 < ov.echo_path.size(); ++i) // the scatterer and the mirror points of the path
+        v.push_back(
+            {glm::vec3(ov.echo_path[i]), {}, i == ov.echo_path_scatterer ? kScatterer : kMirrorPoint});
     if (ov.marker) v.push_back({glm::vec3(*ov.marker), {}, kMarker});
     if (!v.empty()) {
         overlay_points_.upload(v);
@@ -284,6 +299,44 @@ void SceneRenderer::draw(const SceneDesc& scene, const OrbitCamera& cam, int x, 
     glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);
     glUseProgram(0);
+}
+
+void SceneRenderer::draw_water_surface(double h, double cx, double cy, double half) {
+    std::vector<Vertex> v;
+    auto P = [&](double px, double py) { return glm::vec3(float(px), float(py), float(h)); };
+    v = {{P(cx - half, cy - half), {}, kSurface}, {P(cx + half, cy - half), {}, kSurface},
+         {P(cx + half, cy + half), {}, kSurface}, {P(cx - half, cy - half), {}, kSurface},
+         {P(cx + half, cy + half), {}, kSurface}, {P(cx - half, cy + half), {}, kSurface}};
+    water_.upload(v);
+    water_.draw(GL_TRIANGLES);
+    v.clear();
+    const double step = half > 10 ? 2.0 : 1.0;
+    const int n_lines = int(std::lround(2 * half / step));
+    for (int k = 0; k <= n_lines; ++k) { // the edge brighter: where the surface ends
+        const double t = -half + k * step;
+        const glm::vec4 c = k == 0 || k == n_lines ? glm::vec4(glm::vec3(kSurfaceGrid), 0.75f) : kSurfaceGrid;
+        v.push_back({P(cx + t, cy - half), {}, c}), v.push_back({P(cx + t, cy + half), {}, c});
+        v.push_back({P(cx - half, cy + t), {}, c}), v.push_back({P(cx + half, cy + t), {}, c});
+    }
+    water_grid_.upload(v);
+    water_grid_.draw(GL_LINES);
+}
+
+void SceneRenderer::draw_echo_path(const ViewOverlay& ov) {
+    const size_t n = ov.echo_path.size();
+    if (n < 3) return;
+    const size_t k = std::clamp<size_t>(ov.echo_path_scatterer, 1, n - 2);
+    std::vector<Vertex> v;
+    for (size_t i = 0; i <= k; ++i) v.push_back({glm::vec3(ov.echo_path[i]), {}, kPathOut});
+    overlay_lines_.upload(v);
+    glLineWidth(4.0f);
+    draw_with_hidden(overlay_lines_, GL_LINE_STRIP, 0.4f);
+    v.clear();
+    for (size_t i = k; i < n; ++i) v.push_back({glm::vec3(ov.echo_path[i]), {}, kPathBack});
+    overlay_lines_.upload(v);
+    glLineWidth(1.5f);
+    draw_with_hidden(overlay_lines_, GL_LINE_STRIP, 0.4f);
+    glLineWidth(1.0f);
 }
 
 OrbitCamera default_camera(const SceneDesc& scene, double aspect) {

@@ -39,6 +39,7 @@ void SonarPanel::draw_header(const Session& session, Session& edit) {
 void SonarPanel::draw(const Rect& area, Session& session, const std::optional<glm::dvec3>& marker,
                       float scale) {
     hovered_.reset();
+    path_.clear();
     scale_ = scale;
     ImGui::SetNextWindowPos(ImVec2(area.x, area.y));
     ImGui::SetNextWindowSize(ImVec2(area.w, area.h));
@@ -92,6 +93,10 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
             ascan_azimuth_deg_ = hovered_->azimuth_deg;
         }
     }
+    if (hovered_)
+        path_.update(*shown, session.shown_count(), hovered_->bin, hovered_->beam);
+    else
+        path_.clear();
     if (polar)
         draw_polar_overlay(L.image, *shown);
     else
@@ -141,16 +146,17 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
         std::snprintf(buf, sizeof buf, "r %.3f m  az %+.2f deg  bin %d beam %d: %s", hovered_->range_m,
                       hovered_->azimuth_deg, hovered_->bin, hovered_->beam, lvl);
         std::string text = buf;
+        const std::string path = echo_path_text(path_.path()); // drawn in 3D
+        if (!path.empty()) text += "\n" + path;
         if (const GroundTruth* gt = shown->ground_truth.get()) { // File > Ground truth
             const size_t at = size_t(hovered_->bin) * size_t(gt->beams) + size_t(hovered_->beam);
-            if (gt->object_id[at] >= 0) {
+            if (gt->object_id[at] != -1) {
                 std::snprintf(
                     buf, sizeof buf,
                     "\nbehind it: el %+.2f deg (%+.2f ... %+.2f), %s, incidence %.1f deg, %d surface%s",
                     gt->elevation_deg[at], gt->elevation_min_deg[at], gt->elevation_max_deg[at],
-                    gt->object_id[at] == 0 ? "seafloor"
-                                           : ("object " + std::to_string(gt->object_id[at] - 1)).c_str(),
-                    gt->incidence_deg[at], gt->surfaces[at], gt->surfaces[at] == 1 ? "" : "s");
+                    echo_source_name(gt->object_id[at]).c_str(), gt->incidence_deg[at], gt->surfaces[at],
+                    gt->surfaces[at] == 1 ? "" : "s");
                 text += buf;
             }
         }

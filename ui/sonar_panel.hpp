@@ -2,6 +2,7 @@
 // lines labelled in m and deg, a colour bar in dB, the A-scan of the hovered beam, and the pixel of a hovered
 // 3D surface point.
 #pragma once
+#include "echo_path_view.hpp"
 #include "gl_util.hpp"
 #include "image_views.hpp"
 #include "layout.hpp"
@@ -21,6 +22,8 @@ class SonarPanel {
     void draw(const Rect& area, Session& session, const std::optional<glm::dvec3>& marker, float scale = 1);
     /// The image place under the mouse this frame (none when the mouse is elsewhere).
     const std::optional<ImagePlace>& hovered() const { return hovered_; }
+    /// The strongest echo path into the hovered cell, from the shown frame (invalid when none is hovered).
+    const HoveredPath& hovered_path() const { return path_; }
     bool polar = false; ///< show the raw polar image instead of the fan
     /// Measuring (M): drag on the image from one place to another; Escape ends it.
     void start_measure() { measuring_ = true, measure_a_.reset(), measure_b_.reset(), last_measure_.clear(); }
@@ -48,6 +51,7 @@ class SonarPanel {
     std::uint64_t uploaded_count_ = 0;
     bool uploaded_polar_ = false;
     std::optional<ImagePlace> hovered_;
+    HoveredPath path_;
     int ascan_beam_ = -1, ascan_beams_ = 0; ///< the A-scan's beam, and the beam count it was chosen at
     double ascan_azimuth_deg_ = 0;          ///< its azimuth: kept (nearest beam) when the count changes
     bool measuring_ = false;

@@ -29,6 +29,9 @@ ViewOverlay Viewer::overlay() const {
         const ImagePlace& p = *sonar_->hovered();
         ov.arc = elevation_arc(shown->scene.sonar, p.range_m, p.azimuth_deg);
         ov.echo_points = echoing_points(shown->frame->hits(), shown->scene, p.bin, p.beam);
+        const EchoPath& path = sonar_->hovered_path().path(); // of the shown frame and its scene
+        for (const auto& q : path.points_m) ov.echo_path.emplace_back(q[0], q[1], q[2]);
+        ov.echo_path_scatterer = size_t(1 + path.out_bounces);
     }
     if (shown && ui_.show_hits)
         for (auto& beam : shown->frame->hits().cells)
