@@ -8,9 +8,9 @@ namespace sonarsim::ui {
 
 /// Key codes and modifier bits: the values GLFW uses (kept here so that non-GL code can name them).
 namespace key {
-constexpr int Space = 32, A = 65, F = 70, H = 72, M = 77, O = 79, P = 80, Q = 81, R = 82, S = 83, T = 84,
-              Y = 89, Z = 90, Escape = 256, Enter = 257, Delete = 261, LeftShift = 340, LeftControl = 341,
-              LeftAlt = 342, RightShift = 344, RightControl = 345, RightAlt = 346;
+constexpr int Space = 32, A = 65, B = 66, F = 70, H = 72, M = 77, O = 79, P = 80, Q = 81, R = 82, S = 83,
+              T = 84, Y = 89, Z = 90, Escape = 256, Enter = 257, Delete = 261, LeftShift = 340,
+              LeftControl = 341, LeftAlt = 342, RightShift = 344, RightControl = 345, RightAlt = 346;
 } // namespace key
 namespace mods {
 constexpr int Shift = 1, Control = 2, Alt = 4;

@@ -59,6 +59,8 @@ void Viewer::menu_bar() {
         if (ImGui::MenuItem("Device sensor (beam patterns, speckle, noise, TVG)", nullptr,
                             s.sensor.model == SensorModel::Device))
             session_.set("sensor.model", "device");
+        ImGui::Separator();
+        if (ImGui::MenuItem("Multipath (bounces)", "B", s.sampling.bounces > 0)) toggle_multipath();
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Help")) {

@@ -197,6 +197,7 @@ void Viewer::frame(int index) {
     draw_view_text(layout_.view3d);
     interacting_ = controller_.editing_scene() || ImGui::IsAnyItemActive();
     record_undo();
+    if (session_.scene().sampling.bounces > 0) last_bounces_ = session_.scene().sampling.bounces;
     if (auto p = trajectory_.update(session_.scene().sonar.pose, last_frame_ms_ / 1000.0))
         session_.edit([&](SceneDesc& s) { s.sonar.pose = *p; });
     if (!sync && session_.submit(interacting_) != 0) extra_frames_ = 2;

@@ -48,6 +48,8 @@ class Viewer {
     void record_undo();
     void undo(bool redo);
     void open_files(const std::vector<std::string>& paths);
+    /// sampling.bounces between 0 and its last non-zero value (one edit, so one undo step).
+    void toggle_multipath();
     // menus.cpp
     void menu_bar();
     void help_window();
@@ -98,6 +100,7 @@ class Viewer {
 
     bool interacting_ = false; ///< a drag that edits the scene (frustum, object, slider) is held
     bool show_help_ = false;
+    int last_bounces_ = 1; ///< the last non-zero sampling.bounces: what the multipath toggle turns on
     int snapshots_taken_ = 0;
     int pending_snapshots_ = 0; ///< asked for (S taps, menu): taken once a full-quality image is on screen
     Bytes annotated_png_;       ///< the sonar panel as drawn this frame, for annotated snapshots

@@ -79,6 +79,9 @@ void Viewer::handle_key(const InputEvent& e) {
     case key::M:
         sonar_->start_measure();
         break;
+    case key::B:
+        toggle_multipath();
+        break;
     case key::R:
         trajectory_.toggle_record(session_.scene().sonar.pose);
         break;
@@ -88,6 +91,12 @@ void Viewer::handle_key(const InputEvent& e) {
     default:
         break;
     }
+}
+
+void Viewer::toggle_multipath() {
+    const int b = session_.scene().sampling.bounces;
+    if (b > 0) last_bounces_ = b;
+    session_.set("sampling.bounces", b > 0 ? 0 : last_bounces_);
 }
 
 void Viewer::record_undo() {
