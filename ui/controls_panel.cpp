@@ -185,24 +185,34 @@ void pose_section(Session& session) {
 void material_section(Session& session, ControlsUi& ui) {
     const SceneDesc& s = session.scene();
     const int n = int(s.objects.size());
+    const bool water = s.water.surface_height_m.has_value();
     if (ui.selected >= n) ui.selected = n - 1;
-    if (ui.selected < 0 && !s.seafloor) ui.selected = n > 0 ? 0 : -1;
+    if (ui.selected == kWaterSurface && !water) ui.selected = -1;
+    if (ui.selected == -1 && !s.seafloor) ui.selected = n > 0 ? 0 : water ? kWaterSurface : -1;
     auto name = [&](int i) {
+        if (i == kWaterSurface) return std::string("water surface");
         if (i < 0) return std::string("seafloor");
         const ObjectDesc& o = s.objects[size_t(i)];
         return "object " + std::to_string(i) + (o.box_m ? " (box)" : " (" + o.mesh + ")");
     };
     if (ImGui::BeginCombo(field_label("surface", "surface").c_str(), name(ui.selected).c_str())) {
-        if (s.seafloor && ImGui::Selectable("seafloor", ui.selected < 0)) ui.selected = -1;
+        if (s.seafloor && ImGui::Selectable("seafloor", ui.selected == -1)) ui.selected = -1;
+        if (water && ImGui::Selectable("water surface", ui.selected == kWaterSurface))
+            ui.selected = kWaterSurface;
         for (int i = 0; i < n; ++i)
             if (ImGui::Selectable(name(i).c_str(), ui.selected == i)) ui.selected = i;
         ImGui::EndCombo();
     }
-    if (ui.selected < 0 && !s.seafloor) return;
-    const Material& m = ui.selected < 0 ? s.seafloor->material : s.objects[size_t(ui.selected)].material;
-    const std::string prefix =
-        ui.selected < 0 ? "seafloor.material." : "objects." + std::to_string(ui.selected) + ".material.";
+    if (ui.selected == -1 && !s.seafloor) return;
+    const bool surface = ui.selected == kWaterSurface;
+    const Material& m = surface             ? s.water.surface_material
+                        : ui.selected == -1 ? s.seafloor->material
+                                            : s.objects[size_t(ui.selected)].material;
+    const std::string prefix = surface             ? "water.surface_material."
+                               : ui.selected == -1 ? "seafloor.material."
+                                                   : "objects." + std::to_string(ui.selected) + ".material.";
     for (const MaterialSpec& spec : material_params()) {
+        if (surface && spec.optional) continue; // reflection_db: the surface is always a mirror (roughness)
         double v = 0;
         ImGui::PushID(spec.key.c_str());
         const bool present = std::isfinite(m.*(spec.field));

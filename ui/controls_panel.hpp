@@ -10,8 +10,11 @@
 
 namespace sonarsim::ui {
 
+/// ControlsUi::selected for the water surface's material (water.surface_material).
+constexpr int kWaterSurface = -2;
+
 struct ControlsUi {
-    int selected = 0;       ///< object whose material is edited; -1 = seafloor
+    int selected = 0;       ///< object whose material is edited; -1 = seafloor, kWaterSurface
     bool show_hits = false; ///< draw every traced hit in the 3D view
     std::string snapshot_dir = ".";
     double frame_ms = 0; ///< shown on screen

@@ -60,6 +60,7 @@ bool Session::reset_to_paper() {
             if (p.type != ParamType::Vec3) p.put(s, p.get(paper));
         if (s.seafloor) s.seafloor->material = Material{};
         for (auto& o : s.objects) o.material = Material{};
+        s.water.surface_material = WaterParams{}.surface_material;
     });
 }
 
