@@ -3,6 +3,7 @@
 #include "support.hpp"
 
 #include "ui/bindings.hpp"
+#include "ui/echo_path_view.hpp"
 #include "ui/image_views.hpp"
 #include "ui/measure.hpp"
 #include "ui/scene_files.hpp"
@@ -203,4 +204,17 @@ TEST_CASE("the A-scan keeps its azimuth when the beam count changes", "[ui][asca
     CHECK(beam_at_azimuth(az, 32, 256) == 118);
     CHECK(beam_at_azimuth(40, 32, 64) == 0);   // beyond port: the nearest beam
     CHECK(beam_at_azimuth(-40, 32, 64) == 63); // beyond starboard
+}
+
+TEST_CASE("the hover readout names a path direct or ghost and its scatterer", "[ui][multipath]") {
+    EchoPath p;
+    CHECK(echo_path_text(p).empty()); // nothing echoes
+    p.points_m = {{0, 0, 1}, {5, 0, 0}, {0, 0, 1}};
+    p.object_id = 0;
+    CHECK(echo_path_text(p) == "direct echo (seafloor)");
+    p.points_m.insert(p.points_m.begin() + 1, {2, 0, 2});
+    p.bounces = 1, p.out_bounces = 1, p.object_id = 3;
+    CHECK(echo_path_text(p) == "ghost: 1 reflection (scatterer: object 2)");
+    p.bounces = 2, p.object_id = -2;
+    CHECK(echo_path_text(p) == "ghost: 2 reflections (scatterer: water surface)");
 }
