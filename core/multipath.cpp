@@ -53,14 +53,15 @@ Multipath::Continuation Multipath::continuation(const Hit& h, const Angle& a, co
     RayFrame image = f_;
     glm::dvec3 d2;
     const glm::dvec3 x = reflect(image, h, a, e, d2);
-    c.cos_incidence = std::min(1.0, std::abs(glm::dot(h.normal, d2)));
-    const double eps = offset_m(x);
-    // Mixed paths may return from up to twice the window's reach (their other leg is direct and shorter).
-    if ((c.hit = first_hit(g_, s_, x + eps * d2, d2, 2 * f_.t_max - h.t - eps))) {
-        c.hit->t += h.t + eps;
-        c.cos_at_hit = std::min(1.0, std::abs(glm::dot(c.hit->normal, d2)));
-    }
+    if ((c.hit = trace_on(x, d2, h.t))) c.cos_at_hit = std::min(1.0, std::abs(glm::dot(c.hit->normal, d2)));
     return c;
+}
+
+std::optional<Hit> Multipath::trace_on(const glm::dvec3& x, const glm::dvec3& d2, double travelled) const {
+    const double eps = offset_m(x);
+    auto next = first_hit(g_, s_, x + eps * d2, d2, 2 * f_.t_max - travelled - eps);
+    if (next) next->t += travelled + eps;
+    return next;
 }
 
 std::uint64_t Multipath::ghosts(const Hit& h, const Angle& a, const Angle& e, const Angle& a_lo,
@@ -76,15 +77,9 @@ std::uint64_t Multipath::ghosts(const Hit& h, const Angle& a, const Angle& e, co
         chain.mirror_material[k] = hit.material;
         chain.mirror_cos[k] = float(std::min(1.0, std::abs(glm::dot(hit.normal, d2))));
         chain.mirror_point[k] = glm::vec3(x);
-        std::optional<Hit> next;
-        if (k == 0 && first) {
-            next = first->hit;
-        } else {
-            const double eps = offset_m(x);
-            ++rays;
-            if ((next = first_hit(g_, s_, x + eps * d2, d2, 2 * f_.t_max - hit.t - eps)))
-                next->t += hit.t + eps;
-        }
+        const bool known = k == 0 && first;
+        rays += known ? 0 : 1;
+        const std::optional<Hit> next = known ? first->hit : trace_on(x, d2, hit.t);
         if (!next) break;
         hit = *next;
         rays += emit(image, hit, k + 1, chain, a, e, a_lo, a_hi, e_lo, e_hi, out);
@@ -97,7 +92,6 @@ std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, cons
                               const Angle& e_lo, const Angle& e_hi, std::vector<GhostCell>& out) const {
     const Cell c = make_cell(image, hit, a, e, a_lo, a_hi, e_lo, e_hi);
     GhostCell g = chain;
-    g.mirrors = std::uint8_t(k);
     g.cell = c;
     // Double path: out and back by the mirrors, along the ray; the image sonar's monostatic echo.
     if (hit.t <= f_.t_max) {

@@ -21,12 +21,11 @@ class Multipath {
     Multipath(const SceneGeometry& geometry, const SceneDesc& scene, const RayFrame& frame);
     /// The first reflection of the ray (a, e) whose first hit is `h`: what its specular continuation meets
     /// (t: the whole path length from the sonar; nullopt when it meets nothing within reach), or nothing
-    /// (`reflected` false) when `h` is no mirror. `cos_incidence` is the incidence there.
+    /// (`reflected` false) when `h` is no mirror.
     struct Continuation {
         bool reflected = false;
         std::optional<Hit> hit;
-        double cos_incidence = 0; ///< at the mirror
-        double cos_at_hit = 0;    ///< at what the continuation meets
+        double cos_at_hit = 0; ///< incidence at what the continuation meets
     };
     Continuation continuation(const Hit& h, const Angle& a, const Angle& e) const;
 
@@ -36,13 +35,17 @@ class Multipath {
     std::uint64_t ghosts(const Hit& h, const Angle& a, const Angle& e, const Angle& a_lo, const Angle& a_hi,
                          const Angle& e_lo, const Angle& e_hi, std::vector<GhostCell>& out,
                          const Continuation* first = nullptr) const;
-    bool is_mirror(unsigned material) const;
 
   private:
     std::uint64_t emit(const RayFrame& image, const Hit& hit, int k, const GhostCell& chain, const Angle& a,
                        const Angle& e, const Angle& a_lo, const Angle& a_hi, const Angle& e_lo,
                        const Angle& e_hi, std::vector<GhostCell>& out) const;
     int beam_of(double azimuth_rad) const;
+    bool is_mirror(unsigned material) const;
+    /// What the reflected ray from mirror point x along d2 meets, its t the whole path length (`travelled`
+    /// so far, plus the rest); within twice the window's reach (a mixed path's other leg is direct and
+    /// shorter).
+    std::optional<Hit> trace_on(const glm::dvec3& x, const glm::dvec3& d2, double travelled) const;
     /// Reflects `image` (the sonar mirrored so far) in the mirror `hit` of its ray (a, e): returns the
     /// mirror point and sets d2, the reflected direction.
     glm::dvec3 reflect(RayFrame& image, const Hit& hit, const Angle& a, const Angle& e, glm::dvec3& d2) const;

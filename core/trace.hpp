@@ -42,12 +42,12 @@ struct GhostCell {
     float other_leg_m; ///< length of the leg that is not the area leg [m] (double paths: range_m)
     float cos_other;   ///< cos of that leg's incidence at the scatterer (double paths: cos_incidence)
     std::uint8_t tx_bounces = 0, rx_bounces = 0; ///< reflections on the way out and back
-    std::uint8_t mirrors = 0;                    ///< mirrors of the chain (max of the two)
     std::uint32_t beam = 0;                      ///< the beam it arrives in
     std::uint32_t mirror_material[2] = {0, 0};   ///< the chain's mirrors, sonar side first
     float mirror_cos[2] = {1, 1};                ///< cos of the incidence at each mirror
     glm::vec3 mirror_point[2] = {};              ///< where the path meets each mirror [m, world]
     int order() const { return tx_bounces + rx_bounces; }
+    int mirrors() const { return tx_bounces > rx_bounces ? tx_bounces : rx_bounces; } ///< of the chain
     bool mixed() const { return tx_bounces != rx_bounces; }
 };
 
