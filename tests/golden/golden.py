@@ -1,0 +1,113 @@
+#!/usr/bin/env python3
+"""Byte-for-byte regression of every output sonarsim writes, against a stored manifest of SHA-256 sums.
+
+Renders each example scene with its own sensor, the device sensor, ground truth and (in the tank) multipath;
+the three sampling schemes; and a small batch dataset with ARIS and MCAP files. Every file written is hashed;
+timings (`time_ms`, index.csv's `ms`) and the ARIS file's creation date are taken out before hashing, everything else must match.
+
+  golden.py SONARSIM ASSETS OUTDIR MANIFEST            compare (exit 1 listing every file that differs)
+  golden.py SONARSIM ASSETS OUTDIR MANIFEST --update   rewrite the manifest (only when an image is meant to change)
+"""
+import hashlib
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+# (name, scene file or None for the built-in scene, extra arguments)
+CASES = [
+    ("fig9", None, ["--ground-truth"]),
+    ("fig9_device", None, ["--set", "sensor.model=device"]),
+    ("fig9_pose2", "fig9_pose2.json", []),
+    ("fig9_uniform", None, ["--set", "sampling.scheme=uniform"]),
+    ("fig9_spread", None, ["--set", "sampling.scheme=spread"]),
+    ("floor", "floor.json", ["--ground-truth"]),
+    ("floor_device", "floor.json", ["--set", "sensor.model=device"]),
+    ("shipwreck", "shipwreck.json", ["--ground-truth"]),
+    ("shipwreck_device", "shipwreck.json", ["--set", "sensor.model=device", "--ground-truth"]),
+    ("monterey", "monterey.json", []),
+    ("monterey_device", "monterey.json", ["--set", "sensor.model=device"]),
+    ("tank", "tank.json", ["--ground-truth"]),
+    ("tank_direct", "tank.json", ["--set", "sampling.bounces=0"]),
+    ("tank_b1_ideal", "tank.json", ["--set", "sampling.bounces=1", "--set", "sensor.model=ideal", "--ground-truth"]),
+    ("tank_b2", "tank.json", ["--set", "sampling.bounces=2"]),
+]
+BATCH = ["--circle", "1.5,1.5,0,1.2,0.8,3", "--ground-truth", "--aris", "BATCHDIR/rec.aris", "--mcap",
+         "BATCHDIR/rec.mcap", "--set", "sonar.beams=64", "--set", "sensor.model=device"]
+
+
+def normalise(path):
+    with open(path, "rb") as f:
+        data = f.read()
+    if path.endswith(".json"):
+        doc = json.loads(data)
+        doc.pop("time_ms", None)
+        data = json.dumps(doc, sort_keys=True).encode()
+    elif path.endswith("index.csv"):  # the ms column is a timing
+        rows = [line.split(",") for line in data.decode().splitlines()]
+        col = rows[0].index("ms")
+        data = "\n".join(",".join(r[:col] + r[col + 1:]) for r in rows).encode()
+    elif path.endswith(".aris"):  # the file header's creation date (bytes 48..79) is the wall clock
+        data = data[:48] + data[80:]
+    return hashlib.sha256(data).hexdigest()
+
+
+def run(cmd):
+    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    if r.returncode != 0:
+        sys.exit("golden: command failed: %s\n%s" % (" ".join(cmd), r.stdout.decode(errors="replace")))
+
+
+def main():
+    if len(sys.argv) < 5:
+        sys.exit(__doc__)
+    exe, assets, out, manifest = sys.argv[1:5]
+    update = "--update" in sys.argv[5:]
+    shutil.rmtree(out, ignore_errors=True)
+    os.makedirs(out)
+    for i, (name, scene, extra) in enumerate(CASES):
+        print("golden: [%d/%d] %s" % (i + 1, len(CASES) + 1, name), flush=True)
+        cmd = [exe, "render", "--out", os.path.join(out, name)] + extra
+        if scene:
+            cmd += ["--scene", os.path.join(assets, "scenes", scene)]
+        run(cmd)
+    print("golden: [%d/%d] batch" % (len(CASES) + 1, len(CASES) + 1), flush=True)
+    bdir = os.path.join(out, "batch")
+    run([exe, "batch", "--out", bdir] + [a.replace("BATCHDIR", out) for a in BATCH])
+    sums = {}
+    for root, _, files in os.walk(out):
+        for f in files:
+            p = os.path.join(root, f)
+            rel = os.path.relpath(p, out)
+            if rel.endswith(".lock"):
+                continue
+            sums[rel] = normalise(p)
+    if update:
+        with open(manifest, "w") as f:
+            for k in sorted(sums):
+                f.write("%s  %s\n" % (sums[k], k))
+        print("golden: wrote %d sums to %s" % (len(sums), manifest))
+        return
+    want = {}
+    with open(manifest) as f:
+        for line in f:
+            h, k = line.split(None, 1)
+            want[k.strip()] = h
+    bad = []
+    for k in sorted(set(want) | set(sums)):
+        if k not in sums:
+            bad.append("missing  " + k)
+        elif k not in want:
+            bad.append("new      " + k)
+        elif want[k] != sums[k]:
+            bad.append("differs  " + k)
+    if bad:
+        print("golden: %d of %d files differ from %s:" % (len(bad), len(want), manifest))
+        print("\n".join("  " + b for b in bad))
+        sys.exit(1)
+    print("golden: all %d files byte-identical" % len(want))
+
+
+if __name__ == "__main__":
+    main()
