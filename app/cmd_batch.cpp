@@ -4,10 +4,10 @@
 #include "load.hpp"
 #include "status_line.hpp"
 
-#include "core/aris.hpp"
-#include "core/batch.hpp"
-#include "core/ros2_sonar.hpp"
-#include "core/errors.hpp"
+#include "core/io/aris.hpp"
+#include "core/dataset/batch.hpp"
+#include "core/io/ros2_sonar.hpp"
+#include "core/base/errors.hpp"
 
 #include <cstdio>
 #include <iostream>

@@ -2,8 +2,8 @@
 // as Markdown (--markdown, for the README); `sonarsim devices NAME` lists one preset's values with sources.
 #include "commands.hpp"
 
-#include "core/devices.hpp"
-#include "core/errors.hpp"
+#include "core/devices/devices.hpp"
+#include "core/base/errors.hpp"
 
 #include <algorithm>
 #include <cstdio>

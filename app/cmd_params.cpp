@@ -2,7 +2,7 @@
 // the viewer's sliders share, as Markdown.
 #include "commands.hpp"
 
-#include "core/params.hpp"
+#include "core/scene/params.hpp"
 
 #include <iostream>
 

@@ -2,17 +2,17 @@
 #include "commands.hpp"
 #include "load.hpp"
 
-#include "core/errors.hpp"
-#include "core/ground_truth.hpp"
-#include "core/output.hpp"
-#include "core/simulator.hpp"
+#include "core/base/errors.hpp"
+#include "core/shading/ground_truth.hpp"
+#include "core/io/output.hpp"
+#include "core/pipeline/simulator.hpp"
 
 #include <filesystem>
 #include <iostream>
 #include <memory>
 
 #ifdef SONARSIM_HAVE_VIEWER
-#include "ui/view3d.hpp"
+#include "ui/gl/view3d.hpp"
 #endif
 
 namespace sonarsim::app {

@@ -6,8 +6,8 @@
 #include "plot.hpp"
 #include "status_line.hpp"
 
-#include "core/output.hpp"
-#include "core/study.hpp"
+#include "core/io/output.hpp"
+#include "core/analysis/study.hpp"
 
 #include <cstdio>
 #include <iostream>

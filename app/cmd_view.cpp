@@ -2,13 +2,13 @@
 #include "commands.hpp"
 #include "load.hpp"
 
-#include "core/scene_io.hpp"
+#include "core/scene/scene_io.hpp"
 
 #include <iostream>
 #include <memory>
 
 #ifdef SONARSIM_HAVE_VIEWER
-#include "ui/viewer.hpp"
+#include "ui/gl/viewer.hpp"
 #endif
 
 namespace sonarsim::app {

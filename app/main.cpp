@@ -1,7 +1,7 @@
 // sonarsim: acoustic-camera simulator. A thin main: parse the command line, run one subcommand.
 #include "commands.hpp"
 
-#include "core/errors.hpp"
+#include "core/base/errors.hpp"
 
 #include <iostream>
 #include <new>

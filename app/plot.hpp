@@ -1,6 +1,6 @@
 // A small log-log line plot rasterised to an RGB image (for `sonarsim study`); no GL, no dependencies.
 #pragma once
-#include "core/image.hpp"
+#include "core/display/image.hpp"
 
 #include <array>
 #include <string>

@@ -11,8 +11,8 @@ void add_scene_options(CLI::App& cmd, SceneOptions& o) {
 
 } // namespace sonarsim::app
 
-#include "core/params.hpp"
-#include "core/scene_io.hpp"
+#include "core/scene/params.hpp"
+#include "core/scene/scene_io.hpp"
 #include "load.hpp"
 
 namespace sonarsim::app {

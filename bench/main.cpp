@@ -4,7 +4,7 @@
 #include "bench.hpp"
 #include "terrain.hpp"
 
-#include "core/timing.hpp"
+#include "core/base/timing.hpp"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>

@@ -5,8 +5,8 @@
 // fixed rays (the cost per ray of the continuations and shadow rays alone). Also the error estimate.
 #include "bench.hpp"
 
-#include "core/scene_io.hpp"
-#include "core/simulator.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/pipeline/simulator.hpp"
 
 #include <algorithm>
 #include <cstdio>

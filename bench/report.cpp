@@ -1,7 +1,7 @@
 // RESULTS.md (self-explanatory tables), results.csv (one line per scene and setting), results.json.
 #include "bench.hpp"
 
-#include "core/output.hpp"
+#include "core/io/output.hpp"
 
 #include <cmath>
 #include <cstdio>

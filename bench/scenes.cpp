@@ -2,7 +2,7 @@
 #include "bench.hpp"
 #include "terrain.hpp"
 
-#include "core/scene_io.hpp"
+#include "core/scene/scene_io.hpp"
 
 #include <filesystem>
 #include <fstream>

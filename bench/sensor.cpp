@@ -4,9 +4,9 @@
 // sensor stage and the display, nothing before them.
 #include "bench.hpp"
 
-#include "core/params.hpp"
-#include "core/scene_io.hpp"
-#include "core/simulator.hpp"
+#include "core/scene/params.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/pipeline/simulator.hpp"
 
 #include <algorithm>
 #include <sys/resource.h>

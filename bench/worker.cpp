@@ -2,12 +2,12 @@
 // sampling setting timed warm (median of repeats of trace + shade + sector image) and compared with it.
 #include "bench.hpp"
 
-#include "core/image.hpp"
-#include "core/scene_io.hpp"
-#include "core/shade.hpp"
-#include "core/study.hpp"
-#include "core/timing.hpp"
-#include "core/trace.hpp"
+#include "core/display/image.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/shading/shade.hpp"
+#include "core/analysis/study.hpp"
+#include "core/base/timing.hpp"
+#include "core/sampling/trace.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -1,12 +1,12 @@
 // The `sonarsim` Python module (pybind11): a Simulator, its frames as NumPy arrays that share the frame's
 // memory, one-off renders, and the dataset functions the Dask example distributes.
-#include "core/batch.hpp"
-#include "core/ground_truth.hpp"
-#include "core/errors.hpp"
-#include "core/output.hpp"
-#include "core/params.hpp"
-#include "core/scene_io.hpp"
-#include "core/simulator.hpp"
+#include "core/dataset/batch.hpp"
+#include "core/shading/ground_truth.hpp"
+#include "core/base/errors.hpp"
+#include "core/io/output.hpp"
+#include "core/scene/params.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/pipeline/simulator.hpp"
 
 #include <filesystem>
 #include <memory>

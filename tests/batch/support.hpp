@@ -1,7 +1,7 @@
 // Helpers of the dataset tests: a small fast scene, file bytes, fresh directories.
 #pragma once
-#include "core/params.hpp"
-#include "core/scene_io.hpp"
+#include "core/scene/params.hpp"
+#include "core/scene/scene_io.hpp"
 
 #include <filesystem>
 #include <fstream>

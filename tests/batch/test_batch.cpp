@@ -1,11 +1,11 @@
 // Datasets: shards reproduce a single run, --resume completes a killed run, the index lists every frame.
 #include "support.hpp"
 
-#include "core/batch.hpp"
-#include "core/errors.hpp"
-#include "core/ground_truth.hpp"
-#include "core/output.hpp"
-#include "core/params.hpp"
+#include "core/dataset/batch.hpp"
+#include "core/base/errors.hpp"
+#include "core/shading/ground_truth.hpp"
+#include "core/io/output.hpp"
+#include "core/scene/params.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>

@@ -2,12 +2,12 @@
 // Appendix A; the MCAP specification and OMG CDR), not with the writers' code.
 #include "support.hpp"
 
-#include "core/aris.hpp"
-#include "core/batch.hpp"
-#include "core/errors.hpp"
-#include "core/output.hpp"
-#include "core/pose.hpp"
-#include "core/ros2_sonar.hpp"
+#include "core/io/aris.hpp"
+#include "core/dataset/batch.hpp"
+#include "core/base/errors.hpp"
+#include "core/io/output.hpp"
+#include "core/base/pose.hpp"
+#include "core/io/ros2_sonar.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -1,7 +1,7 @@
 // Trajectory files and generated paths.
-#include "core/errors.hpp"
-#include "core/pose.hpp"
-#include "core/trajectory.hpp"
+#include "core/base/errors.hpp"
+#include "core/base/pose.hpp"
+#include "core/dataset/trajectory.hpp"
 
 #include <catch2/catch.hpp>
 

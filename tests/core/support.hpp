@@ -1,6 +1,6 @@
 // Small helpers shared by the core tests: paths, linear intensity, .npy reading, Gauss-Legendre rules.
 #pragma once
-#include "core/shade.hpp"
+#include "core/shading/shade.hpp"
 
 #include <cmath>
 #include <cstdint>

@@ -1,11 +1,11 @@
 // Device presets (assets/devices/*.json): each parses, sets only parameter-table keys with valid values and
 // sources, applies through sonar.device, and renders a visible image of a floor with the device sensor.
-#include "core/devices.hpp"
-#include "core/errors.hpp"
-#include "core/image.hpp"
-#include "core/params.hpp"
-#include "core/scene_io.hpp"
-#include "core/simulator.hpp"
+#include "core/devices/devices.hpp"
+#include "core/base/errors.hpp"
+#include "core/display/image.hpp"
+#include "core/scene/params.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/pipeline/simulator.hpp"
 
 #include <algorithm>
 #include <catch2/catch.hpp>

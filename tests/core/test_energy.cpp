@@ -1,11 +1,11 @@
 // Energy bookkeeping: the echo a beam's cells carry ends up, all of it and only it, in that beam's bins.
 #include "support.hpp"
 
-#include "core/physics.hpp"
-#include "core/pose.hpp"
-#include "core/scene_io.hpp"
-#include "core/shade.hpp"
-#include "core/simulator.hpp"
+#include "core/shading/physics.hpp"
+#include "core/base/pose.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/shading/shade.hpp"
+#include "core/pipeline/simulator.hpp"
 
 #include <algorithm>
 #include <catch2/catch.hpp>

@@ -3,8 +3,8 @@
 #include "floor_reference.hpp"
 #include "support.hpp"
 
-#include "core/reference.hpp"
-#include "core/simulator.hpp"
+#include "core/analysis/reference.hpp"
+#include "core/pipeline/simulator.hpp"
 
 #include <algorithm>
 #include <catch2/catch.hpp>

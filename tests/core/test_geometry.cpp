@@ -2,10 +2,10 @@
 // objects placed as instances (rotated, non-uniformly scaled, moved in place).
 #include "support.hpp"
 
-#include "core/errors.hpp"
-#include "core/geometry.hpp"
-#include "core/mesh.hpp"
-#include "core/mesh_cache.hpp"
+#include "core/base/errors.hpp"
+#include "core/geometry/geometry.hpp"
+#include "core/geometry/mesh.hpp"
+#include "core/geometry/mesh_cache.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -3,10 +3,10 @@
 // the prism's pixels carry its object id.
 #include "support.hpp"
 
-#include "core/ground_truth.hpp"
-#include "core/pose.hpp"
-#include "core/scene_io.hpp"
-#include "core/simulator.hpp"
+#include "core/shading/ground_truth.hpp"
+#include "core/base/pose.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/pipeline/simulator.hpp"
 
 #include <algorithm>
 #include <catch2/catch.hpp>

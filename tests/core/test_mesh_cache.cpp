@@ -2,9 +2,9 @@
 // requests) and mesh loading while another thread writes std::cerr.
 #include "support.hpp"
 
-#include "core/errors.hpp"
-#include "core/mesh.hpp"
-#include "core/mesh_cache.hpp"
+#include "core/base/errors.hpp"
+#include "core/geometry/mesh.hpp"
+#include "core/geometry/mesh_cache.hpp"
 
 #include <atomic>
 #include <catch2/catch.hpp>

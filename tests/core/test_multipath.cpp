@@ -3,11 +3,11 @@
 // mirrors; the energy of each path order adds up to the image's.
 #include "support.hpp"
 
-#include "core/ground_truth.hpp"
-#include "core/physics.hpp"
-#include "core/pose.hpp"
-#include "core/scene_io.hpp"
-#include "core/simulator.hpp"
+#include "core/shading/ground_truth.hpp"
+#include "core/shading/physics.hpp"
+#include "core/base/pose.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/pipeline/simulator.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>

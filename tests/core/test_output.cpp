@@ -1,7 +1,7 @@
 // The atomic writer: every target is checked before anything is replaced.
 #include "support.hpp"
 
-#include "core/output.hpp"
+#include "core/io/output.hpp"
 
 #include <catch2/catch.hpp>
 #include <filesystem>

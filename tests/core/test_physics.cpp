@@ -1,6 +1,6 @@
-#include "core/physics.hpp"
-#include "core/pose.hpp"
-#include "core/scene_io.hpp"
+#include "core/shading/physics.hpp"
+#include "core/base/pose.hpp"
+#include "core/scene/scene_io.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -1,6 +1,6 @@
 // Pose, beam and range-bin geometry against the paper's equations written out here independently.
-#include "core/pose.hpp"
-#include "core/scene_io.hpp"
+#include "core/base/pose.hpp"
+#include "core/scene/scene_io.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -1,10 +1,10 @@
 // Rendered images of the Fig. 9 scene: where the prism appears, and the golden image of the default scene.
 #include "support.hpp"
 
-#include "core/output.hpp"
-#include "core/pose.hpp"
-#include "core/scene_io.hpp"
-#include "core/simulator.hpp"
+#include "core/io/output.hpp"
+#include "core/base/pose.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/pipeline/simulator.hpp"
 
 #include <algorithm>
 #include <catch2/catch.hpp>

@@ -1,10 +1,10 @@
 // The adaptive sampler on a smooth tessellated surface, its ray budget, cancellation and preview.
 #include "support.hpp"
 
-#include "core/reference.hpp"
-#include "core/scene_io.hpp"
-#include "core/simulator.hpp"
-#include "core/trace.hpp"
+#include "core/analysis/reference.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/pipeline/simulator.hpp"
+#include "core/sampling/trace.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>

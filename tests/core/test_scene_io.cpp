@@ -2,9 +2,9 @@
 // (The exhaustive bad-input corpus lives elsewhere.)
 #include "support.hpp"
 
-#include "core/errors.hpp"
-#include "core/params.hpp"
-#include "core/scene_io.hpp"
+#include "core/base/errors.hpp"
+#include "core/scene/params.hpp"
+#include "core/scene/scene_io.hpp"
 
 #include <catch2/catch.hpp>
 #include <string>

@@ -3,15 +3,15 @@
 // rendered ones test them in the pipeline.
 #include "support.hpp"
 
-#include "core/output.hpp"
-#include "core/params.hpp"
-#include "core/pose.hpp"
-#include "core/reference.hpp"
-#include "core/scene_io.hpp"
-#include "core/fast_math.hpp"
-#include "core/sensor.hpp"
-#include "core/sensor_patterns.hpp"
-#include "core/simulator.hpp"
+#include "core/io/output.hpp"
+#include "core/scene/params.hpp"
+#include "core/base/pose.hpp"
+#include "core/analysis/reference.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/base/fast_math.hpp"
+#include "core/sensor/sensor.hpp"
+#include "core/sensor/sensor_patterns.hpp"
+#include "core/pipeline/simulator.hpp"
 
 #include <algorithm>
 #include <catch2/catch.hpp>

@@ -1,6 +1,6 @@
 // The staged pipeline: a change re-runs only the stages it affects, and the result equals a fresh render.
-#include "core/scene_io.hpp"
-#include "core/simulator.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/pipeline/simulator.hpp"
 
 #include <atomic>
 #include <catch2/catch.hpp>

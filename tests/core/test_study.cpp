@@ -1,10 +1,10 @@
 // The streamed reference of `sonarsim study` and the benchmark: a scene traced a chunk of beams at a time
 // must give the same image as the whole scene traced at once.
-#include "core/pose.hpp"
-#include "core/scene_io.hpp"
-#include "core/shade.hpp"
-#include "core/study.hpp"
-#include "core/trace.hpp"
+#include "core/base/pose.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/shading/shade.hpp"
+#include "core/analysis/study.hpp"
+#include "core/sampling/trace.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>

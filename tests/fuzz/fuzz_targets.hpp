@@ -3,10 +3,10 @@
 // only ever see InputError; any other exception, a crash, a sanitizer report, a leak, a hang or a broken
 // invariant (checked with abort()) is a finding.
 #pragma once
-#include "core/errors.hpp"
-#include "core/mesh.hpp"
-#include "core/params.hpp"
-#include "core/scene_io.hpp"
+#include "core/base/errors.hpp"
+#include "core/geometry/mesh.hpp"
+#include "core/scene/params.hpp"
+#include "core/scene/scene_io.hpp"
 
 #include <cmath>
 #include <cstdint>

@@ -1,9 +1,9 @@
 // Bad input, in process: messages, key paths, limits, nothing clamped; every mesh of the corpus.
 // (The same corpus also runs through the real binary: cases.txt.)
-#include "core/errors.hpp"
-#include "core/mesh.hpp"
-#include "core/params.hpp"
-#include "core/scene_io.hpp"
+#include "core/base/errors.hpp"
+#include "core/geometry/mesh.hpp"
+#include "core/scene/params.hpp"
+#include "core/scene/scene_io.hpp"
 
 #include <catch2/catch.hpp>
 #include <filesystem>

@@ -1,8 +1,8 @@
 // Stiff and extreme inputs give finite, correct images: no NaN, no +inf, -inf only where nothing echoes.
-#include "core/physics.hpp"
-#include "core/reference.hpp"
-#include "core/scene_io.hpp"
-#include "core/simulator.hpp"
+#include "core/shading/physics.hpp"
+#include "core/analysis/reference.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/pipeline/simulator.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -4,11 +4,11 @@
 //       a snapshot's scene after a drag: then the sonar must have moved and the fan must match the moved
 //       scene better than the Fig. 9 one) has it.
 //   ui_png_check view3d FILE.png : the headless 3D view is not blank and shows the floor and the prism.
-#include "ui/layout.hpp"
+#include "ui/model/layout.hpp"
 
-#include "core/image.hpp"
-#include "core/scene_io.hpp"
-#include "core/simulator.hpp"
+#include "core/display/image.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/pipeline/simulator.hpp"
 
 #include <cmath>
 #include <cstdio>

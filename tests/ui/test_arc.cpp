@@ -1,12 +1,12 @@
 // Pixel <-> 3D: the elevation arc of a sector-image pixel maps back onto that pixel; the points that echo
 // into a pixel lie in its beam and range bin.
-#include "ui/image_views.hpp"
-#include "ui/sonar_geometry.hpp"
+#include "ui/model/image_views.hpp"
+#include "ui/model/sonar_geometry.hpp"
 
-#include "core/image.hpp"
-#include "core/pose.hpp"
-#include "core/scene_io.hpp"
-#include "core/simulator.hpp"
+#include "core/display/image.hpp"
+#include "core/base/pose.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/pipeline/simulator.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,10 +1,10 @@
 // Orbit camera: rays through pixels and projection of points are inverse of each other; the --orbit path
 // and its statistics.
-#include "ui/camera.hpp"
-#include "ui/orbit.hpp"
+#include "ui/model/camera.hpp"
+#include "ui/model/orbit.hpp"
 
-#include "core/pose.hpp"
-#include "core/scene_io.hpp"
+#include "core/base/pose.hpp"
+#include "core/scene/scene_io.hpp"
 
 #include <catch2/catch.hpp>
 

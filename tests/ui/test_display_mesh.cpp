@@ -1,5 +1,5 @@
 // The 3D view's simplified meshes: within the triangle budget, close to the original surface, well formed.
-#include "ui/display_mesh.hpp"
+#include "ui/model/display_mesh.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>

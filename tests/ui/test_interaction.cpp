@@ -1,10 +1,10 @@
 // Picking and dragging the frustum; a drag moves the prism's echo across the image.
-#include "ui/interaction.hpp"
-#include "ui/sonar_geometry.hpp"
+#include "ui/model/interaction.hpp"
+#include "ui/model/sonar_geometry.hpp"
 
-#include "core/pose.hpp"
-#include "core/scene_io.hpp"
-#include "core/simulator.hpp"
+#include "core/base/pose.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/pipeline/simulator.hpp"
 
 #include <catch2/catch.hpp>
 

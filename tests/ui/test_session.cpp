@@ -2,12 +2,12 @@
 // wins; every slider of the controls panel visibly changes the image.
 #include "support.hpp"
 
-#include "ui/param_ranges.hpp"
-#include "ui/render_worker.hpp"
-#include "ui/session.hpp"
+#include "ui/model/param_ranges.hpp"
+#include "ui/model/render_worker.hpp"
+#include "ui/model/session.hpp"
 
-#include "core/output.hpp"
-#include "core/scene_io.hpp"
+#include "core/io/output.hpp"
+#include "core/scene/scene_io.hpp"
 
 #include <catch2/catch.hpp>
 #include <chrono>

@@ -2,12 +2,12 @@
 // load_scene + render (what `sonarsim render --scene` does), even after incremental edits in the viewer.
 #include "support.hpp"
 
-#include "ui/render_worker.hpp"
-#include "ui/snapshot.hpp"
+#include "ui/model/render_worker.hpp"
+#include "ui/model/snapshot.hpp"
 
-#include "core/output.hpp"
-#include "core/scene_io.hpp"
-#include "core/simulator.hpp"
+#include "core/io/output.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/pipeline/simulator.hpp"
 
 #include <catch2/catch.hpp>
 #include <chrono>

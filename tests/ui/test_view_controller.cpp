@@ -1,9 +1,9 @@
 // The 3D view's state machine fed synthetic event sequences: quick clicks, drags of the camera, the sonar
 // by its handles and objects by their surfaces, and what counts as one edit.
-#include "ui/sonar_geometry.hpp"
-#include "ui/view_controller.hpp"
+#include "ui/model/sonar_geometry.hpp"
+#include "ui/model/view_controller.hpp"
 
-#include "core/scene_io.hpp"
+#include "core/scene/scene_io.hpp"
 
 #include <catch2/catch.hpp>
 

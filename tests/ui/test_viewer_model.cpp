@@ -2,19 +2,19 @@
 // the Open dialog's scene filter, the bindings table and the no-echo colour.
 #include "support.hpp"
 
-#include "ui/bindings.hpp"
-#include "ui/echo_path_view.hpp"
-#include "ui/image_views.hpp"
-#include "ui/measure.hpp"
-#include "ui/scene_files.hpp"
-#include "ui/script.hpp"
-#include "ui/text_layout.hpp"
-#include "ui/trajectory.hpp"
-#include "ui/undo.hpp"
+#include "ui/model/bindings.hpp"
+#include "ui/model/echo_path_view.hpp"
+#include "ui/model/image_views.hpp"
+#include "ui/model/measure.hpp"
+#include "ui/model/scene_files.hpp"
+#include "ui/model/script.hpp"
+#include "ui/model/text_layout.hpp"
+#include "ui/model/trajectory.hpp"
+#include "ui/model/undo.hpp"
 
-#include "core/errors.hpp"
-#include "core/image.hpp"
-#include "core/scene_io.hpp"
+#include "core/base/errors.hpp"
+#include "core/display/image.hpp"
+#include "core/scene/scene_io.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>

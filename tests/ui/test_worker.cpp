@@ -1,8 +1,8 @@
 // The render worker under load: a newer request stops a running full render inside its trace, so the newer
 // image arrives in far less time than the old render takes alone; a running preview is let finish.
-#include "ui/render_worker.hpp"
+#include "ui/model/render_worker.hpp"
 
-#include "core/scene_io.hpp"
+#include "core/scene/scene_io.hpp"
 
 #include <catch2/catch.hpp>
 #include <chrono>

@@ -1,0 +1,236 @@
+#include "core/dataset/batch.hpp"
+
+#include "core/sensor/sensor.hpp"
+
+#include "core/base/errors.hpp"
+#include "core/shading/ground_truth.hpp"
+#include "core/io/output.hpp"
+#include "core/scene/params.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/pipeline/simulator.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fcntl.h>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <sstream>
+#include <sys/file.h>
+#include <unistd.h>
+
+namespace sonarsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+/// Holds an exclusive lock on DIR/.index.lock while alive (concurrent shards rebuild the index in turn).
+class IndexLock {
+  public:
+    explicit IndexLock(const std::string& dir)
+        : fd_(::open((dir + "/.index.lock").c_str(), O_RDWR | O_CREAT, 0644)) {
+        if (fd_ >= 0) ::flock(fd_, LOCK_EX);
+    }
+    ~IndexLock() {
+        if (fd_ >= 0) ::close(fd_); // releases the lock
+    }
+    IndexLock(const IndexLock&) = delete;
+    IndexLock& operator=(const IndexLock&) = delete;
+
+  private:
+    int fd_;
+};
+
+std::string fmt(double v) {
+    char b[40];
+    std::snprintf(b, sizeof b, "%.9g", v);
+    return b;
+}
+
+/// One row of index.csv for complete frame k, from its metadata JSON.
+std::string index_row(const std::string& dir, const Trajectory& trajectory, size_t k) {
+    const std::string prefix = frame_prefix(dir, k);
+    const json meta = json::parse(read_text(prefix + ".json"), nullptr, false);
+    const TrajectoryPoint& p = trajectory[k];
+    std::string files;
+    std::error_code ec;
+    for (auto& o : render_outputs())
+        if (!o.wanted || fs::is_regular_file(prefix + o.suffix, ec))
+            files +=
+                (files.empty() ? "" : ";") + fs::path(prefix + o.suffix).lexically_relative(dir).string();
+    std::string ms, err_median, err_p95, rays;
+    if (meta.is_object()) {
+        if (meta.contains("time_ms")) ms = fmt(meta["time_ms"].value("total", 0.0));
+        const json est = meta.value("sampling_error_estimate", json());
+        if (est.is_object())
+            err_median = fmt(est.value("median_abs_db", 0.0)), err_p95 = fmt(est.value("p95_abs_db", 0.0));
+        if (meta.contains("rays_traced")) rays = meta["rays_traced"].dump();
+    }
+    const Vec3d &x = p.pose.position_m, &o = p.pose.orientation_deg;
+    return std::to_string(k) + "," + fmt(p.t_s) + "," + fmt(x[0]) + "," + fmt(x[1]) + "," + fmt(x[2]) + "," +
+           fmt(o[0]) + "," + fmt(o[1]) + "," + fmt(o[2]) + "," + files + "," + ms + "," + err_median + "," +
+           err_p95 + "," + rays + "\n";
+}
+
+} // namespace
+
+std::vector<size_t> shard_frames(const std::string& spec, size_t total, const std::string& origin) {
+    const size_t slash = spec.find('/');
+    long long i = -1, n = 0;
+    try {
+        size_t a = 0, b = 0;
+        if (slash != std::string::npos) {
+            i = std::stoll(spec.substr(0, slash), &a);
+            n = std::stoll(spec.substr(slash + 1), &b);
+        }
+        if (a != slash || b != spec.size() - slash - 1) n = 0;
+    } catch (...) {
+        n = 0;
+    }
+    if (n < 1 || i < 0 || i >= n)
+        throw InputError(origin, "", "\"" + spec + "\": expected i/n with 0 <= i < n, e.g. 0/4");
+    std::vector<size_t> frames;
+    for (size_t k = size_t(i); k < total; k += size_t(n)) frames.push_back(k);
+    return frames;
+}
+
+SceneDesc frame_scene(const SceneDesc& base, const Trajectory& trajectory, size_t k) {
+    SceneDesc s = base;
+    s.sonar.pose = trajectory.at(k).pose;
+    // Each frame its own speckle and noise, reproducible from the base seed and the frame number alone (so
+    // shards and resumed runs give the same bytes as one run).
+    const ParamSpec& seed = *find_param("sensor.seed");
+    const auto span = std::uint64_t(seed.max - seed.min + 1);
+    const auto value = std::int64_t(seed.min) +
+                       std::int64_t(mix64(std::uint64_t(base.sensor.seed) * 0x100000001b3ull + k) % span);
+    apply_setting(s, "sensor.seed", json(value), "batch frame " + std::to_string(k));
+    return s;
+}
+
+std::string frame_prefix(const std::string& dir, size_t k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "%06zu", k);
+    return (fs::path(dir) / "frames" / name).string();
+}
+
+bool frame_complete(const std::string& dir, size_t k) {
+    // A frame's files are renamed into place as one set: the files every frame has tell.
+    std::error_code ec;
+    for (auto& o : render_outputs())
+        if (!o.wanted && !fs::is_regular_file(frame_prefix(dir, k) + o.suffix, ec)) return false;
+    return true;
+}
+
+void prepare_dataset(const std::string& dir, const SceneDesc& base, const Trajectory& trajectory) {
+    std::error_code ec;
+    fs::create_directories(fs::path(dir) / "frames", ec);
+    if (ec) throw InputError(dir, "", "cannot create the dataset directory: " + ec.message());
+    SceneDesc stored = base;
+    for (auto& o : stored.objects)
+        if (!o.mesh_resolved.empty())
+            o.mesh_resolved = fs::absolute(o.mesh_resolved).lexically_normal().string();
+    const std::string scene_text = scene_to_json(stored).dump(2) + "\n";
+    const std::string traj_text = trajectory_to_csv(trajectory);
+    const std::string scene_path = dir + "/scene.json", traj_path = dir + "/trajectory.csv";
+    for (auto [path, text] : {std::pair{scene_path, scene_text}, std::pair{traj_path, traj_text}})
+        if (fs::exists(path, ec) && read_text(path) != text)
+            throw InputError(dir, "",
+                             "holds a dataset of another scene or trajectory (" + path +
+                                 " differs); choose another directory");
+    write_files_atomically({{scene_path, to_bytes(scene_text)}, {traj_path, to_bytes(traj_text)}});
+}
+
+void load_dataset(const std::string& dir, SceneDesc& base, Trajectory& trajectory) {
+    const std::string scene_path = dir + "/scene.json", traj_path = dir + "/trajectory.csv";
+    std::error_code ec;
+    if (!fs::is_regular_file(scene_path, ec) || !fs::is_regular_file(traj_path, ec))
+        throw InputError(dir, "", "not a dataset of `sonarsim batch` (no scene.json or trajectory.csv)");
+    base = parse_scene(read_text(scene_path), scene_path, dir);
+    trajectory = load_trajectory_csv(traj_path);
+}
+
+BatchSummary run_batch(const std::string& dir, const BatchOptions& options) {
+    SceneDesc base;
+    Trajectory trajectory;
+    load_dataset(dir, base, trajectory);
+    std::vector<size_t> frames = options.frames;
+    if (frames.empty())
+        for (size_t k = 0; k < trajectory.size(); ++k) frames.push_back(k);
+    const auto t0 = std::chrono::steady_clock::now();
+    std::optional<Simulator> sim; // built at the first frame to render: the geometry once for all frames
+    BatchProgress progress;
+    progress.total = frames.size();
+    for (const size_t k : frames) {
+        if (!(options.resume && frame_complete(dir, k))) {
+            const SceneDesc s = frame_scene(base, trajectory, k);
+            if (sim)
+                sim->set_scene(s);
+            else
+                sim.emplace(s);
+            const auto f = sim->render();
+            write_render_files(frame_prefix(dir, k), s, *f,
+                               options.ground_truth ? ground_truth_files(frame_prefix(dir, k),
+                                                                         compute_ground_truth(f->hits(), s))
+                                                    : std::vector<std::pair<std::string, Bytes>>{});
+            ++progress.rendered;
+        }
+        ++progress.done;
+        progress.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (options.progress) options.progress(progress);
+    }
+    BatchSummary summary;
+    summary.rendered = progress.rendered;
+    summary.skipped = progress.done - progress.rendered;
+    summary.elapsed_s = progress.elapsed_s;
+    if (options.index) summary.indexed = write_index(dir, trajectory);
+    return summary;
+}
+
+std::function<PolarImage(size_t)> dataset_images(const std::string& dir, size_t frames,
+                                                 const std::string& origin) {
+    for (size_t k = 0; k < frames; ++k)
+        if (!frame_complete(dir, k))
+            throw InputError(
+                origin, "",
+                "frame " + std::to_string(k) + " of " + dir +
+                    " is not complete; when every shard has finished, run `batch --resume` with it");
+    return [dir](size_t k) {
+        const std::string path = frame_prefix(dir, k) + ".npy";
+        std::ifstream in(path, std::ios::binary);
+        const Bytes bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+        return decode_npy(bytes, path);
+    };
+}
+
+size_t write_index(const std::string& dir, const Trajectory& trajectory) {
+    IndexLock lock(dir);
+    std::string text =
+        "frame,t,x,y,z,roll_deg,pitch_deg,yaw_deg,files,ms,error_median_db,error_p95_db,rays\n";
+    size_t listed = 0;
+    for (size_t k = 0; k < trajectory.size(); ++k)
+        if (frame_complete(dir, k)) text += index_row(dir, trajectory, k), ++listed;
+    write_files_atomically({{dir + "/index.csv", to_bytes(text)}});
+    return listed;
+}
+
+} // namespace sonarsim
+
+namespace sonarsim {
+
+size_t write_index(const std::string& dir) {
+    SceneDesc base;
+    Trajectory trajectory;
+    load_dataset(dir, base, trajectory);
+    return write_index(dir, trajectory);
+}
+
+} // namespace sonarsim

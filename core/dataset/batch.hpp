@@ -1,0 +1,78 @@
+// Datasets along a trajectory: one frame per pose, written as `render` writes it, with an index.
+//
+// Layout of DIR: scene.json (the base scene), trajectory.csv (every pose), frames/NNNNNN.* (the files of
+// render_outputs() for frame N), index.csv (one row per complete frame). Each frame's files are written in
+// one atomic step, so a killed run loses at most the frame in flight; a frame counts as complete when all its
+// files exist. index.csv is rebuilt from the complete frames at the end of every run (under a lock, so
+// concurrent shards end with a full index).
+#pragma once
+#include "core/display/polar_image.hpp"
+#include "core/scene/scene.hpp"
+#include "core/dataset/trajectory.hpp"
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace sonarsim {
+
+/// "i/n" with 0 <= i < n: the frames i, i + n, i + 2n, ... of a trajectory of `total` frames.
+std::vector<size_t> shard_frames(const std::string& spec, size_t total, const std::string& origin);
+
+/// The scene of frame k: `base` at the trajectory's pose k. Where the parameter table has `sensor.seed`,
+/// its value is derived from the base seed and k (so shards reproduce a single run byte for byte).
+SceneDesc frame_scene(const SceneDesc& base, const Trajectory& trajectory, size_t k);
+
+/// "DIR/frames/NNNNNN" (6 digits).
+std::string frame_prefix(const std::string& dir, size_t k);
+
+/// Whether every file of frame k exists.
+bool frame_complete(const std::string& dir, size_t k);
+
+/// Creates DIR and DIR/frames and writes scene.json (mesh paths made absolute) and trajectory.csv; when DIR
+/// already holds a dataset of another scene or trajectory, throws InputError (frames of two datasets are
+/// never mixed). Every run renders the scene as read back from DIR, so shards, resumed runs and other
+/// processes (the Dask example) render exactly the same scene.
+void prepare_dataset(const std::string& dir, const SceneDesc& base, const Trajectory& trajectory);
+
+/// The dataset in DIR as prepare_dataset wrote it. Throws InputError when it is not one.
+void load_dataset(const std::string& dir, SceneDesc& base, Trajectory& trajectory);
+
+struct BatchProgress {
+    size_t done = 0;      ///< frames of this run finished (rendered or skipped)
+    size_t total = 0;     ///< frames of this run
+    size_t rendered = 0;  ///< of `done`, rendered (not skipped as complete)
+    double elapsed_s = 0; ///< since the run started
+};
+
+struct BatchOptions {
+    std::vector<size_t> frames;                         ///< which frames to render (all when empty)
+    bool resume = false;                                ///< skip frames that are already complete
+    std::function<void(const BatchProgress&)> progress; ///< after each frame
+    bool index = true; ///< rebuild index.csv at the end (a distributed run does it once, after all tasks)
+    bool ground_truth = false; ///< also write each frame's PREFIX_gt_<name>.npy (ground_truth.hpp)
+};
+
+struct BatchSummary {
+    size_t rendered = 0, skipped = 0; ///< frames of this run rendered, and skipped as complete (--resume)
+    size_t indexed = 0;               ///< frames listed in index.csv afterwards (all shards' complete frames)
+    double elapsed_s = 0;             ///< rendering, without rebuilding the index
+};
+
+/// Renders the frames of `options` of the prepared dataset in DIR with one Simulator (the geometry is
+/// built once; only the pose changes), then rebuilds index.csv (unless options.index is false).
+BatchSummary run_batch(const std::string& dir, const BatchOptions& options);
+
+/// Reads the L_EN image of frame k of the dataset in DIR (its .npy). Throws InputError(origin, ...) at
+/// once when any of the first `frames` frames is not complete.
+std::function<PolarImage(size_t)> dataset_images(const std::string& dir, size_t frames,
+                                                 const std::string& origin);
+
+/// Rebuilds DIR/index.csv from the complete frames: frame, t, pose, files, render time [ms], the sampling
+/// error estimate [dB] and rays. Returns the number of frames listed.
+size_t write_index(const std::string& dir, const Trajectory& trajectory);
+/// The same for the dataset in DIR, its trajectory read from DIR.
+size_t write_index(const std::string& dir);
+
+} // namespace sonarsim

@@ -1,0 +1,129 @@
+#include "core/io/aris.hpp"
+
+#include "core/base/errors.hpp"
+#include "core/base/le_bytes.hpp"
+#include "core/io/output.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+
+namespace sonarsim {
+namespace {
+
+constexpr std::uint32_t kArisVersion = 0x05464444; // "DDF\x05"
+constexpr size_t kHeaderBytes = 1024;
+
+/// PingMode, system type (0 = ARIS 1800, 1 = ARIS 3000) and HF flag of the beam counts ARIS has.
+struct ArisMode {
+    int beams;
+    std::uint32_t ping_mode, system_type, high_frequency;
+};
+constexpr ArisMode kModes[] = {{48, 1, 0, 0}, {96, 3, 0, 1}, {64, 6, 1, 0}, {128, 9, 1, 1}};
+
+const ArisMode& aris_mode(int beams, const std::string& origin) {
+    for (auto& m : kModes)
+        if (m.beams == beams) return m;
+    throw InputError(origin, "sonar.beams",
+                     "an ARIS file holds 48, 64, 96 or 128 beams, got " + std::to_string(beams));
+}
+
+le::Bytes file_header(const SceneDesc& s, const ArisMode& mode, size_t frames) {
+    le::Bytes h(kHeaderBytes, 0);
+    le::put<std::uint32_t>(h, 0, kArisVersion);
+    le::put<std::uint32_t>(h, 4, std::uint32_t(frames));
+    le::put<std::uint32_t>(h, 16, std::uint32_t(mode.beams));
+    le::put<std::uint32_t>(h, 24, std::uint32_t(s.sonar.range_bins));
+    const std::time_t now = std::time(nullptr);
+    std::tm tm{};
+    gmtime_r(&now, &tm);
+    std::strftime(reinterpret_cast<char*>(h.data() + 48), 32, "%Y-%m-%d %H:%M:%S UTC", &tm);
+    const std::string id = "sonarsim simulated frames";
+    std::copy(id.begin(), id.end(), h.begin() + 80);
+    return h;
+}
+
+le::Bytes frame_header(const SceneDesc& s, const ArisMode& mode, const ArisTiming& tm,
+                       const Trajectory& trajectory, size_t k) {
+    le::Bytes h(kHeaderBytes, 0);
+    const TrajectoryPoint& p = trajectory[k];
+    const auto time_us = std::uint64_t(std::llround(std::max(0.0, p.t_s) * 1e6));
+    le::put<std::uint32_t>(h, 0, std::uint32_t(k));
+    le::put<std::uint64_t>(h, 4, time_us);
+    le::put<std::uint32_t>(h, 12, kArisVersion);
+    le::put<std::uint64_t>(h, 20, time_us);
+    le::put<float>(h, 52, float(tm.window_start_m));
+    le::put<float>(h, 56, float(tm.window_length_m));
+    le::put<float>(h, 224, float(s.water.temperature_c));
+    const Vec3d &x = p.pose.position_m, &o = p.pose.orientation_deg;
+    le::put<float>(h, 232, float(x[0])); // SonarX, Y, Z [m]
+    le::put<float>(h, 236, float(x[1]));
+    le::put<float>(h, 240, float(x[2]));
+    le::put<float>(h, 244, float(o[2])); // SonarPan = yaw, SonarTilt = pitch, SonarRoll = roll [deg]
+    le::put<float>(h, 248, float(o[1]));
+    le::put<float>(h, 252, float(o[0]));
+    le::put<float>(h, 420, float(1e6 / tm.sample_period_us));
+    le::put<std::uint32_t>(h, 436, mode.ping_mode);
+    le::put<std::uint32_t>(h, 440, mode.high_frequency);
+    le::put<std::uint32_t>(h, 452, tm.sample_period_us);
+    le::put<std::uint32_t>(h, 456, 1); // TransmitEnable
+    const double dt = k > 0 ? p.t_s - trajectory[k - 1].t_s : 0;
+    le::put<float>(h, 460, dt > 0 ? float(1 / dt) : 0.0f); // frames per second, as recordings hold it
+    le::put<float>(h, 464, tm.sound_speed_m_s);
+    le::put<std::uint32_t>(h, 468, std::uint32_t(s.sonar.range_bins));
+    le::put<std::uint32_t>(h, 472, 1); // Enable150V
+    le::put<std::uint32_t>(h, 476, tm.sample_start_delay_us);
+    le::put<std::uint32_t>(h, 484, mode.system_type);
+    le::put<std::uint32_t>(h, 516, 1);  // ReorderedSamples: [sample][beam] already
+    le::put<std::uint32_t>(h, 520, 35); // Salinity: salt
+    return h;
+}
+
+} // namespace
+
+void check_aris_beams(const SceneDesc& s, const std::string& origin) {
+    aris_mode(s.sonar.beams, origin);
+}
+
+ArisTiming aris_timing(const SonarParams& sonar, double c_water) {
+    ArisTiming t;
+    const double bin_m = (sonar.range_max_m - sonar.range_min_m) / sonar.range_bins;
+    t.sample_period_us = std::uint32_t(std::max(1.0, std::round(2 * bin_m / c_water * 1e6)));
+    const double c = 2 * bin_m / (t.sample_period_us * 1e-6);
+    t.sound_speed_m_s = float(c);
+    const double first_m = sonar.range_min_m + bin_m / 2; // samples at the bin centres
+    t.sample_start_delay_us = std::uint32_t(std::llround(2 * first_m / double(t.sound_speed_m_s) * 1e6));
+    t.window_start_m = t.sample_start_delay_us * 1e-6 * double(t.sound_speed_m_s) / 2;
+    t.window_length_m = double(t.sample_period_us) * sonar.range_bins * 1e-6 * double(t.sound_speed_m_s) / 2;
+    return t;
+}
+
+std::uint8_t aris_byte(double level_db) {
+    if (!(level_db > 0)) return 0; // also -inf (nothing echoes) and NaN
+    return std::uint8_t(std::lround(255.0 / 80.0 * std::min(level_db, 80.0)));
+}
+
+void write_aris(const std::string& path, const SceneDesc& s, const Trajectory& trajectory,
+                const FrameImageSource& image, const std::string& origin) {
+    const ArisMode& mode = aris_mode(s.sonar.beams, origin);
+    const ArisTiming tm = aris_timing(s.sonar, sound_speed_m_s(s.water.temperature_c, s.water.depth_m));
+    const int beams = s.sonar.beams, samples = s.sonar.range_bins;
+    AtomicFile out(path);
+    out.write(file_header(s, mode, trajectory.size()));
+    le::Bytes data(size_t(beams) * size_t(samples));
+    for (size_t k = 0; k < trajectory.size(); ++k) {
+        const PolarImage img = image(k);
+        if (img.beams != beams || img.bins != samples)
+            throw std::runtime_error("frame " + std::to_string(k) + " is not " + std::to_string(samples) +
+                                     " x " + std::to_string(beams));
+        // Sample-major; ARIS beam 0 is the starboard-most, our column 0 the port-most.
+        for (int r = 0; r < samples; ++r)
+            for (int b = 0; b < beams; ++b)
+                data[size_t(r) * size_t(beams) + size_t(b)] = aris_byte(double(img.at(r, beams - 1 - b)));
+        out.write(frame_header(s, mode, tm, trajectory, k));
+        out.write(data);
+    }
+    out.commit();
+}
+
+} // namespace sonarsim

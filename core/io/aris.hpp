@@ -1,0 +1,45 @@
+// Sound Metrics ARIS recordings (.aris, SENSORS.md §3.1 and Appendix A): a 1024-byte file header, then per
+// frame a 1024-byte frame header and BeamCount x SamplesPerBeam bytes, sample-major, beam 0 the
+// starboard-most. Packed little-endian.
+#pragma once
+#include "core/shading/physics.hpp" // sound_speed_m_s
+#include "core/display/polar_image.hpp"
+#include "core/scene/scene.hpp"
+#include "core/dataset/trajectory.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace sonarsim {
+
+/// Range geometry of an ARIS frame. ARIS stores the sample period and the start delay as whole
+/// microseconds, so the sound speed written is the one that makes SamplePeriod exact for the bins
+/// (about the water's, which sets only the rounding); samples sit at the bin centres.
+struct ArisTiming {
+    std::uint32_t sample_period_us = 0, sample_start_delay_us = 0;
+    float sound_speed_m_s = 0;
+    double window_start_m = 0, window_length_m = 0; ///< first sample's range, samples x sample length
+};
+ArisTiming aris_timing(const SonarParams& sonar, double water_sound_speed_m_s);
+
+/// The byte of image level `level_db`: 255/80 clamp(L, 0, 80), rounded; 0 where nothing echoes.
+/// The image level is what the frame's .npy holds: the sensor's output, its TVG and gain (sensor.tvg,
+/// sensor.gain_db) included; with the ideal sensor, L_EN. As on the device, the gain decides what 0 to 80 dB
+/// covers.
+std::uint8_t aris_byte(double level_db);
+
+/// Throws InputError(origin, "sonar.beams", ...) unless the scene has 48, 64, 96 or 128 beams.
+void check_aris_beams(const SceneDesc& scene, const std::string& origin);
+
+/// L_EN image of frame k (range bins x beams, row 0 nearest, column 0 port-most), read one at a time.
+using FrameImageSource = std::function<PolarImage(size_t k)>;
+
+/// Writes every frame of `trajectory` as one .aris file (atomically: a temporary, then a rename). Pose and
+/// time go into the frame headers (SonarX/Y/Z, SonarPan/Tilt/Roll = yaw/pitch/roll, FrameTime = t). Throws
+/// InputError(origin, "sonar.beams", ...) unless the scene has 48, 64, 96 or 128 beams.
+void write_aris(const std::string& path, const SceneDesc& scene, const Trajectory& trajectory,
+                const FrameImageSource& image, const std::string& origin);
+
+} // namespace sonarsim

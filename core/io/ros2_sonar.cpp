@@ -1,0 +1,118 @@
+#include "core/io/ros2_sonar.hpp"
+
+#include "core/base/le_bytes.hpp"
+#include "core/io/mcap.hpp"
+#include "core/base/pose.hpp"
+
+#include <cmath>
+
+namespace sonarsim {
+namespace {
+
+/// OMG CDR, little-endian (ROS 2's XCDR1 plain CDR): a 4-byte encapsulation header, then each primitive
+/// aligned to its size counted from the end of that header; strings and sequences carry a uint32 count.
+class Cdr {
+  public:
+    Cdr() : b_{0x00, 0x01, 0x00, 0x00} {} // CDR_LE, options 0
+    template <typename T> void put(T v) {
+        align(sizeof v);
+        le::append<T>(b_, v);
+    }
+    void put_string(const std::string& s) {
+        put<std::uint32_t>(std::uint32_t(s.size() + 1)); // counts the terminating NUL
+        le::append_bytes(b_, s.c_str(), s.size() + 1);
+    }
+    template <typename T> void put_sequence(const std::vector<T>& v) {
+        put<std::uint32_t>(std::uint32_t(v.size()));
+        for (T x : v) put<T>(x);
+    }
+    void put_octets(const Bytes& v) {
+        put<std::uint32_t>(std::uint32_t(v.size()));
+        b_.insert(b_.end(), v.begin(), v.end());
+    }
+    Bytes take() { return std::move(b_); }
+
+  private:
+    void align(size_t n) {
+        while ((b_.size() - 4) % n) b_.push_back(0);
+    }
+    Bytes b_;
+};
+
+} // namespace
+
+const std::string& projected_sonar_image_schema() {
+    static const std::string sep = "\n" + std::string(80, '=') + "\n";
+    static const std::string text =
+        "std_msgs/Header header\n"
+        "PingInfo ping_info\n"
+        "geometry_msgs/Vector3[] beam_directions\n"
+        "float32[] ranges\n"
+        "SonarImageData image\n" +
+        sep + "MSG: std_msgs/Header\nbuiltin_interfaces/Time stamp\nstring frame_id\n" + sep +
+        "MSG: builtin_interfaces/Time\nint32 sec\nuint32 nanosec\n" + sep +
+        "MSG: marine_acoustic_msgs/PingInfo\nfloat32 frequency\nfloat32 sound_speed\nfloat32[] "
+        "tx_beamwidths\n"
+        "float32[] rx_beamwidths\n" +
+        sep + "MSG: geometry_msgs/Vector3\nfloat64 x\nfloat64 y\nfloat64 z\n" + sep +
+        "MSG: marine_acoustic_msgs/SonarImageData\nbool is_bigendian\n"
+        "uint32 DTYPE_UINT8=0\nuint32 DTYPE_INT8=1\nuint32 DTYPE_UINT16=2\nuint32 DTYPE_INT16=3\n"
+        "uint32 DTYPE_UINT32=4\nuint32 DTYPE_INT32=5\nuint32 DTYPE_UINT64=6\nuint32 DTYPE_INT64=7\n"
+        "uint32 DTYPE_FLOAT32=8\nuint32 DTYPE_FLOAT64=9\n"
+        "uint32 dtype\nuint32 beam_count\nuint8[] data\n";
+    return text;
+}
+
+Bytes encode_projected_sonar_image(const SceneDesc& s, const PolarImage& img, double t_s,
+                                   const std::string& frame_id, SonarDataType type) {
+    Cdr c;
+    const long long ns = std::llround(t_s * 1e9);
+    c.put<std::int32_t>(std::int32_t(ns / 1000000000)); // header.stamp (t >= 0)
+    c.put<std::uint32_t>(std::uint32_t(ns % 1000000000));
+    c.put_string(frame_id);
+
+    const auto beams = size_t(img.beams);
+    c.put<float>(float(s.sonar.frequency_khz * 1e3)); // ping_info
+    c.put<float>(float(sound_speed_m_s(s.water.temperature_c, s.water.depth_m)));
+    c.put_sequence(std::vector<float>(beams, float(s.sonar.elevation_fov_deg * kPi / 180)));
+    c.put_sequence(std::vector<float>(beams, float(s.sonar.azimuth_fov_deg / s.sonar.beams * kPi / 180)));
+
+    c.put<std::uint32_t>(std::uint32_t(beams)); // beam_directions
+    for (double az_deg : beam_azimuths_deg(s.sonar)) {
+        c.put<double>(0.0);
+        c.put<double>(-std::sin(az_deg * kPi / 180));
+        c.put<double>(std::cos(az_deg * kPi / 180));
+    }
+    const std::vector<double> edges = range_bin_edges_m(s.sonar);
+    std::vector<float> ranges;
+    for (size_t i = 0; i + 1 < edges.size(); ++i) ranges.push_back(float(0.5 * (edges[i] + edges[i + 1])));
+    c.put_sequence(ranges);
+
+    c.put<std::uint8_t>(0); // image.is_bigendian
+    c.put<std::uint32_t>(type == SonarDataType::Uint8 ? 0 : 8);
+    c.put<std::uint32_t>(std::uint32_t(beams));
+    Bytes data;
+    if (type == SonarDataType::Uint8) {
+        for (float l : img.level_db) data.push_back(aris_byte(double(l)));
+    } else {
+        le::append_bytes(data, img.level_db.data(), img.level_db.size() * sizeof(float));
+    }
+    c.put_octets(data); // range-major: the image's rows are range bins
+    return c.take();
+}
+
+void write_sonar_mcap(const std::string& path, const SceneDesc& s, const Trajectory& trajectory,
+                      const FrameImageSource& image, SonarDataType type) {
+    McapWriter w(path, "ros2", "sonarsim");
+    const auto schema = w.add_schema("marine_acoustic_msgs/msg/ProjectedSonarImage", "ros2msg",
+                                     projected_sonar_image_schema());
+    const auto channel = w.add_channel(schema, "/sonarsim/image", "cdr", {{"offered_qos_profiles", ""}});
+    for (size_t k = 0; k < trajectory.size(); ++k) {
+        const double t = std::max(0.0, trajectory[k].t_s);
+        w.add_message(channel, std::uint32_t(k), std::uint64_t(std::llround(t * 1e9)),
+                      encode_projected_sonar_image(s, image(k), t, "sonar", type));
+    }
+    w.finish();
+}
+
+} // namespace sonarsim

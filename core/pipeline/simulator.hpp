@@ -1,0 +1,74 @@
+// The pipeline with per-stage invalidation: geometry -> trace -> shade -> sensor -> display.
+// A display change re-maps the image; a sensor change (noise, speckle, gain...) re-runs the sensor stage on
+// the shaded image; physics re-shades the stored hits; pose or sampling re-traces; objects rebuild the
+// Embree scene. Not thread-safe: give each worker thread its own Simulator.
+#pragma once
+#include "core/geometry/geometry.hpp"
+#include "core/display/image.hpp"
+#include "core/scene/params.hpp"
+#include "core/scene/scene.hpp"
+#include "core/shading/shade.hpp"
+#include "core/sampling/trace.hpp"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace sonarsim {
+
+/// A finished image. Its stage results are immutable and shared, never copied: a later frame whose display
+/// changed shares this one's trace and polar image, a re-shaded one shares its trace. Safe to read from any
+/// thread while the Simulator renders the next frame.
+struct Frame {
+    std::shared_ptr<const TraceResult> hits_ptr;
+    std::shared_ptr<const PolarImage> ideal_ptr;    ///< L_EN [dB] as the sampler converges it
+    std::shared_ptr<const SensorInputs> inputs_ptr; ///< what the sensor needs beyond it (or null)
+    std::shared_ptr<const PolarImage> polar_ptr;    ///< the sensor's output [dB]; ideal_ptr itself when ideal
+    std::shared_ptr<const Image8> sector_ptr;       ///< RGB fan
+    DisplayParams display;                          ///< the display range it is shown with (display.auto)
+    double alpha_db_per_m = 0;
+    double trace_ms = 0, shade_ms = 0, sensor_ms = 0, image_ms = 0; ///< each stage's latest run
+
+    const TraceResult& hits() const { return *hits_ptr; }
+    /// The image the device shows [dB]: L_EN through the sensor stage (with the ideal sensor, L_EN).
+    const PolarImage& polar() const { return *polar_ptr; }
+    const PolarImage& ideal() const { return *ideal_ptr; }
+    bool sensor_applied() const { return polar_ptr != ideal_ptr; }
+    const Image8& sector() const { return *sector_ptr; }
+    /// A coarse preview (TraceControl::preview): never to be taken for the full-quality image.
+    bool preview() const { return hits_ptr && hits_ptr->preview; }
+};
+
+/// Earliest stage at which two scenes differ (Stage::None if they render identically). Under the adaptive
+/// scheme, absorption (f, T, D) and material q, mu, h re-trace: they decide where its rays go.
+Stage changed_stage(const SceneDesc& before, const SceneDesc& after);
+
+class Simulator {
+  public:
+    explicit Simulator(const SceneDesc& scene);
+    /// Replace the scene; only the stages it affects are recomputed on the next render().
+    void set_scene(const SceneDesc& scene);
+    const SceneDesc& scene() const { return scene_; }
+    const SceneGeometry& geometry() const { return *geometry_; }
+    /// Recomputes what is stale and returns the frame, which shares the unchanged stages with earlier ones.
+    /// `control.cancel` stops the trace within milliseconds: render() then throws TraceCancelled and the
+    /// simulator is as before the call (its stale stages stay stale). `control.preview` (adaptive scheme)
+    /// traces the base grid only; the next render() without it re-traces, even if the scene is unchanged.
+    std::shared_ptr<const Frame> render(const TraceControl& control = {});
+    /// Stage that the next render() starts at.
+    Stage pending() const { return dirty_; }
+
+  private:
+    SceneDesc scene_;
+    std::unique_ptr<SceneGeometry> geometry_;
+    Frame frame_;
+    std::unique_ptr<SectorResampler> resampler_; ///< rebuilt only when the image geometry changes
+    Stage dirty_ = Stage::Trace;
+};
+
+/// Metadata of a rendered frame: every effective parameter plus derived values and timings.
+json frame_metadata(const SceneDesc& scene, const Frame& frame);
+
+} // namespace sonarsim

@@ -1,0 +1,194 @@
+#include "core/sampling/multipath.hpp"
+
+#include "core/base/pose.hpp"
+#include "core/shading/shade.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sonarsim::detail {
+
+bool multipath_active(const SceneDesc& s) {
+    if (s.sampling.bounces <= 0) return false;
+    if (s.water.surface_height_m) return true;
+    if (s.seafloor && s.seafloor->material.is_mirror()) return true;
+    return std::any_of(s.objects.begin(), s.objects.end(), [](auto& o) { return o.material.is_mirror(); });
+}
+
+Multipath::Multipath(const SceneGeometry& g, const SceneDesc& s, const RayFrame& f)
+    : g_(g), s_(s), f_(f), half_azimuth_rad_(deg2rad(s.sonar.azimuth_fov_deg) / 2),
+      half_elevation_rad_(f.elevation_weight.traced_fov_rad() / 2),
+      beam_rad_(deg2rad(s.sonar.azimuth_fov_deg) / s.sonar.beams) {}
+
+bool Multipath::is_mirror(unsigned m) const {
+    return m == kSurfaceMaterial || material_of(s_, m).is_mirror();
+}
+
+int Multipath::beam_of(double a) const {
+    return std::clamp(int(std::floor((half_azimuth_rad_ - a) / beam_rad_)), 0, s_.sonar.beams - 1);
+}
+
+namespace {
+/// A start this far along the ray from a surface does not hit that surface again (Embree works in single
+/// precision) [m].
+double offset_m(const glm::dvec3& p) {
+    return 1e-5 * (1 + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
+}
+} // namespace
+
+glm::dvec3 Multipath::reflect(RayFrame& image, const Hit& hit, const Angle& a, const Angle& e,
+                              glm::dvec3& d2) const {
+    const glm::dvec3 d = image.dir(a, e), x = image.origin + hit.t * d, n = hit.normal;
+    const glm::dmat3 H = glm::dmat3(1.0) - 2.0 * glm::outerProduct(n, n); // reflection in the mirror
+    image.R = H * image.R;
+    image.origin = x + H * (image.origin - x);
+    d2 = H * d;
+    return x;
+}
+
+Multipath::Continuation Multipath::continuation(const Hit& h, const Angle& a, const Angle& e) const {
+    Continuation c;
+    if (!is_mirror(h.material)) return c;
+    c.reflected = true;
+    RayFrame image = f_;
+    glm::dvec3 d2;
+    const glm::dvec3 x = reflect(image, h, a, e, d2);
+    if ((c.hit = trace_on(x, d2, h.t))) c.cos_at_hit = std::min(1.0, std::abs(glm::dot(c.hit->normal, d2)));
+    return c;
+}
+
+std::optional<Hit> Multipath::trace_on(const glm::dvec3& x, const glm::dvec3& d2, double travelled) const {
+    const double eps = offset_m(x);
+    auto next = first_hit(g_, s_, x + eps * d2, d2, 2 * f_.t_max - travelled - eps);
+    if (next) next->t += travelled + eps;
+    return next;
+}
+
+std::uint64_t Multipath::ghosts(const Hit& h, const Angle& a, const Angle& e, const Angle& a_lo,
+                                const Angle& a_hi, const Angle& e_lo, const Angle& e_hi,
+                                std::vector<GhostCell>& out, const Continuation* first) const {
+    RayFrame image = f_; // the sonar mirrored in each mirror of the chain so far
+    Hit hit = h;         // t: path length from the image sonar
+    GhostCell chain;
+    std::uint64_t rays = 0;
+    for (int k = 0; k < s_.sampling.bounces && is_mirror(hit.material); ++k) {
+        glm::dvec3 d2;
+        const glm::dvec3 x = reflect(image, hit, a, e, d2);
+        chain.mirror_material[k] = hit.material;
+        chain.mirror_cos[k] = float(std::min(1.0, std::abs(glm::dot(hit.normal, d2))));
+        chain.mirror_point[k] = glm::vec3(x);
+        const bool known = k == 0 && first;
+        rays += known ? 0 : 1;
+        const std::optional<Hit> next = known ? first->hit : trace_on(x, d2, hit.t);
+        if (!next) break;
+        hit = *next;
+        rays += emit(image, hit, k + 1, chain, a, e, a_lo, a_hi, e_lo, e_hi, out);
+    }
+    return rays;
+}
+
+std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, const GhostCell& chain,
+                              const Angle& a, const Angle& e, const Angle& a_lo, const Angle& a_hi,
+                              const Angle& e_lo, const Angle& e_hi, std::vector<GhostCell>& out) const {
+    const Cell c = make_cell(image, hit, a, e, a_lo, a_hi, e_lo, e_hi);
+    GhostCell g = chain;
+    g.cell = c;
+    // Double path: out and back by the mirrors, along the ray; the image sonar's monostatic echo.
+    if (hit.t <= f_.t_max) {
+        g.other_leg_m = c.range_m, g.cos_other = c.cos_incidence;
+        g.tx_bounces = g.rx_bounces = std::uint8_t(k);
+        g.beam = std::uint32_t(beam_of(a.rad));
+        out.push_back(g);
+    }
+    // Mixed paths need the scatterer to see the sonar, within the aperture.
+    const glm::dvec3 p = image.origin + hit.t * image.dir(a, e);
+    glm::dvec3 v = f_.origin - p;
+    const double r1 = glm::length(v);
+    if (!(r1 > 0) || 0.5 * (hit.t + r1) > f_.t_max) return 0;
+    v /= r1;
+    const glm::dvec3 u = glm::transpose(f_.R) * -v; // the scatterer's direction, sonar frame
+    const double a_p = std::atan2(u.y, u.x), e_p = std::asin(std::clamp(u.z, -1.0, 1.0));
+    if (std::abs(a_p) > half_azimuth_rad_ || std::abs(e_p) > half_elevation_rad_) return 0;
+    const double b_ray = f_.elevation_weight(e.rad), b_p = f_.elevation_weight(e_p);
+    if (!(b_p > 0) || !(b_ray > 0)) return 0;
+    const double eps = offset_m(p);
+    if (first_hit(g_, s_, p + eps * v, v, r1 - 2 * eps)) return 1; // the direct leg is blocked
+    // Half the whole path (the mirrored leg to a footprint edge and back directly) at each edge.
+    auto half_path = [&](float leg_m, const Angle& aa, const Angle& ee) {
+        const glm::dvec3 q = image.origin + double(leg_m) * image.dir(aa, ee);
+        return float(0.5 * (leg_m + glm::length(q - f_.origin)));
+    };
+    Cell& m = g.cell;
+    m.range_m = float(0.5 * (hit.t + r1));
+    m.range_e_lo_m = half_path(c.range_e_lo_m, a, e_lo), m.range_e_hi_m = half_path(c.range_e_hi_m, a, e_hi);
+    m.range_a_lo_m = half_path(c.range_a_lo_m, a_lo, e), m.range_a_hi_m = half_path(c.range_a_hi_m, a_hi, e);
+    m.solid_angle_sr = float(c.solid_angle_sr * std::sqrt(b_p / b_ray)); // one way each: sqrt(B_tx B_rx)
+    g.other_leg_m = float(r1);
+    g.cos_other = float(std::min(1.0, std::abs(glm::dot(hit.normal, v))));
+    // Out directly, back by the mirrors: arrives along the ray.
+    g.tx_bounces = 0, g.rx_bounces = std::uint8_t(k);
+    g.beam = std::uint32_t(beam_of(a.rad));
+    out.push_back(g);
+    // Out by the mirrors, back directly: arrives from the scatterer, over the azimuths from which the
+    // sonar sees the cell's footprint (its azimuth edges on the scatterer's plane). gather_ghosts() shares
+    // it among the beams that interval covers.
+    g.tx_bounces = std::uint8_t(k), g.rx_bounces = 0;
+    auto azimuth_to = [&](float leg_m, const Angle& aa) {
+        const glm::dvec3 w =
+            glm::transpose(f_.R) * (image.origin + double(leg_m) * image.dir(aa, e) - f_.origin);
+        return std::atan2(w.y, w.x);
+    };
+    const double z0 = azimuth_to(c.range_a_lo_m, a_lo), z1 = azimuth_to(c.range_a_hi_m, a_hi);
+    m.azimuth_rad = float(a_p), m.elevation_rad = float(e_p);
+    m.azimuth_width_rad = float(std::clamp(std::abs(z1 - z0), 1e-9, 2 * half_azimuth_rad_));
+    g.beam = std::uint32_t(beam_of(a_p));
+    out.push_back(g);
+    return 1;
+}
+
+std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostCell>>& by_source,
+                                                  const SceneDesc& s) {
+    const int beams = s.sonar.beams;
+    const double theta = deg2rad(s.sonar.azimuth_fov_deg), w = theta / beams;
+    std::vector<std::vector<GhostCell>> out(static_cast<size_t>(beams));
+    // A ghost whose azimuth interval spans beams goes to each, with the share of its solid angle that
+    // falls in it (the mixed path that arrives from the scatterer); the others lie in their ray's beam.
+    auto for_each_share = [&](const GhostCell& g, auto&& add) {
+        const double a0 = g.cell.azimuth_rad - 0.5 * g.cell.azimuth_width_rad,
+                     a1 = a0 + g.cell.azimuth_width_rad;
+        const int i0 = std::clamp(int(std::floor((theta / 2 - a1) / w)), 0, beams - 1);
+        const int i1 = std::clamp(int(std::floor((theta / 2 - a0) / w)), 0, beams - 1);
+        if (i0 == i1 || !g.mixed() || g.rx_bounces != 0) return add(int(g.beam), g, 1.0);
+        for (int i = i0; i <= i1; ++i) {
+            const double hi = theta / 2 - i * w, lo = hi - w;
+            const double f = (std::min(a1, hi) - std::max(a0, lo)) / g.cell.azimuth_width_rad;
+            if (f > 0) add(i, g, f);
+        }
+    };
+    std::vector<size_t> count(static_cast<size_t>(beams), 0);
+    for (auto& src : by_source)
+        for (auto& g : src) for_each_share(g, [&](int i, const GhostCell&, double) { ++count[size_t(i)]; });
+    for (int i = 0; i < beams; ++i) out[size_t(i)].reserve(count[size_t(i)]);
+    for (auto& src : by_source) {
+        for (auto& g : src)
+            for_each_share(g, [&](int i, const GhostCell& whole, double f) {
+                GhostCell part = whole;
+                if (f < 1) {
+                    const double hi = theta / 2 - i * w, lo = hi - w;
+                    const double a0 =
+                        std::max(lo, double(whole.cell.azimuth_rad) - 0.5 * whole.cell.azimuth_width_rad);
+                    const double a1 =
+                        std::min(hi, double(whole.cell.azimuth_rad) + 0.5 * whole.cell.azimuth_width_rad);
+                    part.cell.azimuth_rad = float(0.5 * (a0 + a1)),
+                    part.cell.azimuth_width_rad = float(a1 - a0);
+                    part.cell.solid_angle_sr = float(whole.cell.solid_angle_sr * f);
+                }
+                part.beam = std::uint32_t(i);
+                out[size_t(i)].push_back(part);
+            });
+        std::vector<GhostCell>().swap(src);
+    }
+    return out;
+}
+
+} // namespace sonarsim::detail

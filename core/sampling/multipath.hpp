@@ -1,0 +1,65 @@
+// Multipath by the image-source method, internal to the tracers (trace.cpp, adaptive.cpp). From a ray's
+// first hit on a mirror (the water surface, or a material with reflection_db) the specular continuation is
+// traced, up to sampling.bounces reflections. Each scatterer it meets echoes back along the mirrored path
+// (a double path: monostatic backscatter seen from the image sonar) and, where it sees the sonar directly,
+// along the two mixed paths (one leg by the mirrors, one direct). See core/ARCHITECTURE.md, "Multipath".
+#pragma once
+#include "core/sampling/trace_detail.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace sonarsim::detail {
+
+/// True when the scene has paths to follow: sampling.bounces > 0 and a mirror in it.
+bool multipath_active(const SceneDesc& scene);
+
+/// Finds the ghosts of single rays.
+class Multipath {
+  public:
+    Multipath(const SceneGeometry& geometry, const SceneDesc& scene, const RayFrame& frame);
+    /// The first reflection of the ray (a, e) whose first hit is `h`: what its specular continuation meets
+    /// (t: the whole path length from the sonar; nullopt when it meets nothing within reach), or nothing
+    /// (`reflected` false) when `h` is no mirror.
+    struct Continuation {
+        bool reflected = false;
+        std::optional<Hit> hit;
+        double cos_at_hit = 0; ///< incidence at what the continuation meets
+    };
+    Continuation continuation(const Hit& h, const Angle& a, const Angle& e) const;
+
+    /// Appends the ghosts of the ray (a, e) standing for the cell [a_lo, a_hi] x [e_lo, e_hi] whose first
+    /// hit is `h` (each with the beam it arrives in) to `out`; returns the rays it traced. `first`: the
+    /// ray's continuation() when already traced.
+    std::uint64_t ghosts(const Hit& h, const Angle& a, const Angle& e, const Angle& a_lo, const Angle& a_hi,
+                         const Angle& e_lo, const Angle& e_hi, std::vector<GhostCell>& out,
+                         const Continuation* first = nullptr) const;
+
+  private:
+    std::uint64_t emit(const RayFrame& image, const Hit& hit, int k, const GhostCell& chain, const Angle& a,
+                       const Angle& e, const Angle& a_lo, const Angle& a_hi, const Angle& e_lo,
+                       const Angle& e_hi, std::vector<GhostCell>& out) const;
+    int beam_of(double azimuth_rad) const;
+    bool is_mirror(unsigned material) const;
+    /// What the reflected ray from mirror point x along d2 meets, its t the whole path length (`travelled`
+    /// so far, plus the rest); within twice the window's reach (a mixed path's other leg is direct and
+    /// shorter).
+    std::optional<Hit> trace_on(const glm::dvec3& x, const glm::dvec3& d2, double travelled) const;
+    /// Reflects `image` (the sonar mirrored so far) in the mirror `hit` of its ray (a, e): returns the
+    /// mirror point and sets d2, the reflected direction.
+    glm::dvec3 reflect(RayFrame& image, const Hit& hit, const Angle& a, const Angle& e, glm::dvec3& d2) const;
+
+    const SceneGeometry& g_;
+    const SceneDesc& s_;
+    const RayFrame& f_;
+    double half_azimuth_rad_, half_elevation_rad_, beam_rad_;
+};
+
+/// Moves ghosts collected per source beam to the beams they arrive in, in a fixed order (source beam, then
+/// as produced), so that the result does not depend on threading.
+/// A ghost arriving over several beams' azimuths is shared among them by the part of its interval in each.
+std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostCell>>& by_source,
+                                                  const SceneDesc& scene);
+
+} // namespace sonarsim::detail

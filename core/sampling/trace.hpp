@@ -1,0 +1,104 @@
+// Tracing: cast each beam's rays into the scene and keep, per ray, what shading needs (the "hits").
+// Physics is not applied here, so a change of L_S, L_N, alpha or a material re-shades without re-tracing.
+#pragma once
+#include "core/geometry/geometry.hpp"
+#include "core/scene/scene.hpp"
+
+#include "core/display/polar_image.hpp"
+
+#include <atomic>
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace sonarsim {
+
+/// One ray and the solid-angle cell [e +- de/2] x [a +- da/2] it stands for.
+struct Cell {
+    glm::vec3 point;      ///< first hit [m, world]
+    float range_m;        ///< distance from the sonar to the hit [m]
+    float cos_incidence;  ///< cos of the angle between the surface normal and the reversed ray
+    float solid_angle_sr; ///< dOmega = cos e de da [sr], times the elevation pattern B_v(e) when there is one
+    float range_e_lo_m,
+        range_e_hi_m; ///< range on the hit plane at the cell's lower / upper elevation edge [m]
+    float range_a_lo_m, range_a_hi_m;         ///< range on the hit plane at the cell's two azimuth edges [m]
+    float azimuth_rad, azimuth_width_rad;     ///< the cell's centre and width in azimuth (sonar frame)
+    float elevation_rad, elevation_width_rad; ///< the cell's centre and width in elevation (sonar frame)
+    std::uint32_t material;                   ///< kFloorMaterial or object index + 1
+    std::uint32_t elevation_index;
+};
+
+/// An echo that reached a scatterer by way of specular reflections (multipath.cpp), on the beam it arrives
+/// in. `cell` is the cell as seen from the image sonar (the sonar mirrored in each mirror of the chain):
+/// range_m and its footprint are half the whole path length, azimuth and elevation the arrival direction,
+/// point the scatterer, cos_incidence the incidence of the leg whose solid angle the cell stands for (the
+/// `area leg`), solid_angle_sr that solid angle times sqrt(B_v(transmit) B_v(receive)).
+/// Paths: double (area leg and other leg both by the mirrors: the image sonar's monostatic echo), or mixed
+/// (one leg by the mirrors, one direct; the two directions are two ghosts of equal energy).
+struct GhostCell {
+    Cell cell;
+    float other_leg_m; ///< length of the leg that is not the area leg [m] (double paths: range_m)
+    float cos_other;   ///< cos of that leg's incidence at the scatterer (double paths: cos_incidence)
+    std::uint8_t tx_bounces = 0, rx_bounces = 0; ///< reflections on the way out and back
+    std::uint32_t beam = 0;                      ///< the beam it arrives in
+    std::uint32_t mirror_material[2] = {0, 0};   ///< the chain's mirrors, sonar side first
+    float mirror_cos[2] = {1, 1};                ///< cos of the incidence at each mirror
+    glm::vec3 mirror_point[2] = {};              ///< where the path meets each mirror [m, world]
+    int order() const { return tx_bounces + rx_bounces; }
+    int mirrors() const { return tx_bounces > rx_bounces ? tx_bounces : rx_bounces; } ///< of the chain
+    bool mixed() const { return tx_bounces != rx_bounces; }
+};
+
+struct TraceResult {
+    int beams = 0;
+    std::vector<std::vector<Cell>> cells; ///< per beam: the cells whose ray hit something within reach
+    /// Per beam: multipath echoes arriving in it (empty without mirrors or with sampling.bounces 0).
+    std::vector<std::vector<GhostCell>> ghosts;
+    std::uint64_t rays_traced = 0;
+    std::uint64_t multipath_rays = 0; ///< continuation and shadow rays of the multipath ghosts
+    /// Set when the tracer already shaded its cells with the scene it was given (adaptive does, to estimate
+    /// its error); the L_EN image of those cells.
+    std::optional<PolarImage> shaded;
+    /// Adaptive scheme: estimated error of this sampling (difference to one refinement level coarser).
+    struct ErrorEstimate {
+        bool valid = false;
+        double rel_l1 = 0, median_abs_db = 0, p95_abs_db = 0;
+        int passes = 0;
+        bool budget_reached = false; ///< refinement stopped at sampling.max_rays before the tolerance was met
+    } error_estimate;
+    bool preview = false; ///< a coarse pass only (TraceControl::preview): no refinement, no error estimate
+    double trace_ms = 0;
+};
+
+/// Control of one trace from outside: cancellation by another thread, and a coarse preview.
+struct TraceControl {
+    /// When another thread sets it, the trace stops within a few milliseconds and throws TraceCancelled.
+    const std::atomic<bool>* cancel = nullptr;
+    /// Adaptive scheme: the base grid only (no refinement, no error estimate), for an image within a
+    /// frame budget while the user drags; uniform and spread ignore it.
+    bool preview = false;
+    bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
+};
+
+/// Thrown by trace() when TraceControl::cancel was set.
+struct TraceCancelled : std::runtime_error {
+    TraceCancelled() : std::runtime_error("trace cancelled") {}
+};
+
+/// Traces the scene with the scheme it asks for (sampling.scheme).
+TraceResult trace(const SceneGeometry& geometry, const SceneDesc& scene, const TraceControl& control = {});
+
+/// The paper's regular grid: beams x azimuth_rays x elevation_rays rays at cell centres (midpoint rule).
+TraceResult trace_uniform(const SceneGeometry& geometry, const SceneDesc& scene,
+                          const TraceControl& control = {});
+
+/// Adaptive: starts from the regular grid and splits cells (ternary, in elevation; in azimuth over the base
+/// cells where neighbouring columns disagree) where the error they could leave is significant against the
+/// base grid's echo in their bins and sampling.tolerance_db: surface edges, steps in echo level, specular
+/// lobes, horizons, grazing footprints. All rays come out of sampling.max_rays. Fills `error_estimate`.
+TraceResult trace_adaptive(const SceneGeometry& geometry, const SceneDesc& scene,
+                           const TraceControl& control = {});
+
+} // namespace sonarsim

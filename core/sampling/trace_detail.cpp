@@ -1,0 +1,62 @@
+#include "core/sampling/trace_detail.hpp"
+
+#include <algorithm>
+
+namespace sonarsim::detail {
+
+std::optional<Hit> first_hit(const SceneGeometry& g, const SceneDesc& s, const glm::dvec3& o,
+                             const glm::dvec3& d, double t_max) {
+    std::optional<Hit> out;
+    if (s.seafloor)
+        if ((out = intersect_floor(*s.seafloor, o, d, t_max))) t_max = out->t;
+    if (s.water.surface_height_m)
+        if (auto h = intersect_surface(*s.water.surface_height_m, o, d, t_max)) out = h, t_max = h->t;
+    if (!g.has_meshes()) return out;
+    // Slab test against the scene bounds first: most rays of a typical scene only see the floor.
+    double t0 = 0, t1 = t_max;
+    const glm::dvec3 lo = g.bounds_lo(), hi = g.bounds_hi();
+    for (int k = 0; k < 3 && t0 <= t1; ++k) {
+        if (d[k] == 0) {
+            if (o[k] < lo[k] || o[k] > hi[k]) return out;
+            continue;
+        }
+        double a = (lo[k] - o[k]) / d[k], b = (hi[k] - o[k]) / d[k];
+        if (a > b) std::swap(a, b);
+        t0 = std::max(t0, a), t1 = std::min(t1, b);
+    }
+    if (t0 > t1) return out;
+    if (auto m = g.intersect(o, d, t_max)) out = m;
+    return out;
+}
+
+double plane_range(const glm::dvec3& o, const glm::dvec3& p, const glm::dvec3& n, const glm::dvec3& d) {
+    const double den = glm::dot(n, d);
+    const double t = glm::dot(n, p - o) / den;
+    return (den != 0 && t > 0 && std::isfinite(t)) ? t : -1;
+}
+
+Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, const Angle& a_lo,
+               const Angle& a_hi, const Angle& e_lo, const Angle& e_hi) {
+    const glm::dvec3 d = f.dir(a, e), p = f.origin + h.t * d;
+    const double r = h.t;
+    Cell c;
+    c.point = glm::vec3(p);
+    c.range_m = float(r);
+    c.cos_incidence = float(std::min(1.0, std::abs(glm::dot(h.normal, d))));
+    c.solid_angle_sr = float(e.c * (e_hi.rad - e_lo.rad) * (a_hi.rad - a_lo.rad) * f.elevation_weight(e.rad));
+    c.azimuth_rad = float(a.rad), c.azimuth_width_rad = float(a_hi.rad - a_lo.rad);
+    c.elevation_rad = float(e.rad), c.elevation_width_rad = float(e_hi.rad - e_lo.rad);
+    const double re0 = plane_range(f.origin, p, h.normal, f.dir(a, e_lo));
+    const double re1 = plane_range(f.origin, p, h.normal, f.dir(a, e_hi));
+    const double ra0 = plane_range(f.origin, p, h.normal, f.dir(a_lo, e));
+    const double ra1 = plane_range(f.origin, p, h.normal, f.dir(a_hi, e));
+    // An edge that does not meet the plane (beyond its horizon): mirror the other edge about r.
+    auto edge = [r](double x, double other) { return float(x > 0 ? x : (other > 0 ? 2 * r - other : r)); };
+    c.range_e_lo_m = edge(re0, re1), c.range_e_hi_m = edge(re1, re0);
+    c.range_a_lo_m = edge(ra0, ra1), c.range_a_hi_m = edge(ra1, ra0);
+    c.material = h.material;
+    c.elevation_index = 0;
+    return c;
+}
+
+} // namespace sonarsim::detail

@@ -1,0 +1,47 @@
+// Internal to the tracers (trace.cpp, adaptive.cpp): one ray's first hit and the cell it stands for.
+#pragma once
+#include "core/geometry/geometry.hpp"
+#include "core/base/pose.hpp"
+#include "core/sensor/sensor_patterns.hpp"
+#include "core/sampling/trace.hpp"
+
+#include <cmath>
+#include <optional>
+
+namespace sonarsim::detail {
+
+/// An angle [rad] with its cosine and sine.
+struct Angle {
+    double rad = 0, c = 1, s = 0;
+    Angle() = default;
+    explicit Angle(double r) : rad(r), c(std::cos(r)), s(std::sin(r)) {}
+    /// base + sign * step by the angle-sum identities (no sine or cosine evaluated); r is that angle [rad].
+    Angle(double r, const Angle& base, const Angle& step, int sign)
+        : rad(r), c(base.c * step.c - sign * base.s * step.s), s(base.s * step.c + sign * base.c * step.s) {}
+};
+
+/// The sonar's frame and the reach of its rays.
+struct RayFrame {
+    glm::dmat3 R;
+    glm::dvec3 origin;
+    double t_max; ///< rays reaching past r_max can still spread part of their cell into the window
+    ElevationWeight elevation_weight; ///< the sensor's elevation pattern (1 for the hard aperture)
+    explicit RayFrame(const SceneDesc& s)
+        : R(rotation_matrix(s.sonar.pose.orientation_deg)), origin(to_glm(s.sonar.pose.position_m)),
+          t_max(s.sonar.range_max_m * 1.05), elevation_weight(s) {}
+    glm::dvec3 dir(const Angle& a, const Angle& e) const { return R * glm::dvec3(e.c * a.c, e.c * a.s, e.s); }
+};
+
+/// Range at which direction d from o meets the plane through p with normal n; -1 if it does not.
+double plane_range(const glm::dvec3& o, const glm::dvec3& p, const glm::dvec3& n, const glm::dvec3& d);
+
+/// First hit against the floor plane and the meshes (meshes skipped when the ray misses their bounds).
+std::optional<Hit> first_hit(const SceneGeometry& g, const SceneDesc& s, const glm::dvec3& o,
+                             const glm::dvec3& d, double t_max);
+
+/// The cell [a_lo, a_hi] x [e_lo, e_hi] around the ray (a, e) that hit `h`: range, incidence, solid angle
+/// (weighted by the elevation pattern) and the range footprint on the hit plane at the cell's edges.
+Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, const Angle& a_lo,
+               const Angle& a_hi, const Angle& e_lo, const Angle& e_hi);
+
+} // namespace sonarsim::detail

@@ -1,0 +1,217 @@
+#include "core/sensor/sensor.hpp"
+
+#include "core/base/fast_math.hpp"
+#include "core/base/pose.hpp"
+#include "core/sensor/sensor_patterns.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+namespace sonarsim {
+namespace {
+
+constexpr double kNegInf = -std::numeric_limits<double>::infinity();
+
+std::uint64_t bits_of(double x) {
+    std::uint64_t u;
+    std::memcpy(&u, &x, sizeof u);
+    return u;
+}
+
+/// A key for everything that decides where the sonar looks from: noise stays put while nothing moves.
+std::uint64_t pose_key(const SceneDesc& s) {
+    std::uint64_t h = mix64(std::uint64_t(s.sensor.seed) ^ 0x6e6f697365ULL); // "noise"
+    for (double v : s.sonar.pose.position_m) h = mix64(h ^ bits_of(v));
+    for (double v : s.sonar.pose.orientation_deg) h = mix64(h ^ bits_of(v));
+    return h;
+}
+
+/// A uniform variate in (0, 1) from the top 32 bits of h.
+double unit(std::uint64_t h) {
+    return (double(h >> 32) + 0.5) * 0x1.0p-32;
+}
+
+/// sin of an elevation angle |e| <= pi/2 (Taylor to e^9: error below 2e-4 at pi/2, 1e-8 within 0.5 rad):
+/// only used to place a speckle key, where any fixed function of e does.
+double key_sin(double e) {
+    const double e2 = e * e;
+    return e * (1 - e2 / 6 * (1 - e2 / 20 * (1 - e2 / 42 * (1 - e2 / 72))));
+}
+
+/// Linear intensity relative to 10^(peak/10) (0 where -inf); returns the peak [dB].
+double to_linear(const PolarImage& src, std::vector<double>& out) {
+    double peak = kNegInf;
+    for (float v : src.level_db) peak = std::max(peak, double(v));
+    if (peak == kNegInf) peak = 0;
+    out.resize(src.level_db.size());
+    constexpr double kLog2Of10Over10 = 0.33219280948873623;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 1 << 14), [&](auto r) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i)
+            out[i] = fast::exp2_nonpositive((double(src.level_db[i]) - peak) * kLog2Of10Over10);
+    });
+    return peak;
+}
+
+/// The receive pattern: each beam sums the fine columns weighted by its pattern (peak gain 1).
+std::vector<double> form_beams(const std::vector<double>& in, int K, int J, const SceneDesc& s) {
+    const AzimuthBeamforming bf = make_azimuth_beamforming(s);
+    const int N = bf.beams;
+    std::vector<double> out(size_t(K) * N, 0.0);
+    tbb::parallel_for(0, K, [&](int k) {
+        const double* x = in.data() + size_t(k) * J;
+        double* row = out.data() + size_t(k) * N;
+        for (int j = 0; j < J; ++j) {
+            const double v = x[j];
+            if (v == 0) continue;
+            const double* w = bf.weight.data() + bf.offset[size_t(j)];
+            double* o = row + bf.first[size_t(j)];
+            for (int t = 0, n = bf.count[size_t(j)]; t < n; ++t) o[t] += w[t] * v;
+        }
+    });
+    return out;
+}
+
+/// The matched filter along range: each row the kernel-weighted sum of its neighbours (energy kept).
+void blur_range(std::vector<double>& I, int K, int N, const std::vector<double>& h) {
+    const int half = int(h.size() / 2);
+    std::vector<double> out(I.size(), 0.0);
+    tbb::parallel_for(0, K, [&](int k) {
+        double* o = out.data() + size_t(k) * N;
+        for (int t = -half; t <= half; ++t) {
+            const int src = k - t;
+            if (src < 0 || src >= K) continue;
+            const double w = h[size_t(t + half)];
+            const double* x = I.data() + size_t(src) * N;
+            for (int b = 0; b < N; ++b) o[b] += w * x[b];
+        }
+    });
+    I.swap(out);
+}
+
+} // namespace
+
+std::uint64_t mix64(std::uint64_t x) {
+    x += 0x9e3779b97f4a7c15ULL;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+    return x ^ (x >> 31);
+}
+
+double KeyedRandom::uniform() {
+    state_ = mix64(state_);
+    return (double(state_ >> 11) + 1.0) * 0x1.0p-53;
+}
+
+double KeyedRandom::normal() {
+    // Box-Muller; the second value is dropped so that each call consumes a fixed number of draws.
+    const double u1 = uniform(), u2 = uniform();
+    return std::sqrt(-2 * std::log(u1)) * std::cos(2 * kPi * u2);
+}
+
+double KeyedRandom::exponential() {
+    return -std::log(uniform());
+}
+
+double KeyedRandom::gamma(double shape) {
+    if (shape < 1) return gamma(shape + 1) * std::pow(uniform(), 1 / shape);
+    const double d = shape - 1.0 / 3, c = 1 / std::sqrt(9 * d);
+    for (int tries = 0; tries < 1000; ++tries) {
+        double x, v;
+        do {
+            x = normal();
+            v = 1 + c * x;
+        } while (v <= 0);
+        v = v * v * v;
+        const double u = uniform();
+        if (u < 1 - 0.0331 * x * x * x * x || std::log(u) < 0.5 * x * x + d * (1 - v + std::log(v)))
+            return d * v;
+    }
+    return shape; // not reached in practice (acceptance rate >= 95 %)
+}
+
+double tvg_db(Tvg law, double r, double alpha) {
+    const int n = law == Tvg::Log20 ? 20 : law == Tvg::Log30 ? 30 : law == Tvg::Log40 ? 40 : 0;
+    return n == 0 ? 0.0 : n * std::log10(r) + 2 * alpha * r;
+}
+
+bool sensor_is_ideal(const SceneDesc& s) {
+    const SensorParams& p = s.sensor;
+    return p.azimuth_window == AzimuthWindow::None && !(p.range_resolution_m > 0) &&
+           p.speckle == Speckle::Off && !p.noise && p.tvg == Tvg::Off && p.gain_db == 0;
+}
+
+PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, const SceneDesc& s,
+                        double alpha) {
+    const int K = ideal.bins, N = ideal.beams;
+    const size_t cells = size_t(K) * size_t(N);
+    const double r_min = s.sonar.range_min_m, dr = (s.sonar.range_max_m - r_min) / K;
+    const SensorParams& p = s.sensor;
+
+    // 1-2. Linear intensity relative to the peak, formed into beams by the receive pattern.
+    const bool fine = inputs && inputs->sub > 1 && p.azimuth_window != AzimuthWindow::None;
+    const PolarImage& src = fine ? inputs->fine : ideal;
+    std::vector<double> I;
+    const double peak = to_linear(src, I);
+    if (p.azimuth_window != AzimuthWindow::None) I = form_beams(I, K, src.beams, s);
+    // 3. Matched filter along range.
+    if (const std::vector<double> h = range_kernel(p.pulse, p.range_resolution_m, dr); h.size() > 1)
+        blur_range(I, K, N, h);
+
+    // 4-6. Speckle anchored to the scatterers, noise anchored to the pose, then TVG and gain.
+    const bool speckle = p.speckle != Speckle::Off && inputs && !inputs->elevation_rad.empty();
+    const bool k_dist = p.speckle == Speckle::K;
+    const double noise_power = p.noise ? std::pow(10.0, -peak / 10) : 0.0; // L_EN of noise is 0 dB
+    const double sigma = std::sqrt(noise_power);
+    const glm::dmat3 R = rotation_matrix(s.sonar.pose.orientation_deg);
+    const glm::dvec3 origin = to_glm(s.sonar.pose.position_m), up = R * glm::dvec3(0, 0, 1);
+    const double theta = deg2rad(s.sonar.azimuth_fov_deg), spacing = theta / N;
+    std::vector<glm::dvec3> ahead(static_cast<size_t>(N)); // R (cos a, sin a, 0) per beam
+    for (int b = 0; b < N; ++b) {
+        const double a = theta / 2 - (b + 0.5) * spacing;
+        ahead[size_t(b)] = R * glm::dvec3(std::cos(a), std::sin(a), 0);
+    }
+    const std::uint64_t speckle_seed = mix64(std::uint64_t(p.seed) ^ 0x737065636b6c65ULL); // "speckle"
+    const std::uint64_t noise_seed = pose_key(s);
+    PolarImage out;
+    out.bins = K, out.beams = N;
+    out.level_db.resize(cells);
+    tbb::parallel_for(0, K, [&](int k) {
+        const double r = r_min + (k + 0.5) * dr;
+        const double gain = tvg_db(p.tvg, r, alpha) + p.gain_db + peak;
+        // Speckle cells: world points quantised on a grid of half a range bin (or half the beam spacing
+        // across, where finer), rounded down to a power of two in metres so that the grid is the same at all
+        // ranges within an octave: a scatterer keeps its speckle while the sonar moves over it.
+        const int q_exp = int(std::floor(std::log2(0.5 * std::min(dr, r * spacing))));
+        const double inv_q = std::ldexp(1.0, -q_exp);
+        const std::uint64_t row_key = mix64(speckle_seed ^ std::uint64_t(std::int64_t(q_exp)));
+        auto cell = [&](double x) { return std::uint64_t(fast::floor_int(x * inv_q)); };
+        for (int b = 0; b < N; ++b) {
+            const size_t c = size_t(k) * N + b;
+            double v = I[c];
+            if (speckle && v > 0) {
+                const float e_mean = inputs->elevation_rad[c];
+                const double se = std::isnan(e_mean) ? 0.0 : key_sin(e_mean), ce = std::sqrt(1 - se * se);
+                const glm::dvec3 pt = origin + r * (ce * ahead[size_t(b)] + se * up);
+                const std::uint64_t key =
+                    mix64(row_key ^ cell(pt.x) * 0x9e3779b97f4a7c15ULL ^ cell(pt.y) * 0xc2b2ae3d27d4eb4fULL ^
+                          cell(pt.z) * 0x165667b19e3779f9ULL);
+                v *= fast::neg_ln(unit(key));
+                if (k_dist) v *= KeyedRandom(key).gamma(p.speckle_k_shape) / p.speckle_k_shape;
+            }
+            if (noise_power > 0) {
+                // |sqrt(v) + n|^2, n = sigma sqrt(E) e^(i phi): circular complex Gaussian of power sigma^2.
+                const std::uint64_t h = mix64(noise_seed ^ (std::uint64_t(k) << 32 | std::uint64_t(b)));
+                const double E = fast::neg_ln(unit(h)), cphi = fast::cos_turn(unit(h << 32));
+                v = v + noise_power * E + 2 * sigma * std::sqrt(v * E) * cphi;
+            }
+            out.level_db[c] = v > 0 ? float(fast::db(v) + gain) : -std::numeric_limits<float>::infinity();
+        }
+    });
+    return out;
+}
+
+} // namespace sonarsim

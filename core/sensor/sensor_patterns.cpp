@@ -1,0 +1,205 @@
+#include "core/sensor/sensor_patterns.hpp"
+
+#include "core/base/pose.hpp"
+
+#include <algorithm>
+#include <memory>
+#include <mutex>
+#include <cmath>
+#include <numeric>
+
+namespace sonarsim {
+namespace {
+
+constexpr int kStepsPerWidth = 256;
+constexpr int kArrayElements = 64;
+constexpr double kSincHalfPower = 1.39156;       ///< x where sin x / x = 1 / sqrt 2
+constexpr double kGaussianTracedWidths = 1.5786; ///< |e| / phi3 where the gaussian is at -30 dB
+constexpr double kSincTracedWidths = 2.2575;     ///< |e| / phi3 at the second null of sinc^2
+
+/// Element weights of the window over kArrayElements elements.
+std::vector<double> window_weights(AzimuthWindow window, double taylor_sidelobe_db) {
+    const int M = kArrayElements;
+    std::vector<double> w(size_t(M), 1.0);
+    if (window == AzimuthWindow::Hann) {
+        for (int k = 0; k < M; ++k) w[size_t(k)] = 0.5 - 0.5 * std::cos(2 * kPi * (k + 1) / (M + 1));
+    } else if (window == AzimuthWindow::Taylor) {
+        // Taylor (1955) as in Carrara et al.: A = acosh(10^(SLL/20)) / pi, nbar >= 2 A^2 + 1/2.
+        const double A = std::acosh(std::pow(10.0, -taylor_sidelobe_db / 20)) / kPi;
+        const int nbar = std::max(4, int(std::ceil(2 * A * A + 0.5)));
+        const double sigma2 = nbar * nbar / (A * A + (nbar - 0.5) * (nbar - 0.5));
+        std::vector<double> F(size_t(nbar), 0.0);
+        for (int m = 1; m < nbar; ++m) {
+            double num = 1, den = 1;
+            for (int n = 1; n < nbar; ++n) {
+                num *= 1 - m * m / (sigma2 * (A * A + (n - 0.5) * (n - 0.5)));
+                if (n != m) den *= 1 - double(m * m) / double(n * n);
+            }
+            F[size_t(m)] = (m % 2 ? 0.5 : -0.5) * num / den;
+        }
+        for (int k = 0; k < M; ++k) {
+            const double xi = (k - 0.5 * M + 0.5) / M;
+            double v = 1;
+            for (int m = 1; m < nbar; ++m) v += 2 * F[size_t(m)] * std::cos(2 * kPi * m * xi);
+            w[size_t(k)] = v;
+        }
+    }
+    return w;
+}
+
+/// |AF(psi)|^2 of the weighted array, 1 at psi = 0.
+double array_intensity(const std::vector<double>& w, double psi) {
+    const double mid = 0.5 * (double(w.size()) - 1);
+    double sum = 0, norm = 0;
+    for (size_t k = 0; k < w.size(); ++k) sum += w[k] * std::cos((double(k) - mid) * psi), norm += w[k];
+    return (sum / norm) * (sum / norm);
+}
+
+} // namespace
+
+ElevationWeight::ElevationWeight(const SceneDesc& s)
+    : kind_(s.sensor.elevation_pattern), phi3_rad_(deg2rad(elevation_beamwidth_deg(s))) {
+    traced_rad_ = kind_ == ElevationPattern::Flat       ? deg2rad(s.sonar.elevation_fov_deg)
+                  : kind_ == ElevationPattern::Gaussian ? 2 * kGaussianTracedWidths * phi3_rad_
+                                                        : 2 * kSincTracedWidths * phi3_rad_;
+}
+
+double ElevationWeight::operator()(double e) const {
+    if (kind_ == ElevationPattern::Flat) return 1.0;
+    const double u = e / phi3_rad_;
+    if (kind_ == ElevationPattern::Gaussian) return std::exp(-4 * std::log(2.0) * u * u);
+    const double x = kSincHalfPower * 2 * u;
+    if (std::abs(x) < 1e-8) return 1.0;
+    const double s = std::sin(x) / x;
+    return s * s;
+}
+
+double elevation_beamwidth_deg(const SceneDesc& s) {
+    return s.sensor.elevation_beamwidth_deg > 0 ? s.sensor.elevation_beamwidth_deg
+                                                : s.sonar.elevation_fov_deg;
+}
+
+double azimuth_beamwidth_deg(const SceneDesc& s) {
+    return s.sensor.azimuth_beamwidth_deg > 0 ? s.sensor.azimuth_beamwidth_deg
+                                              : s.sonar.azimuth_fov_deg / s.sonar.beams;
+}
+
+ArrayPattern::ArrayPattern(AzimuthWindow window, double taylor_sidelobe_db) {
+    const std::vector<double> w = window_weights(window, taylor_sidelobe_db);
+    // psi3: where |AF|^2 first falls to 1/2 (stepping, then bisection).
+    double lo = 0, hi = 1e-3;
+    while (array_intensity(w, hi) > 0.5) lo = hi, hi *= 1.25;
+    for (int i = 0; i < 100; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (array_intensity(w, mid) > 0.5 ? lo : hi) = mid;
+    }
+    const double psi3 = 0.5 * (lo + hi);
+    const int n = int(kAzimuthPatternExtent * kStepsPerWidth) + 2;
+    table_.resize(size_t(n));
+    for (int i = 0; i < n; ++i) table_[size_t(i)] = array_intensity(w, 2 * psi3 * i / kStepsPerWidth);
+}
+
+const ArrayPattern& array_pattern(AzimuthWindow window, double taylor_sidelobe_db) {
+    // A few hundred thousand cosines per table: built once per (window, level) in the process, not on
+    // every run of the sensor stage. Entries are never removed, so references stay valid.
+    static std::mutex m;
+    static std::vector<std::pair<std::pair<AzimuthWindow, double>, std::unique_ptr<const ArrayPattern>>> made;
+    const double level = window == AzimuthWindow::Taylor ? taylor_sidelobe_db : 0;
+    std::lock_guard<std::mutex> lock(m);
+    for (auto& [key, pattern] : made)
+        if (key.first == window && key.second == level) return *pattern;
+    made.emplace_back(std::pair{window, level}, std::make_unique<const ArrayPattern>(window, level));
+    return *made.back().second;
+}
+
+double ArrayPattern::operator()(double x) const {
+    const double t = std::abs(x) * kStepsPerWidth;
+    const size_t i = size_t(t);
+    if (i + 1 >= table_.size()) return 0.0;
+    const double f = t - double(i);
+    return table_[i] * (1 - f) + table_[i + 1] * f;
+}
+
+double ArrayPattern::first_sidelobe_db() const {
+    size_t i = 1;
+    while (i + 1 < table_.size() && table_[i + 1] <= table_[i]) ++i; // down the main lobe to the null
+    while (i + 1 < table_.size() && table_[i + 1] >= table_[i]) ++i; // up to the first sidelobe
+    return 10 * std::log10(table_[i]);
+}
+
+double ArrayPattern::extent(double floor_db) const {
+    const double floor = std::pow(10.0, floor_db / 10);
+    size_t i = table_.size() - 1;
+    while (i > 0 && table_[i] < floor) --i;
+    return std::min(kAzimuthPatternExtent, double(i + 1) / kStepsPerWidth);
+}
+
+int azimuth_subcolumns(const SceneDesc& s) {
+    if (s.sensor.azimuth_window == AzimuthWindow::None) return 1;
+    const double spacing = s.sonar.azimuth_fov_deg / s.sonar.beams;
+    return std::clamp(int(std::ceil(4 * spacing / azimuth_beamwidth_deg(s) - 1e-9)), 1, 8);
+}
+
+AzimuthBeamforming make_azimuth_beamforming(const SceneDesc& s) {
+    AzimuthBeamforming f;
+    const int N = s.sonar.beams, S = azimuth_subcolumns(s);
+    f.beams = N, f.sub = S;
+    const ArrayPattern& pattern = array_pattern(s.sensor.azimuth_window, s.sensor.taylor_sidelobe_db);
+    const double theta = deg2rad(s.sonar.azimuth_fov_deg), spacing = theta / N;
+    const double bw = deg2rad(azimuth_beamwidth_deg(s));
+    const bool array = s.sensor.beamformer == Beamformer::Array;
+    std::vector<double> centre(static_cast<size_t>(N)), width(static_cast<size_t>(N));
+    double widest = 0;
+    for (int b = 0; b < N; ++b) {
+        centre[size_t(b)] = theta / 2 - (b + 0.5) * spacing;
+        // A flat array steered to theta_b: the beam widens as 1 / cos theta_b (held below 10x, at 84 deg).
+        width[size_t(b)] = array ? bw / std::max(0.1, std::cos(centre[size_t(b)])) : bw;
+        widest = std::max(widest, width[size_t(b)]);
+    }
+    const double extent = pattern.extent(kAzimuthPatternFloorDb);
+    const int reach = int(std::ceil(extent * widest / spacing)) + 1;
+    const int J = N * S;
+    f.first.resize(size_t(J)), f.count.resize(size_t(J)), f.offset.resize(size_t(J) + 1);
+    for (int j = 0; j < J; ++j) {
+        const double tj = theta / 2 - (j + 0.5) * spacing / S;
+        const int bc = j / S, b0 = std::max(0, bc - reach), b1 = std::min(N - 1, bc + reach);
+        int first = -1, last = -2;
+        for (int b = b0; b <= b1; ++b)
+            if (std::abs(tj - centre[size_t(b)]) <= extent * width[size_t(b)]) {
+                if (first < 0) first = b;
+                last = b;
+            }
+        f.offset[size_t(j)] = f.weight.size();
+        f.first[size_t(j)] = std::max(first, 0), f.count[size_t(j)] = last - first + 1;
+        for (int b = first; b <= last; ++b)
+            f.weight.push_back(pattern((tj - centre[size_t(b)]) / width[size_t(b)]));
+    }
+    f.offset[size_t(J)] = f.weight.size();
+    return f;
+}
+
+std::vector<double> range_kernel(Pulse pulse, double res_m, double dr_m) {
+    if (!(res_m > 0)) return {1.0};
+    const double extent = pulse == Pulse::Cw ? res_m : 8 * res_m;
+    const int h = int(std::ceil(extent / dr_m + 0.5)); // bins reaching within `extent` of 0
+    auto k = [&](double x) {
+        const double u = std::abs(x) / res_m;
+        if (pulse == Pulse::Cw) return u < 1 ? (1 - u) * (1 - u) : 0.0;
+        if (u > 8) return 0.0;
+        if (u < 1e-9) return 1.0;
+        const double s = std::sin(kPi * u) / (kPi * u);
+        return s * s;
+    };
+    constexpr int kSub = 64; // midpoint rule inside each bin
+    std::vector<double> w(size_t(2 * h + 1), 0.0);
+    for (int t = -h; t <= h; ++t) {
+        double sum = 0;
+        for (int i = 0; i < kSub; ++i) sum += k((t - 0.5 + (i + 0.5) / kSub) * dr_m);
+        w[size_t(t + h)] = sum / kSub;
+    }
+    const double total = std::accumulate(w.begin(), w.end(), 0.0);
+    for (double& x : w) x /= total;
+    return w;
+}
+
+} // namespace sonarsim

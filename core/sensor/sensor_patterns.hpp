@@ -1,0 +1,80 @@
+// The sensor's beam patterns and range response (SENSORS.md 2.1, 2.2, 2.5): the two-way elevation pattern
+// that weights each ray, the receive pattern that forms each beam from a finer azimuth grid, and the
+// matched filter's intensity response along range. All are intensity patterns with peak 1.
+#pragma once
+#include "core/scene/scene.hpp"
+
+#include <vector>
+
+namespace sonarsim {
+
+/// Two-way elevation pattern B_v(e) with -3 dB full width phi3:
+///   gaussian: B = exp(-4 ln 2 e^2 / phi3^2), traced out to -30 dB (|e| <= 1.579 phi3);
+///   sinc:     B = (sin x / x)^2 with x = 1.39156 * 2 e / phi3 (B = 1/2 at e = phi3 / 2), traced out to its
+///             second null (|e| <= 2.258 phi3: the main lobe and the first sidelobe, -13.3 dB);
+///   flat:     the hard aperture sonar.elevation_fov_deg, B = 1 inside.
+class ElevationWeight {
+  public:
+    explicit ElevationWeight(const SceneDesc& scene);
+    bool flat() const { return kind_ == ElevationPattern::Flat; }
+    /// B_v at elevation e [rad] (1 for flat).
+    double operator()(double e_rad) const;
+    /// Elevation span the rays cover [rad]: the aperture when flat, the pattern's traced support otherwise.
+    double traced_fov_rad() const { return traced_rad_; }
+
+  private:
+    ElevationPattern kind_;
+    double phi3_rad_, traced_rad_;
+};
+
+/// -3 dB width of the elevation pattern [deg] (sensor.elevation_beamwidth_deg, 0: sonar.elevation_fov_deg).
+double elevation_beamwidth_deg(const SceneDesc& scene);
+/// -3 dB width of the receive beam at broadside [deg] (sensor.azimuth_beamwidth_deg, 0: the beam spacing).
+double azimuth_beamwidth_deg(const SceneDesc& scene);
+
+/// Intensity pattern of a line array (64 elements, half-wavelength) with the window, |AF|^2 normalised to 1
+/// at the peak, as a function of x = (angle off the beam axis) / (-3 dB full width): 1/2 at x = +-1/2.
+/// Tabulated once per window out to |x| = kAzimuthPatternExtent.
+class ArrayPattern {
+  public:
+    ArrayPattern(AzimuthWindow window, double taylor_sidelobe_db);
+    double operator()(double x) const;
+    /// The first sidelobe's level [dB], found on the table (for tests and docs).
+    double first_sidelobe_db() const;
+    /// The |x| beyond which the pattern stays below `floor_db` (at most kAzimuthPatternExtent).
+    double extent(double floor_db) const;
+
+  private:
+    std::vector<double> table_; ///< at x = i / kStepsPerWidth
+};
+
+/// The pattern of a window (and, for taylor, its sidelobe level), made once per process and shared.
+const ArrayPattern& array_pattern(AzimuthWindow window, double taylor_sidelobe_db);
+
+/// The pattern is applied out to where it stays below kAzimuthPatternFloorDb, at most this many -3 dB widths
+/// either side of a beam's axis (rect: sidelobes there are still at about -30 dB; hann: 4.6 widths).
+constexpr double kAzimuthPatternExtent = 12.0;
+constexpr double kAzimuthPatternFloorDb = -45.0;
+
+/// Fine azimuth columns per beam that the receive pattern needs: enough for 4 per -3 dB width, at most 8.
+/// 1 when the pattern is off.
+int azimuth_subcolumns(const SceneDesc& scene);
+
+/// Receive beam forming as a sparse matrix: output beam b = sum over fine columns j of w(j, b) E_j, with
+/// w = pattern((theta_j - theta_b) / width_b) (width_b = the broadside width, over cos(theta_b) for
+/// "array"). Stored per fine column j: the beams [first[j], first[j] + count[j]) and their weights.
+struct AzimuthBeamforming {
+    int beams = 0, sub = 1;
+    std::vector<int> first, count;
+    std::vector<std::size_t> offset; ///< into weight
+    std::vector<double> weight;
+};
+AzimuthBeamforming make_azimuth_beamforming(const SceneDesc& scene);
+
+/// The matched filter's intensity response sampled on range bins of width dr_m: weights of bins -h..h
+/// (h = (size - 1) / 2), each the kernel's integral over the bin, summing to 1. cw: (1 - |x| / dr)^2 for
+/// |x| < dr (the squared triangle); chirp: sinc^2(x / dr) out to +-8 dr. A single 1 when the resolution
+/// is 0.
+std::vector<double> range_kernel(Pulse pulse, double resolution_m, double dr_m);
+
+} // namespace sonarsim

@@ -1,0 +1,78 @@
+// A cell's range footprint (the sum of its elevation and azimuth range extents on its hit plane) and how it
+// spreads over range bins: shared by shading (shade.cpp) and the ground truth (ground_truth.cpp), so both
+// see the same cells in the same bins.
+#pragma once
+#include "core/sampling/trace.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sonarsim::detail {
+
+/// Sum of two independent uniforms U[a0, a1] + U[b0, b1]: its cumulative distribution (a trapezoid density).
+struct Footprint {
+    double lo, p, q; // support [lo, lo + p + q], p <= q the two widths
+    Footprint(double a0, double a1, double b0, double b1) {
+        const double w1 = std::abs(a1 - a0), w2 = std::abs(b1 - b0);
+        lo = std::min(a0, a1) + std::min(b0, b1);
+        p = std::min(w1, w2), q = std::max(w1, w2);
+    }
+    double hi() const { return lo + p + q; }
+    double cdf(double r) const {
+        const double x = r - lo;
+        if (x <= 0) return 0;
+        if (x >= p + q) return 1;
+        if (p <= 1e-12 * q) return x / q; // a single uniform
+        if (x < p) return x * x / (2 * p * q);
+        if (x <= q) return p / (2 * q) + (x - p) / q;
+        const double y = p + q - x;
+        return 1 - y * y / (2 * p * q);
+    }
+};
+
+inline Footprint footprint_of(const Cell& c) {
+    return Footprint(c.range_e_lo_m, c.range_e_hi_m, double(c.range_a_lo_m) - c.range_m,
+                     double(c.range_a_hi_m) - c.range_m);
+}
+
+/// Calls add(bin, fraction) for each range bin that receives part of the cell's echo.
+template <class F>
+void for_each_bin(const Cell& c, bool spread, int K, double r_min, double r_max, double dr, F&& add) {
+    const Footprint f = footprint_of(c);
+    if (!spread || f.p + f.q <= 1e-9 * dr) {
+        const double b = std::floor(((spread ? f.lo : double(c.range_m)) - r_min) / dr);
+        if (b >= 0 && b < K) add(int(b), 1.0);
+        return;
+    }
+    const int b0 = int(std::clamp(std::floor((f.lo - r_min) / dr), 0.0, double(K)));
+    const int b1 = int(std::clamp(std::floor((f.hi() - r_min) / dr), -1.0, double(K - 1)));
+    // Bins wholly inside the trapezoid's flat top [lo + p, lo + q] each get dr / q: no cdf needed there
+    // (long footprints at grazing incidence span tens of bins).
+    const int flat_lo = int(std::clamp(std::ceil((f.lo + f.p - r_min) / dr), -1.0, double(K)));
+    const int flat_hi =
+        int(std::clamp(std::floor((f.lo + f.q - r_min) / dr), 0.0, double(K))) - 1; // last inside
+    const double flat_share = dr / f.q;
+    double c_prev = f.cdf(r_min + b0 * dr);
+    for (int b = b0; b <= b1; ++b) {
+        if (b >= flat_lo && b <= flat_hi && b + 1 < K) {
+            const int last = std::min({flat_hi, b1, K - 2});
+            for (; b <= last; ++b) add(b, flat_share);
+            c_prev = f.cdf(r_min + b * dr); // b: the first bin after the flat run
+            --b;
+            continue;
+        }
+        const double c_next = f.cdf(b + 1 == K ? r_max : r_min + (b + 1) * dr);
+        if (c_next > c_prev) add(b, c_next - c_prev);
+        c_prev = c_next;
+    }
+}
+
+/// Elevation [rad] at which the cell's surface lies at range r: linear in range across its elevation
+/// footprint, clamped to the cell.
+inline double elevation_at(const Cell& c, double r) {
+    const double span = double(c.range_e_hi_m) - c.range_e_lo_m;
+    const double t = std::abs(span) > 1e-9 ? std::clamp((r - c.range_e_lo_m) / span, 0.0, 1.0) : 0.5;
+    return c.elevation_rad + (t - 0.5) * c.elevation_width_rad;
+}
+
+} // namespace sonarsim::detail

@@ -1,0 +1,55 @@
+// Ground truth per (range bin, beam): what echoed into each cell of the raw image, from the same cells and
+// footprints as the image itself (footprint.hpp), so it converges with the sampler. Computed only when asked
+// for (render --ground-truth, batch --ground-truth, the Python module, the viewer's snapshot toggle).
+#pragma once
+#include "core/io/output.hpp"
+#include "core/scene/scene.hpp"
+#include "core/sampling/trace.hpp"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace sonarsim {
+
+/// Arrays of the raw image's shape (range_bins, beams), row 0 nearest; point_m has a last axis of 3.
+/// Each contribution is a cell's echo in the bin (as shaded) at the elevation where its surface crosses the
+/// bin's centre range; NaN (object_id -1, surfaces 0) where nothing echoes. A multipath ghost counts where it
+/// arrives (its elevation is the arrival direction's); its point is the scatterer's, not the apparent one.
+struct GroundTruth {
+    int bins = 0, beams = 0;
+    std::vector<float> elevation_deg;     ///< echo-weighted mean elevation [deg]
+    std::vector<float> elevation_min_deg; ///< lowest elevation echoing into the cell [deg]: the ambiguity
+    std::vector<float> elevation_max_deg; ///< highest [deg]
+    std::vector<float> point_m;           ///< echo-weighted centroid, world coordinates [m], x y z per cell
+    /// Strongest contribution: -1 nothing, 0 seafloor, i + 1 objects[i], -2 the water surface.
+    std::vector<std::int32_t> object_id;
+    std::vector<float> incidence_deg;   ///< echo-weighted mean incidence angle [deg]
+    std::vector<std::int32_t> surfaces; ///< distinct surfaces contributing (the floor and each object once)
+    /// Specular reflections (out and back) on the strongest contribution's path: 0 direct, > 0 a ghost.
+    std::vector<std::int32_t> bounces;
+};
+
+GroundTruth compute_ground_truth(const TraceResult& hits, const SceneDesc& scene);
+
+/// The path of the strongest contribution to raw image cell (bin, beam), for drawing: world points from the
+/// sonar out to the scatterer and back (sonar, mirrors out, scatterer, mirrors back, sonar); no points
+/// where nothing echoes.
+struct EchoPath {
+    std::vector<std::array<double, 3>> points_m;
+    int bounces = 0;             ///< reflections out and back
+    int out_bounces = 0;         ///< those on the way out: points_m[1 + out_bounces] is the scatterer
+    std::int32_t object_id = -1; ///< the scatterer, as GroundTruth::object_id
+};
+EchoPath strongest_path(const TraceResult& hits, const SceneDesc& scene, int bin, int beam);
+
+/// PREFIX_gt_<name>.npy for each array (float32, int32 for object_id and surfaces).
+std::vector<std::pair<std::string, Bytes>> ground_truth_files(const std::string& prefix,
+                                                              const GroundTruth& gt);
+
+/// The names of the arrays, in file order: elevation_deg, elevation_min_deg, ... surfaces.
+const std::vector<std::string>& ground_truth_names();
+
+} // namespace sonarsim

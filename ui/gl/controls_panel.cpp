@@ -1,0 +1,359 @@
+#include "ui/gl/controls_panel.hpp"
+
+#include "ui/model/param_ranges.hpp"
+
+#include "core/shading/physics.hpp"
+
+#include <imgui.h>
+#include <imgui_internal.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sonarsim::ui {
+namespace {
+
+void help_tooltip(const ValueSpec& spec) {
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s\n%s: %s\nShift+drag: fine; Ctrl+click: type a value", spec.help.c_str(),
+                          spec.key.c_str(), allowed_text(spec).c_str());
+}
+
+/// Shift held while a slider is dragged: the value moves kFineDrag times less per pixel, from where it was
+/// when Shift went down.
+struct FineDrag {
+    ImGuiID id = 0;
+    double base = 0;
+    float mouse_x0 = 0;
+};
+FineDrag g_fine;
+
+bool fine_drag(const SliderRange& r, double current, double& value) {
+    const ImGuiIO& io = ImGui::GetIO();
+    const ImGuiID id = ImGui::GetItemID();
+    if (!ImGui::IsItemActive() || !io.KeyShift) {
+        if (g_fine.id == id) g_fine.id = 0;
+        return false;
+    }
+    if (g_fine.id != id) g_fine = {id, current, io.MousePos.x};
+    const float width = std::max(1.0f, ImGui::GetItemRectSize().x);
+    const double t = double(io.MousePos.x - g_fine.mouse_x0) / width / kFineDrag;
+    if (r.logarithmic && r.lo > 0)
+        value = g_fine.base * std::pow(r.hi / r.lo, t);
+    else
+        value = g_fine.base + t * (r.hi - r.lo);
+    value = std::clamp(value, r.lo, r.hi);
+    return value != current;
+}
+
+/// SameLine() when a button labelled `next` still fits on this line.
+void same_line_if_fits(const char* next) {
+    const ImGuiStyle& st = ImGui::GetStyle();
+    const float w = ImGui::CalcTextSize(next).x + 2 * st.FramePadding.x;
+    const float right = ImGui::GetItemRectMax().x + st.ItemSpacing.x + w;
+    if (right <= ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x) ImGui::SameLine();
+}
+
+std::map<std::string, Rect> g_item_rects;
+
+void remember_rect(const std::string& key) {
+    const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+    g_item_rects[key] = {a.x, a.y, b.x - a.x, b.y - a.y};
+}
+
+/// Labels go beside the fields when the widest fits beside a field of half the panel, else above them.
+bool g_labels_above = false;
+
+/// The label of a field: beside it (returned as the widget label) or drawn above it now.
+std::string field_label(const std::string& text, const std::string& key) {
+    if (!g_labels_above) return text + "##" + key;
+    ImGui::TextUnformatted(text.c_str());
+    ImGui::SetNextItemWidth(-1);
+    return "##" + key;
+}
+
+float widest_label() {
+    float w = 0;
+    for (const ParamSpec& p : scene_params())
+        if (p.type != ParamType::Vec3) w = std::max(w, ImGui::CalcTextSize(param_label(p).c_str()).x);
+    for (const MaterialSpec& m : material_params())
+        w = std::max(w, ImGui::CalcTextSize(param_label(m).c_str()).x);
+    return w + ImGui::GetStyle().ItemInnerSpacing.x + 2;
+}
+
+/// One slider for a number or integer spec. Returns true with `value` set when edited.
+bool slider(const ValueSpec& spec, double current, double& value) {
+    const SliderRange r = slider_range(spec);
+    const std::string label = field_label(param_label(spec), spec.key);
+    ImGuiSliderFlags flags = r.logarithmic ? ImGuiSliderFlags_Logarithmic : 0;
+    bool changed = false;
+    if (spec.type == ParamType::Integer) {
+        int v = int(current), lo = int(r.lo), hi = int(r.hi);
+        changed = ImGui::SliderScalar(label.c_str(), ImGuiDataType_S32, &v, &lo, &hi, "%d", flags);
+        value = v;
+        if (fine_drag(r, current, value))
+            value = std::round(value), changed = value != current;
+        else if (g_fine.id == ImGui::GetItemID())
+            changed = false;
+    } else {
+        double v = current;
+        const double span = r.hi - r.lo;
+        const char* fmt = span >= 500 ? "%.0f" : span >= 20 ? "%.1f" : "%.3g";
+        changed = ImGui::SliderScalar(label.c_str(), ImGuiDataType_Double, &v, &r.lo, &r.hi, fmt,
+                                      flags | ImGuiSliderFlags_NoRoundToFormat);
+        value = v;
+        if (fine_drag(r, current, value)) changed = true;
+    }
+    remember_rect(spec.key);
+    help_tooltip(spec);
+    return changed;
+}
+
+/// The value an optional parameter takes when switched on: the water surface half a metre above the
+/// sonar.
+double optional_default(const SceneDesc& s, const ParamSpec& p) {
+    if (p.key == "water.surface_height_m") return s.sonar.pose.position_m[2] + 0.5;
+    return std::max(p.min, 0.0);
+}
+
+void section_params(Session& session, const std::string& section) {
+    for (const ParamSpec& p : scene_params()) {
+        if (param_section(p) != section) continue;
+        const json cur = p.get(session.scene());
+        if (p.type == ParamType::Enum) {
+            const std::string now = cur.get<std::string>();
+            const std::string label = field_label(param_label(p), p.key);
+            if (ImGui::BeginCombo(label.c_str(), now.c_str())) {
+                for (auto& c : p.choices)
+                    if (ImGui::Selectable(c.c_str(), c == now)) session.set(p.key, c);
+                ImGui::EndCombo();
+            }
+            help_tooltip(p);
+            continue;
+        }
+        if (p.type == ParamType::Bool) {
+            bool on = cur.get<bool>();
+            if (ImGui::Checkbox((param_label(p) + "##" + p.key).c_str(), &on)) session.set(p.key, on);
+            help_tooltip(p);
+            continue;
+        }
+        if (p.optional) { // absent (null) or a value: a checkbox, then the slider when present
+            bool on = !cur.is_null();
+            if (ImGui::Checkbox((param_label(p) + "##on_" + p.key).c_str(), &on))
+                session.set(p.key, on ? json(optional_default(session.scene(), p)) : json(nullptr));
+            help_tooltip(p);
+            if (cur.is_null()) continue;
+        }
+        double v = 0;
+        if (slider(p, cur.get<double>(), v))
+            session.set(p.key, p.type == ParamType::Integer ? json(int(v)) : json(v));
+    }
+}
+
+void pose_section(Session& session) {
+    Pose pose = session.scene().sonar.pose;
+    ImGui::TextUnformatted("position x y z [m]");
+    ImGui::SetNextItemWidth(-1);
+    bool changed = ImGui::DragScalarN("##position", ImGuiDataType_Double, pose.position_m.data(), 3, 0.005f,
+                                      nullptr, nullptr, "%.3f");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("x, y, z of the sonar (world, z up); drag or Ctrl+click");
+    ImGui::TextUnformatted("roll pitch yaw [deg]");
+    ImGui::SetNextItemWidth(-1);
+    changed |= ImGui::DragScalarN("##orientation", ImGuiDataType_Double, pose.orientation_deg.data(), 3, 0.2f,
+                                  nullptr, nullptr, "%.2f");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("R = Rz(yaw) Ry(pitch) Rx(roll); positive pitch looks down");
+    if (changed)
+        session.edit([&](SceneDesc& s) {
+            apply_setting(s, "sonar.position", pose.position_m, "pose");
+            apply_setting(s, "sonar.orientation_deg", pose.orientation_deg, "pose");
+        });
+    if (ImGui::Button("Fig. 9 pose 1")) session.edit([](SceneDesc& s) { s.sonar.pose = Pose{}; });
+    same_line_if_fits("Fig. 9 pose 2");
+    if (ImGui::Button("Fig. 9 pose 2"))
+        session.edit([](SceneDesc& s) {
+            s.sonar.pose.position_m = {0.84, 2.42, 0.90};
+            s.sonar.pose.orientation_deg = {6.88, 28.07, -41.25};
+        });
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+    ImGui::TextWrapped("In 3D, drag the sonar's housing or its yellow handle to move it; Shift: up/down, "
+                       "Ctrl: yaw/pitch, Ctrl+Shift: roll.");
+    ImGui::PopStyleColor();
+}
+
+void material_section(Session& session, ControlsUi& ui) {
+    const SceneDesc& s = session.scene();
+    const int n = int(s.objects.size());
+    const bool water = s.water.surface_height_m.has_value();
+    if (ui.selected >= n) ui.selected = n - 1;
+    if (ui.selected == kWaterSurface && !water) ui.selected = -1;
+    if (ui.selected == -1 && !s.seafloor) ui.selected = n > 0 ? 0 : water ? kWaterSurface : -1;
+    auto name = [&](int i) {
+        if (i == kWaterSurface) return std::string("water surface");
+        if (i < 0) return std::string("seafloor");
+        const ObjectDesc& o = s.objects[size_t(i)];
+        return "object " + std::to_string(i) + (o.box_m ? " (box)" : " (" + o.mesh + ")");
+    };
+    if (ImGui::BeginCombo(field_label("surface", "surface").c_str(), name(ui.selected).c_str())) {
+        if (s.seafloor && ImGui::Selectable("seafloor", ui.selected == -1)) ui.selected = -1;
+        if (water && ImGui::Selectable("water surface", ui.selected == kWaterSurface))
+            ui.selected = kWaterSurface;
+        for (int i = 0; i < n; ++i)
+            if (ImGui::Selectable(name(i).c_str(), ui.selected == i)) ui.selected = i;
+        ImGui::EndCombo();
+    }
+    if (ui.selected == -1 && !s.seafloor) return;
+    const bool surface = ui.selected == kWaterSurface;
+    const Material& m = surface             ? s.water.surface_material
+                        : ui.selected == -1 ? s.seafloor->material
+                                            : s.objects[size_t(ui.selected)].material;
+    const std::string prefix = surface             ? "water.surface_material."
+                               : ui.selected == -1 ? "seafloor.material."
+                                                   : "objects." + std::to_string(ui.selected) + ".material.";
+    for (const MaterialSpec& spec : material_params()) {
+        if (surface && spec.optional) continue; // reflection_db: the surface is always a mirror (roughness)
+        double v = 0;
+        ImGui::PushID(spec.key.c_str());
+        const bool present = std::isfinite(m.*(spec.field));
+        if (spec.optional) { // reflection_db: a checkbox (a mirror or not), then its slider
+            bool on = present;
+            if (ImGui::Checkbox((param_label(spec) + "##on").c_str(), &on))
+                session.set(prefix + spec.key, on ? json(3.0) : json(nullptr));
+            help_tooltip(spec);
+        }
+        if ((present || !spec.optional) && slider(spec, m.*(spec.field), v))
+            session.set(prefix + spec.key, v);
+        ImGui::PopID();
+    }
+    if (ui.selected >= 0) {
+        const ObjectDesc& o = s.objects[size_t(ui.selected)];
+        const std::string key = "objects." + std::to_string(ui.selected);
+        Vec3d pos = o.position_m, rot = o.orientation_deg, scale = o.scale;
+        ImGui::TextUnformatted("object position [m]");
+        ImGui::SetNextItemWidth(-1);
+        if (ImGui::DragScalarN("##objpos", ImGuiDataType_Double, pos.data(), 3, 0.005f, nullptr, nullptr,
+                               "%.3f"))
+            session.set(key + ".position", pos);
+        ImGui::TextUnformatted("object roll pitch yaw [deg]");
+        ImGui::SetNextItemWidth(-1);
+        if (ImGui::DragScalarN("##objrot", ImGuiDataType_Double, rot.data(), 3, 0.5f, nullptr, nullptr,
+                               "%.1f"))
+            session.set(key + ".orientation_deg", rot);
+        ImGui::TextUnformatted("object scale x y z");
+        ImGui::SetNextItemWidth(-1);
+        const double smin = 1e-3, smax = 1e3;
+        if (ImGui::DragScalarN("##objscale", ImGuiDataType_Double, scale.data(), 3, 0.005f, &smin, &smax,
+                               "%.3f"))
+            session.set(key + ".scale", scale);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("In 3D: Alt+drag the object scales it");
+        if (ImGui::Button("Remove object")) {
+            const int i = ui.selected;
+            session.edit([i](SceneDesc& sc) { sc.objects.erase(sc.objects.begin() + i); });
+        }
+    }
+}
+
+void stats_section(Session& session, const ControlsUi& ui) {
+    const SceneDesc& s = session.scene();
+    ImGui::Text("alpha = %.3f dB/m",
+                absorption_db_per_m(s.sonar.frequency_khz, s.water.temperature_c, s.water.depth_m));
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Absorption (eq. 7) at f, T, D; the paper's Table II gives 3.04 dB/m");
+    ImGui::Text("frame %.1f ms", ui.frame_ms);
+    if (const RenderResult* r = session.shown()) {
+        const Frame& f = *r->frame;
+        ImGui::SameLine();
+        ImGui::Text("  image %.1f ms%s", r->wall_ms, f.preview() ? " (preview)" : "");
+        ImGui::TextDisabled("trace %.1f  shade %.1f  map %.1f ms", f.trace_ms, f.shade_ms, f.image_ms);
+        ImGui::TextDisabled("%llu rays", static_cast<unsigned long long>(f.hits().rays_traced));
+    } else {
+        ImGui::SameLine();
+        ImGui::TextDisabled("  image: rendering...");
+    }
+}
+
+void footer(Session& session) {
+    if (!session.error().empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
+        ImGui::TextWrapped("%s", session.error().c_str());
+        ImGui::PopStyleColor();
+        if (ImGui::SmallButton("dismiss")) session.clear_error();
+    }
+    if (!session.status().empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+        ImGui::TextWrapped("%s", session.status().c_str());
+        ImGui::PopStyleColor();
+    }
+}
+
+float footer_height(const Session& session, float width) {
+    const ImGuiStyle& st = ImGui::GetStyle();
+    float h = 0;
+    if (!session.error().empty())
+        h += ImGui::CalcTextSize(session.error().c_str(), nullptr, false, width).y + ImGui::GetFrameHeight() +
+             2 * st.ItemSpacing.y;
+    if (!session.status().empty())
+        h += ImGui::CalcTextSize(session.status().c_str(), nullptr, false, width).y + st.ItemSpacing.y;
+    return h > 0 ? h + st.ItemSpacing.y + 2 * st.WindowPadding.y : 0;
+}
+
+} // namespace
+
+const std::map<std::string, Rect>& controls_item_rects() {
+    return g_item_rects;
+}
+
+void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, TrajectoryUi& trajectory) {
+    ImGui::SetNextWindowPos(ImVec2(area.x, area.y));
+    ImGui::SetNextWindowSize(ImVec2(area.w, area.h));
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                                   ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoTitleBar |
+                                   ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoBackground |
+                                   ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse;
+    ImGui::Begin("Controls", nullptr, flags);
+    const float fh = footer_height(session, ImGui::GetContentRegionAvail().x);
+    ImGui::BeginChild("##sections", ImVec2(0, -fh), false);
+    const float avail = ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ScrollbarSize,
+                label_w = widest_label();
+    g_labels_above = label_w > 0.5f * avail;
+    ImGui::PushItemWidth(g_labels_above ? -1.0f : -label_w);
+    stats_section(session, ui);
+    if (ImGui::Button("Reset to paper values")) session.reset_to_paper();
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Every parameter and material back to Tables I-II (the pose is kept)");
+    same_line_if_fits("Snapshot (S)");
+    if (ImGui::Button("Snapshot (S)")) ui.want_snapshot = true;
+
+    if (ImGui::CollapsingHeader("Pose", ImGuiTreeNodeFlags_DefaultOpen)) pose_section(session);
+    if (ImGui::CollapsingHeader("Sonar", ImGuiTreeNodeFlags_DefaultOpen)) section_params(session, "Sonar");
+    if (ImGui::CollapsingHeader("Water", ImGuiTreeNodeFlags_DefaultOpen)) section_params(session, "Water");
+    if (ImGui::CollapsingHeader("Object / material", ImGuiTreeNodeFlags_DefaultOpen))
+        material_section(session, ui);
+    if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen))
+        section_params(session, "Display");
+    if (ImGui::CollapsingHeader("Sensor")) section_params(session, "Sensor");
+    if (ImGui::CollapsingHeader("Sampling")) section_params(session, "Sampling");
+    if (ImGui::CollapsingHeader("Trajectory"))
+        if (auto p = trajectory.draw(session)) session.edit([&](SceneDesc& s) { s.sonar.pose = *p; });
+    if (ImGui::CollapsingHeader("Files")) {
+        if (ImGui::Button("Open scene...")) ui.want_open = true;
+        same_line_if_fits("Add mesh...");
+        if (ImGui::Button("Add mesh...")) ui.want_add_mesh = true;
+        if (ImGui::Button("Save scene...")) ui.want_save = true;
+        ImGui::InputText(field_label("snapshots in", "snapdir").c_str(), &ui.snapshot_dir);
+        ImGui::Checkbox("annotated PNG too", &ui.annotated_snapshot);
+        ImGui::TextWrapped("Drop a scene (.json) or mesh (.obj .ply .stl .off) on the window");
+    }
+    if (ImGui::CollapsingHeader("View")) {
+        ImGui::Checkbox("show traced hits", &ui.show_hits);
+        if (ImGui::Button("Reset camera (F)")) ui.want_reset_camera = true;
+        ImGui::SliderFloat(field_label("UI scale", "uiscale").c_str(), &ui.ui_scale, 0.75f, 2.5f, "%.2f");
+    }
+    ImGui::PopItemWidth();
+    ImGui::EndChild();
+    footer(session);
+    ImGui::End();
+}
+
+} // namespace sonarsim::ui

@@ -1,0 +1,37 @@
+// The controls panel (ImGui): sliders generated from core's parameter table, numeric pose, the material of
+// the selected object, files, snapshot, timings and errors.
+#pragma once
+#include "ui/model/layout.hpp"
+#include "ui/model/session.hpp"
+#include "ui/gl/trajectory_panel.hpp"
+
+#include <map>
+#include <string>
+
+namespace sonarsim::ui {
+
+/// ControlsUi::selected for the water surface's material (water.surface_material).
+constexpr int kWaterSurface = -2;
+
+struct ControlsUi {
+    int selected = 0;       ///< object whose material is edited; -1 = seafloor, kWaterSurface
+    bool show_hits = false; ///< draw every traced hit in the 3D view
+    std::string snapshot_dir = ".";
+    double frame_ms = 0; ///< shown on screen
+    // Requests raised by the panel, handled by the viewer.
+    bool want_snapshot = false, want_open = false, want_add_mesh = false, want_save = false;
+    bool want_reset_camera = false;
+    float ui_scale = 1.0f;          ///< the user's UI scale, times the monitor's content scale
+    bool annotated_snapshot = true; ///< snapshots also write PREFIX_annotated.png (the panel as on screen)
+};
+
+/// Slider drags move 1/kFineDrag as far per pixel while Shift is held.
+constexpr double kFineDrag = 10.0;
+
+/// Where each parameter's widget was drawn last frame (key -> window px), for `--script move_to`.
+const std::map<std::string, Rect>& controls_item_rects();
+
+/// The panel: its sections scroll; errors and status stay visible in a footer below them.
+void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, TrajectoryUi& trajectory);
+
+} // namespace sonarsim::ui

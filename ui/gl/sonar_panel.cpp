@@ -1,0 +1,265 @@
+// The sonar image panel: header (view, colour map), the fan or raw polar image with its labels, hover and
+// 3D-marker feedback. Plots and measurement are in sonar_plots.cpp.
+#include "ui/gl/sonar_panel.hpp"
+
+#include "ui/model/image_views.hpp"
+#include "ui/gl/sonar_panel_style.hpp"
+#include "ui/model/measure.hpp"
+
+#include "core/scene/params.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <imgui.h>
+#include <limits>
+
+namespace sonarsim::ui {
+using namespace panel;
+
+void SonarPanel::draw_header(const Session& session, Session& edit) {
+    int view = polar ? 1 : 0;
+    ImGui::RadioButton("fan", &view, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("raw polar (P)", &view, 1);
+    polar = view == 1;
+    // The colour maps of core's parameter table.
+    const std::string now = find_param("display.colormap")->get(session.scene()).get<std::string>();
+    const float room = ImGui::GetContentRegionAvail().x - ImGui::GetCursorPosX();
+    if (room > 9 * ImGui::GetFontSize()) ImGui::SameLine();
+    ImGui::SetNextItemWidth(7 * ImGui::GetFontSize());
+    if (ImGui::BeginCombo("##cmap", now.c_str())) {
+        for (const std::string& c : find_param("display.colormap")->choices)
+            if (ImGui::Selectable(c.c_str(), c == now)) edit.set("display.colormap", c);
+        ImGui::EndCombo();
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("colour map (display.colormap)");
+}
+
+void SonarPanel::draw(const Rect& area, Session& session, const std::optional<glm::dvec3>& marker,
+                      float scale) {
+    hovered_.reset();
+    path_.clear();
+    scale_ = scale;
+    ImGui::SetNextWindowPos(ImVec2(area.x, area.y));
+    ImGui::SetNextWindowSize(ImVec2(area.w, area.h));
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                                   ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoTitleBar |
+                                   ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse |
+                                   ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoBackground;
+    ImGui::Begin("Sonar image", nullptr, flags);
+    const RenderResult* shown = session.shown();
+    draw_header(session, session);
+    const float info_y = ImGui::GetCursorScreenPos().y;
+
+    if (!shown) {
+        ImGui::TextDisabled("rendering the first image...");
+        ImGui::End();
+        return;
+    }
+    const Frame& f = *shown->frame;
+    const SonarParams& s = shown->scene.sonar;
+    if (uploaded_count_ != session.shown_count() || uploaded_polar_ != polar) {
+        texture_.upload(polar ? polar_color_image(f.polar(), f.display)
+                              : no_echo_.paint(f.sector(), f.polar(), s, shown->scene.display.colormap));
+        uploaded_count_ = session.shown_count(), uploaded_polar_ = polar;
+    }
+    const double aspect = double(f.sector().width) / f.sector().height;
+    const SonarPanelLayout L = sonar_panel_layout(area, aspect, scale);
+    const float lh = ImGui::GetTextLineHeight();
+    annotated_ = {L.image.x - 36 * scale, L.image.y - lh - 8,
+                  L.colorbar.x + L.colorbar.w + 48 * scale - (L.image.x - 36 * scale),
+                  L.image.h + 2 * lh + 12};
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    ImGui::SetCursorScreenPos(ImVec2(L.image.x, L.image.y));
+    ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(texture_.id())),
+                 ImVec2(L.image.w, L.image.h));
+    if (f.preview()) // a drag's coarse image: the full-quality one follows when the input rests
+        text_at(dl, ImVec2(L.image.x + 4, L.image.y + L.image.h - 2), IM_COL32(255, 200, 80, 255),
+                "preview (base grid only)", 0.0f, 1.0f);
+
+    // Hover: the place under the mouse.
+    const ImVec2 mouse = ImGui::GetIO().MousePos;
+    if (ImGui::IsWindowHovered() && L.image.contains(mouse.x, mouse.y)) {
+        hovered_ = place_at(L.image, *shown, mouse);
+        if (measuring_ && hovered_) {
+            if (ImGui::IsMouseClicked(0))
+                measure_a_ = measure_b_ = hovered_;
+            else if (ImGui::IsMouseDown(0) && measure_a_)
+                measure_b_ = hovered_;
+        }
+        if (hovered_) {
+            ascan_beam_ = hovered_->beam, ascan_beams_ = s.beams;
+            ascan_azimuth_deg_ = hovered_->azimuth_deg;
+        }
+    }
+    if (hovered_)
+        path_.update(*shown, session.shown_count(), hovered_->bin, hovered_->beam);
+    else
+        path_.clear();
+    if (polar)
+        draw_polar_overlay(L.image, *shown);
+    else
+        draw_fan_overlay(L.image, *shown);
+
+    // The pixel of the hovered 3D surface point.
+    if (measuring_ && !last_measure_.empty()) {
+        ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, info_y));
+        ImGui::PushTextWrapPos(area.w - 8 * scale); // window-local
+        ImGui::TextColored(ImVec4(0.3f, 1, 0.65f, 1), "%s", last_measure_.c_str());
+        ImGui::PopTextWrapPos();
+    } else if (marker) {
+        const SectorLayout SL(s, f.sector().height);
+        const PointInImage p = locate_world_point(s, SL, *marker);
+        ImVec2 q;
+        if (polar) {
+            q = ImVec2(
+                L.image.x + float((s.azimuth_fov_deg / 2 - p.azimuth_deg) / s.azimuth_fov_deg) * L.image.w,
+                L.image.y + float((s.range_max_m - p.range_m) / (s.range_max_m - s.range_min_m)) * L.image.h);
+        } else {
+            q = ImVec2(L.image.x + float(p.px / f.sector().width) * L.image.w,
+                       L.image.y + float(p.py / f.sector().height) * L.image.h);
+        }
+        if (L.image.contains(q.x, q.y)) {
+            const ImU32 c = p.in_view ? kMarkerColor : IM_COL32(160, 160, 160, 200);
+            dl->AddCircle(q, 7, c, 16, 2);
+            dl->AddLine(ImVec2(q.x - 11, q.y), ImVec2(q.x - 4, q.y), c, 2);
+            dl->AddLine(ImVec2(q.x + 4, q.y), ImVec2(q.x + 11, q.y), c, 2);
+        }
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "3D point: r %.2f m  az %+.1f  el %+.1f deg%s", p.range_m,
+                      p.azimuth_deg, p.elevation_deg,
+                      p.in_view                                             ? ""
+                      : std::abs(p.elevation_deg) > s.elevation_fov_deg / 2 ? " (el out of beam)"
+                                                                            : " (out of view)");
+        ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, info_y));
+        ImGui::PushTextWrapPos(area.w - 8 * scale); // window-local
+        ImGui::TextColored(ImVec4(1, 0.5f, 0.5f, 1), "%s", buf);
+        ImGui::PopTextWrapPos();
+    } else if (hovered_) {
+        const float level = f.polar().at(hovered_->bin, hovered_->beam);
+        char lvl[32], buf[160];
+        if (std::isfinite(level))
+            std::snprintf(lvl, sizeof lvl, "%.1f dB", double(level));
+        else
+            std::snprintf(lvl, sizeof lvl, "no echo");
+        std::snprintf(buf, sizeof buf, "r %.3f m  az %+.2f deg  bin %d beam %d: %s", hovered_->range_m,
+                      hovered_->azimuth_deg, hovered_->bin, hovered_->beam, lvl);
+        std::string text = buf;
+        const std::string path = echo_path_text(path_.path()); // drawn in 3D
+        if (!path.empty()) text += "\n" + path;
+        if (const GroundTruth* gt = shown->ground_truth.get()) { // File > Ground truth
+            const size_t at = size_t(hovered_->bin) * size_t(gt->beams) + size_t(hovered_->beam);
+            if (gt->object_id[at] != -1) {
+                std::snprintf(
+                    buf, sizeof buf,
+                    "\nbehind it: el %+.2f deg (%+.2f ... %+.2f), %s, incidence %.1f deg, %d surface%s",
+                    gt->elevation_deg[at], gt->elevation_min_deg[at], gt->elevation_max_deg[at],
+                    echo_source_name(gt->object_id[at]).c_str(), gt->incidence_deg[at], gt->surfaces[at],
+                    gt->surfaces[at] == 1 ? "" : "s");
+                text += buf;
+            }
+        }
+        ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, info_y));
+        ImGui::PushTextWrapPos(area.w - 8 * scale); // window-local
+        ImGui::TextColored(ImVec4(1, 0.9f, 0.3f, 1), "%s", text.c_str());
+        ImGui::PopTextWrapPos();
+    } else {
+        ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, info_y));
+        ImGui::PushTextWrapPos(area.w - 8 * scale); // window-local
+        ImGui::TextDisabled(measuring_ ? "measuring: drag on the image (Esc ends)"
+                                       : "hover the image: its elevation arc shows in 3D");
+        ImGui::PopTextWrapPos();
+    }
+    draw_measure(L.image, *shown);
+    draw_colorbar(L.colorbar, f.display); // the range shown (display.auto: from the image)
+    draw_ascan(L.ascan, *shown);
+    ImGui::End();
+}
+
+void SonarPanel::draw_fan_overlay(const Rect& r, const RenderResult& shown) {
+    const SonarParams& s = shown.scene.sonar;
+    const Frame& f = *shown.frame;
+    const SectorLayout L(s, f.sector().height);
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    dl->PushClipRect(ImVec2(r.x - 60, r.y - 2 * ImGui::GetTextLineHeight()),
+                     ImVec2(r.x + r.w + 60, r.y + r.h + 4), true);
+    auto to_screen = [&](double range, double az) {
+        double px, py;
+        L.polar_to_pixel(range, az, px, py);
+        return ImVec2(r.x + float(px / f.sector().width) * r.w, r.y + float(py / f.sector().height) * r.h);
+    };
+    const double half = s.azimuth_fov_deg / 2;
+    // Range rings.
+    const double rstep = nice_step(s.range_max_m - s.range_min_m, 5);
+    char buf[32];
+    for (double rr = std::ceil(s.range_min_m / rstep - 1e-9) * rstep; rr <= s.range_max_m + 1e-9;
+         rr += rstep) {
+        if (rr <= 0) continue;
+        const int n = 40;
+        ImVec2 pts[n + 1];
+        for (int k = 0; k <= n; ++k) pts[k] = to_screen(rr, half - 2 * half * k / n);
+        dl->AddPolyline(pts, n + 1, kGridColor, 0, 1.0f);
+        if (rr > s.range_max_m - 0.5 * rstep) continue; // the outer edge: its corner holds a bearing label
+        std::snprintf(buf, sizeof buf, "%g m", rr);
+        text_at(dl, ImVec2(pts[0].x + 4, pts[0].y), kLabelColor, buf, 0.0f, 1.0f); // inside, at the port edge
+    }
+    // Bearing lines (port = positive azimuth on the left).
+    const double astep = nice_step(s.azimuth_fov_deg, 4);
+    float free_x = -1e9f; // labels left to right (port first); one that would overlap the last is left out
+    for (double a = std::floor(half / astep) * astep; a >= -half - 1e-9; a -= astep) {
+        dl->AddLine(to_screen(s.range_min_m, a), to_screen(s.range_max_m, a), kGridColor, 1.0f);
+        std::snprintf(buf, sizeof buf, "%+g deg", std::abs(a) < 1e-9 ? 0.0 : a);
+        const ImVec2 p = to_screen(s.range_max_m, a), sz = ImGui::CalcTextSize(buf);
+        if (p.x - sz.x / 2 < free_x) continue;
+        text_at(dl, ImVec2(p.x, p.y - 2), kLabelColor, buf, 0.5f, 1.0f);
+        free_x = p.x + sz.x / 2 + 4;
+    }
+    if (hovered_) {
+        // The hovered cell's outline: its range bin x beam.
+        const double dr = (s.range_max_m - s.range_min_m) / s.range_bins, da = s.azimuth_fov_deg / s.beams;
+        const double r0 = s.range_min_m + hovered_->bin * dr, a0 = half - hovered_->beam * da;
+        const ImVec2 q[4] = {to_screen(r0, a0), to_screen(r0, a0 - da), to_screen(r0 + dr, a0 - da),
+                             to_screen(r0 + dr, a0)};
+        dl->AddPolyline(q, 4, kHoverColor, ImDrawFlags_Closed, 1.5f);
+        dl->AddCircle(to_screen(hovered_->range_m, hovered_->azimuth_deg), 6, kHoverColor, 12, 1.5f);
+    }
+    dl->PopClipRect();
+}
+
+void SonarPanel::draw_polar_overlay(const Rect& r, const RenderResult& shown) {
+    const SonarParams& s = shown.scene.sonar;
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    auto y_of = [&](double range) {
+        return r.y + float((s.range_max_m - range) / (s.range_max_m - s.range_min_m)) * r.h;
+    };
+    auto x_of = [&](double az) {
+        return r.x + float((s.azimuth_fov_deg / 2 - az) / s.azimuth_fov_deg) * r.w;
+    };
+    char buf[32];
+    const double rstep = nice_step(s.range_max_m - s.range_min_m, 5);
+    for (double rr = std::ceil(s.range_min_m / rstep - 1e-9) * rstep; rr <= s.range_max_m + 1e-9;
+         rr += rstep) {
+        dl->AddLine(ImVec2(r.x, y_of(rr)), ImVec2(r.x + r.w, y_of(rr)), kGridColor);
+        std::snprintf(buf, sizeof buf, "%g m", rr);
+        text_at(dl, ImVec2(r.x - 3, y_of(rr)), kLabelColor, buf, 1.0f, 0.5f);
+    }
+    const double half = s.azimuth_fov_deg / 2, astep = nice_step(s.azimuth_fov_deg, 4);
+    float free_x = -1e9f;
+    for (double a = std::floor(half / astep) * astep; a >= -half - 1e-9; a -= astep) {
+        dl->AddLine(ImVec2(x_of(a), r.y), ImVec2(x_of(a), r.y + r.h), kGridColor);
+        std::snprintf(buf, sizeof buf, "%+g deg", std::abs(a) < 1e-9 ? 0.0 : a);
+        const float w = ImGui::CalcTextSize(buf).x;
+        if (x_of(a) - w / 2 < free_x) continue;
+        text_at(dl, ImVec2(x_of(a), r.y - 2), kLabelColor, buf, 0.5f, 1.0f);
+        free_x = x_of(a) + w / 2 + 4;
+    }
+    if (hovered_) {
+        const double dr = (s.range_max_m - s.range_min_m) / s.range_bins, da = s.azimuth_fov_deg / s.beams;
+        const double r0 = s.range_min_m + hovered_->bin * dr, a0 = half - hovered_->beam * da;
+        dl->AddRect(ImVec2(x_of(a0) - 1, y_of(r0 + dr) - 1), ImVec2(x_of(a0 - da) + 1, y_of(r0) + 1),
+                    kHoverColor);
+    }
+}
+
+} // namespace sonarsim::ui

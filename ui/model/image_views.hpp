@@ -1,0 +1,41 @@
+// Non-GL helpers for the sonar image panel: the raw polar image in colour, tick steps, and one beam's
+// echo levels (A-scan).
+#pragma once
+#include "core/display/image.hpp"
+#include "core/shading/shade.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace sonarsim::ui {
+
+/// The raw image in the display's colour map: width = beams (beam 0 left), height = bins (far range on
+/// top), like polar_gray_image but RGB; cells where nothing echoes in no_echo_rgb.
+Image8 polar_color_image(const PolarImage& image, const DisplayParams& display);
+
+/// The fan (sector image) with the pixels whose nearest cell has no echo painted in no_echo_rgb. The
+/// pixel -> cell map is kept and rebuilt only when the fan's geometry changes.
+class NoEchoPainter {
+  public:
+    Image8 paint(const Image8& fan, const PolarImage& image, const SonarParams& sonar, Colormap map);
+
+  private:
+    std::vector<std::int32_t> cell_; ///< per pixel: bin * beams + beam, or -1 outside the fan
+    SonarParams key_;
+    int w_ = 0, h_ = 0;
+};
+
+/// A "nice" tick step (1, 2 or 5 x 10^k) giving about `count` ticks over `span`.
+double nice_step(double span, int count);
+
+/// L_EN [dB] of one beam against range bin (-inf where nothing echoes); empty for a bad beam.
+std::vector<float> beam_levels(const PolarImage& image, int beam);
+
+/// The beam whose azimuth sector holds `azimuth_deg` (the nearest beam outside the field of view): where the
+/// A-scan stays when the beam count changes.
+int beam_at_azimuth(double azimuth_deg, double azimuth_fov_deg, int beams);
+
+/// The beam holding the highest echo level (the middle beam when nothing echoes).
+int strongest_beam(const PolarImage& image);
+
+} // namespace sonarsim::ui

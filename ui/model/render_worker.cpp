@@ -1,0 +1,134 @@
+#include "ui/model/render_worker.hpp"
+
+#include <algorithm>
+#include <exception>
+
+namespace sonarsim::ui {
+namespace {
+double ms_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+} // namespace
+
+RenderWorker::RenderWorker() : thread_([this] { loop(); }) {}
+
+RenderWorker::~RenderWorker() {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stop_ = true;
+        cancel_.store(true, std::memory_order_relaxed);
+    }
+    wake_.notify_all();
+    thread_.join();
+}
+
+std::uint64_t RenderWorker::request(const SceneDesc& scene, bool preview, bool ground_truth) {
+    std::uint64_t id;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        id = next_id_++;
+        queued_ = Job{id, scene, preview, ground_truth};
+        // Restart on change: a full render of an outdated scene is stopped inside its trace. A running
+        // preview is let finish (a few ms): cancelling previews in favour of newer previews while the user
+        // drags would show nothing at all.
+        if (running_id_ != 0 && !running_preview_) cancel_.store(true, std::memory_order_relaxed);
+    }
+    wake_.notify_one();
+    return id;
+}
+
+std::optional<RenderResult> RenderWorker::take() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::optional<RenderResult> r = std::move(result_);
+    result_.reset();
+    return r;
+}
+
+bool RenderWorker::wait_for(std::uint64_t id, std::chrono::milliseconds timeout) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    return done_.wait_for(lock, timeout, [&] { return finished_id_ >= id; });
+}
+
+void RenderWorker::set_notify(std::function<void()> notify) {
+    std::lock_guard<std::mutex> lock(notify_mutex_);
+    notify_ = std::move(notify);
+}
+
+std::uint64_t RenderWorker::running_id() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return running_id_;
+}
+
+std::uint64_t RenderWorker::cancelled_count() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return cancelled_;
+}
+
+bool RenderWorker::busy() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return running_id_ != 0 || queued_.has_value();
+}
+
+void RenderWorker::loop() {
+    std::unique_ptr<Simulator> sim; // its own Simulator: core's is not thread-safe
+    Stage carried = Stage::None;    // what cancelled renders had started to recompute
+    for (;;) {
+        Job job;
+        {
+            std::unique_lock<std::mutex> lock(mutex_);
+            wake_.wait(lock, [&] { return stop_ || queued_.has_value(); });
+            if (stop_) return;
+            job = std::move(*queued_);
+            queued_.reset();
+            running_id_ = job.id, running_preview_ = job.preview;
+            cancel_.store(false, std::memory_order_relaxed); // only requests after this one cancel it
+        }
+        RenderResult r;
+        r.id = job.id;
+        bool cancelled = false;
+        const auto t0 = std::chrono::steady_clock::now();
+        try {
+            if (!sim) {
+                sim = std::make_unique<Simulator>(job.scene);
+                r.stage = Stage::Geometry;
+            } else {
+                r.stage = changed_stage(sim->scene(), job.scene);
+                sim->set_scene(job.scene); // a bad mesh throws; the last good geometry stays
+            }
+            TraceControl control;
+            control.cancel = &cancel_;
+            control.preview = job.preview;
+            r.frame = sim->render(control); // shares its stages with the simulator: no copy
+            r.scene = sim->scene();
+            if (job.ground_truth && !job.preview)
+                r.ground_truth =
+                    std::make_shared<const GroundTruth>(compute_ground_truth(r.frame->hits(), r.scene));
+            r.stage = std::min(r.stage, carried);
+            carried = Stage::None;
+        } catch (const TraceCancelled&) {
+            cancelled = true; // the simulator keeps its stale stages stale; a newer request is queued
+            carried = std::min(carried, r.stage);
+        } catch (const std::exception& e) {
+            r.error = e.what();
+            r.scene = job.scene;
+            r.frame.reset();
+        }
+        r.wall_ms = ms_since(t0);
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            running_id_ = 0, running_preview_ = false;
+            if (cancelled) {
+                ++cancelled_;
+                continue;
+            }
+            result_ = std::move(r);
+            finished_id_ = job.id;
+        }
+        done_.notify_all();
+        std::lock_guard<std::mutex> lock(notify_mutex_);
+        if (notify_) notify_();
+    }
+}
+
+} // namespace sonarsim::ui

@@ -1,0 +1,33 @@
+#include "ui/model/scene_files.hpp"
+
+#include "core/scene/params.hpp"
+#include "core/scene/scene_io.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace sonarsim::ui {
+
+bool looks_like_scene_file(const std::string& path) {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec || size > kMaxSceneFileBytes) return false;
+    std::ifstream f(path, std::ios::binary);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    const json j = json::parse(ss.str(), nullptr, false);
+    if (j.is_discarded() || !j.is_object()) return false;
+    // The sections of core's parameter table (sonar, water, sensor, ...), objects and the seafloor.
+    static const std::set<std::string> sections = [] {
+        std::set<std::string> s = {"seafloor", "objects"};
+        for (const ParamSpec& p : scene_params()) s.insert(p.key.substr(0, p.key.find('.')));
+        return s;
+    }();
+    for (auto it = j.begin(); it != j.end(); ++it)
+        if (!sections.count(it.key())) return false;
+    return true;
+}
+
+} // namespace sonarsim::ui

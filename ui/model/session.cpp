@@ -1,0 +1,210 @@
+#include "ui/model/session.hpp"
+
+#include "ui/model/snapshot.hpp"
+#include "ui/model/sonar_geometry.hpp"
+
+#include "core/base/errors.hpp"
+#include "core/geometry/mesh_cache.hpp"
+#include "core/base/pose.hpp"
+#include "core/scene/scene_io.hpp"
+
+#include <filesystem>
+
+namespace sonarsim::ui {
+
+Session::Session(const SceneDesc& scene)
+    : scene_(scene), last_good_(scene), geometry_(std::make_unique<SceneGeometry>(scene)),
+      meshes_version_(1) {}
+
+std::vector<std::shared_ptr<const TriMesh>> Session::local_meshes() const {
+    std::vector<std::shared_ptr<const TriMesh>> out;
+    for (size_t i = 0; i < geometry_->object_count(); ++i) out.push_back(geometry_->local_mesh(i));
+    return out;
+}
+
+void Session::update_geometry(const SceneDesc& scene) {
+    if (geometry_->update_transforms(scene)) return; // only poses changed: milliseconds, on this thread
+    geometry_ = std::make_unique<SceneGeometry>(scene);
+    ++meshes_version_;
+}
+
+void Session::set_scene(SceneDesc next) {
+    const Stage st = changed_stage(scene_, next);
+    if (st == Stage::None && next.source_file == scene_.source_file) return;
+    if (st == Stage::Geometry) update_geometry(next); // throws InputError: caller keeps the old scene
+    scene_ = std::move(next);
+    dirty_ = true;
+}
+
+bool Session::edit(const std::function<void(SceneDesc&)>& change) {
+    try {
+        SceneDesc next = scene_;
+        change(next);
+        validate_scene(next, next.source_file.empty() ? "viewer" : next.source_file);
+        set_scene(std::move(next));
+        return true;
+    } catch (const InputError& e) {
+        error_ = e.what();
+        return false;
+    }
+}
+
+bool Session::set(const std::string& key, const json& value) {
+    return edit([&](SceneDesc& s) { apply_setting(s, key, value, "viewer"); });
+}
+
+bool Session::reset_to_paper() {
+    return edit([](SceneDesc& s) {
+        const SceneDesc paper;
+        for (auto& p : scene_params())
+            if (p.type != ParamType::Vec3) p.put(s, p.get(paper));
+        if (s.seafloor) s.seafloor->material = Material{};
+        for (auto& o : s.objects) o.material = Material{};
+        s.water.surface_material = WaterParams{}.surface_material;
+    });
+}
+
+bool Session::open_scene(const std::string& path) {
+    try {
+        SceneDesc next = load_scene(path);
+        auto geometry = std::make_unique<SceneGeometry>(next);
+        scene_ = std::move(next);
+        geometry_ = std::move(geometry);
+        ++meshes_version_;
+        dirty_ = true;
+        status_ = "opened " + path;
+        error_.clear();
+        return true;
+    } catch (const InputError& e) {
+        error_ = e.what();
+        return false;
+    }
+}
+
+bool Session::add_mesh(const std::string& path) {
+    try {
+        std::error_code ec;
+        ObjectDesc o;
+        o.mesh = std::filesystem::absolute(path, ec).lexically_normal().string();
+        o.mesh_resolved = o.mesh;
+        const std::shared_ptr<const TriMesh> m = cached_mesh(o.mesh, path, "mesh"); // the geometry reuses it
+        glm::vec3 lo, hi;
+        mesh_bounds(*m, lo, hi);
+        // Stand it on the floor where the boresight meets it (or 1.5 m ahead), centred in x and y.
+        const SonarParams& s = scene_.sonar;
+        const glm::dvec3 bore = rotation_matrix(s.pose.orientation_deg) * glm::dvec3(1, 0, 0);
+        const glm::dvec3 pos = to_glm(s.pose.position_m);
+        const double floor_z = scene_.seafloor ? scene_.seafloor->height_m : 0.0;
+        double reach = 1.5;
+        if (bore.z < -1e-3) reach = std::min(s.range_max_m, (pos.z - floor_z) / -bore.z);
+        const glm::dvec3 at = pos + reach * bore;
+        o.position_m = {at.x - 0.5 * (lo.x + hi.x), at.y - 0.5 * (lo.y + hi.y), floor_z - lo.z};
+        const bool ok = edit([&](SceneDesc& sc) { sc.objects.push_back(o); });
+        if (ok) status_ = "added " + path;
+        return ok;
+    } catch (const InputError& e) {
+        error_ = e.what();
+        return false;
+    }
+}
+
+bool Session::save_scene(const std::string& path) {
+    try {
+        write_files_atomically({{path, to_bytes(snapshot_scene_text(scene_))}});
+        status_ = "saved " + path;
+        return true;
+    } catch (const std::exception& e) {
+        error_ = std::string("cannot save the scene: ") + e.what();
+        return false;
+    }
+}
+
+std::uint64_t Session::submit(bool interacting, Clock::time_point now) {
+    if (dirty_) {
+        dirty_ = false;
+        last_change_ = now;
+        full_pending_ = interacting;
+        requested_id_ = worker_.request(scene_, interacting, ground_truth_);
+        return requested_id_;
+    }
+    if (full_pending_ && (!interacting || now - last_change_ >= kRest)) {
+        // The input rests: the same scene again, in full quality (the worker re-traces a preview).
+        full_pending_ = false;
+        requested_id_ = worker_.request(scene_, false, ground_truth_);
+        return requested_id_;
+    }
+    return 0;
+}
+
+bool Session::poll() {
+    std::optional<RenderResult> r = worker_.take();
+    if (!r) return false;
+    if (!r->error.empty()) {
+        error_ = r->error;
+        // The newest request failed (a mesh that the worker could not load): go back to the last good scene.
+        if (r->id == requested_id_ && !dirty_) {
+            scene_ = last_good_;
+            full_pending_ = shown_ && shown_->frame->preview(); // the full image of the last good scene
+            try {
+                update_geometry(scene_);
+            } catch (const InputError&) {
+            }
+        }
+        return false;
+    }
+    // A preview request that came back in full quality (uniform and spread ignore TraceControl::preview).
+    if (r->id == requested_id_ && !r->frame->preview()) full_pending_ = false;
+    last_good_ = r->scene;
+    shown_ = std::make_shared<const RenderResult>(std::move(*r));
+    ++shown_count_;
+    return true;
+}
+
+bool Session::wait_latest(std::chrono::milliseconds timeout) {
+    const bool ok = requested_id_ == 0 || worker_.wait_for(requested_id_, timeout);
+    poll();
+    return ok;
+}
+
+bool Session::wait_full(std::chrono::milliseconds timeout) {
+    submit(false);
+    return wait_latest(timeout) && shown_ && !shown_->frame->preview();
+}
+
+bool Session::busy() const {
+    return dirty_ || full_pending_ || worker_.busy();
+}
+
+void Session::set_ground_truth(bool on) {
+    if (on == ground_truth_) return;
+    ground_truth_ = on;
+    if (on) dirty_ = true; // the shown frame has none: render it again with it
+}
+
+bool Session::snapshot(const std::string& prefix, const Bytes& view3d_png) {
+    if (!shown_) {
+        error_ = "no sonar image yet: nothing to snapshot";
+        return false;
+    }
+    if (shown_->frame->preview() && !wait_full(std::chrono::milliseconds(60000))) {
+        error_ = "snapshot: the full-quality image is not ready";
+        return false;
+    }
+    try {
+        if (ground_truth_ && !shown_->ground_truth && !wait_full(std::chrono::milliseconds(60000))) {
+            error_ = "snapshot: the ground truth is not ready";
+            return false;
+        }
+        const auto paths = write_snapshot(prefix, shown_->scene, *shown_->frame, view3d_png,
+                                          ground_truth_ ? shown_->ground_truth.get() : nullptr);
+        status_ = "snapshot:";
+        for (auto& p : paths) status_ += " " + std::filesystem::path(p).filename().string();
+        error_.clear();
+        return true;
+    } catch (const std::exception& e) {
+        error_ = std::string("snapshot failed: ") + e.what();
+        return false;
+    }
+}
+
+} // namespace sonarsim::ui

@@ -1,0 +1,109 @@
+// Non-GL state of a viewer session: the scene being edited, the last good scene and frame, the render worker,
+// errors, file operations and snapshots. A bad file or value leaves the last good scene and image in place
+// and sets error().
+#pragma once
+#include "ui/model/render_worker.hpp"
+
+#include "core/geometry/geometry.hpp"
+#include "core/geometry/mesh.hpp"
+#include "core/io/output.hpp"
+#include "core/scene/params.hpp"
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace sonarsim::ui {
+
+class Session {
+  public:
+    /// Starts the worker on `scene` (already validated). Throws InputError when a mesh cannot be loaded.
+    explicit Session(const SceneDesc& scene);
+
+    /// The scene as edited (what was last requested).
+    const SceneDesc& scene() const { return scene_; }
+    /// The traceable geometry of scene() (for picking), its objects' meshes in their own coordinates (for
+    /// drawing, placed by each object's transform) and a counter that changes when the meshes do (not when
+    /// objects only move: that updates the geometry in place).
+    const SceneGeometry& geometry() const { return *geometry_; }
+    std::vector<std::shared_ptr<const TriMesh>> local_meshes() const;
+    std::uint64_t meshes_version() const { return meshes_version_; }
+
+    /// Applies a change to a copy of the scene and validates it. On InputError: the scene stays, error() is
+    /// set, and false is returned. Returns true when accepted (whether or not anything changed).
+    bool edit(const std::function<void(SceneDesc&)>& change);
+    /// `key = value` through core's parameter table (apply_setting), then edit().
+    bool set(const std::string& key, const json& value);
+    /// Resets every non-pose parameter and all materials to the paper's values.
+    bool reset_to_paper();
+
+    bool open_scene(const std::string& path);
+    /// Adds a mesh file (OBJ/PLY/STL/OFF) as an object placed on the floor in front of the sonar.
+    bool add_mesh(const std::string& path);
+    /// Writes the edited scene as a scene file (atomically).
+    bool save_scene(const std::string& path);
+
+    using Clock = std::chrono::steady_clock;
+    /// How long the input must rest before a drag's previews are followed by the full-quality image.
+    static constexpr std::chrono::milliseconds kRest{150};
+    /// Sends the scene to the worker if it changed since the last request. `interacting` (a drag or a slider
+    /// is held): the change goes as a preview (TraceControl::preview); the full-quality image of the same
+    /// scene follows once the input is released or has not changed for kRest. Returns the request id (0:
+    /// none).
+    std::uint64_t submit(bool interacting = false, Clock::time_point now = Clock::now());
+    /// True while a preview was requested and its full-quality image not yet.
+    bool full_pending() const { return full_pending_; }
+    /// Takes a finished result from the worker. Returns true when the shown frame changed.
+    bool poll();
+    /// Waits for the newest request to finish, then polls. False on timeout.
+    bool wait_latest(std::chrono::milliseconds timeout);
+    /// Requests the full-quality image of the edited scene if it is not on its way, and waits for it.
+    bool wait_full(std::chrono::milliseconds timeout);
+    /// True while the worker has work queued or running, or the scene changed since the last request.
+    bool busy() const;
+    /// Called on the worker thread whenever a result is ready.
+    void set_notify(std::function<void()> notify) { worker_.set_notify(std::move(notify)); }
+
+    /// The frame on screen and the scene it was made from (null until the first image arrives);
+    /// shown()->frame->preview() while it is a drag's preview.
+    const RenderResult* shown() const { return shown_ ? shown_.get() : nullptr; }
+    std::uint64_t shown_count() const { return shown_count_; }
+
+    const std::string& error() const { return error_; }
+    void set_error(const std::string& e) { error_ = e; }
+    void clear_error() { error_.clear(); }
+    const std::string& status() const { return status_; }
+    void set_status(const std::string& s) { status_ = s; }
+
+    /// Writes the sonar files of the shown frame, the 3D view PNG and the scene file (see snapshot.hpp); a
+    /// preview on screen is first replaced by the full-quality image (wait_full).
+    /// Returns false (and sets error()) when there is nothing to save or writing fails.
+    bool snapshot(const std::string& prefix, const Bytes& view3d_png);
+    /// Ground truth per pixel for full-quality frames (computed by the worker): shown by the hover readout
+    /// and written by snapshots as PREFIX_gt_<name>.npy. Turning it on re-requests the shown scene.
+    void set_ground_truth(bool on);
+    bool ground_truth() const { return ground_truth_; }
+
+  private:
+    void set_scene(SceneDesc next);
+    /// Makes geometry_ match `scene`: new transforms when only poses differ, else a new SceneGeometry (meshes
+    /// from the cache). Throws InputError, keeping the old geometry.
+    void update_geometry(const SceneDesc& scene);
+
+    SceneDesc scene_, last_good_;
+    std::unique_ptr<SceneGeometry> geometry_;
+    std::uint64_t meshes_version_ = 0;
+    bool dirty_ = true;
+    bool ground_truth_ = false;
+    std::uint64_t requested_id_ = 0, shown_count_ = 0;
+    bool full_pending_ = false;       ///< the last request for scene_ was a preview
+    Clock::time_point last_change_{}; ///< when the last changed scene was sent
+    std::shared_ptr<const RenderResult> shown_;
+    std::string error_, status_;
+    RenderWorker worker_;
+};
+
+} // namespace sonarsim::ui

@@ -1,0 +1,63 @@
+#include "ui/model/trajectory.hpp"
+
+#include "core/base/errors.hpp"
+#include "core/io/output.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace sonarsim::ui {
+
+void Trajectory::add(double t_s, const Pose& pose, bool skip_repeat) {
+    if (skip_repeat && !samples_.empty() && samples_.back().pose.position_m == pose.position_m &&
+        samples_.back().pose.orientation_deg == pose.orientation_deg)
+        return;
+    samples_.push_back({t_s, pose});
+}
+
+Pose Trajectory::at(double t) const {
+    if (samples_.empty()) return Pose{};
+    if (t <= samples_.front().t_s) return samples_.front().pose;
+    if (t >= samples_.back().t_s) return samples_.back().pose;
+    const auto it = std::upper_bound(samples_.begin(), samples_.end(), t,
+                                     [](double v, const TrajectorySample& s) { return v < s.t_s; });
+    const TrajectorySample &b = *it, &a = *(it - 1);
+    const double span = b.t_s - a.t_s, u = span > 0 ? (t - a.t_s) / span : 1.0;
+    if (u >= 1) return b.pose;
+    Pose p;
+    for (size_t i = 0; i < 3; ++i) {
+        p.position_m[i] = a.pose.position_m[i] + u * (b.pose.position_m[i] - a.pose.position_m[i]);
+        const double d = std::remainder(b.pose.orientation_deg[i] - a.pose.orientation_deg[i], 360.0);
+        p.orientation_deg[i] = std::remainder(a.pose.orientation_deg[i] + u * d, 360.0);
+    }
+    return p;
+}
+
+std::string trajectory_csv(const Trajectory& tr) {
+    sonarsim::Trajectory rows; // core's CSV: the one format batch, Python and the viewer share
+    for (const TrajectorySample& s : tr.samples()) rows.push_back({s.t_s, s.pose});
+    return trajectory_to_csv(rows);
+}
+
+Trajectory parse_trajectory_csv(const std::string& text, const std::string& file) {
+    Trajectory tr;
+    for (const TrajectoryPoint& p : sonarsim::parse_trajectory_csv(text, file)) tr.add(p.t_s, p.pose, false);
+    return tr;
+}
+
+Trajectory load_trajectory(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) throw InputError(path, "", "cannot read the trajectory");
+    std::stringstream ss;
+    ss << f.rdbuf();
+    return parse_trajectory_csv(ss.str(), path);
+}
+
+void save_trajectory(const Trajectory& tr, const std::string& path) {
+    write_files_atomically({{path, to_bytes(trajectory_csv(tr))}});
+}
+
+} // namespace sonarsim::ui
