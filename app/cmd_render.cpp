@@ -59,9 +59,10 @@ int run_render(const RenderOptions& o) {
     }
 
     Simulator sim(scene);
+    sim.request({o.ground_truth, false});
     const auto f = sim.render();
     if (o.ground_truth)
-        for (auto& file : ground_truth_files(o.out, compute_ground_truth(f->hits(), scene)))
+        for (auto& file : ground_truth_files(o.out, *f->truth_ptr))
             extra.push_back(std::move(file));
     write_render_files(o.out, scene, *f, std::move(extra));
     if (o.ground_truth) std::cout << "wrote " << o.out << "_gt_*.npy (ground truth per range bin and beam)\n";

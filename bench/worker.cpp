@@ -4,7 +4,7 @@
 
 #include "core/display/image.hpp"
 #include "core/scene/scene_io.hpp"
-#include "core/shading/shade.hpp"
+#include "core/shading/accumulate.hpp"
 #include "core/analysis/study.hpp"
 #include "core/base/timing.hpp"
 #include "core/sampling/trace.hpp"
@@ -82,7 +82,7 @@ Timed render_once(const SceneGeometry& g, const SceneDesc& s, const SectorResamp
     TraceResult t = trace(g, s);
     r.trace_ms = ms_since(t0);
     t0 = Clock::now();
-    r.polar = t.shaded ? std::move(*t.shaded) : shade(t, s);
+    r.polar = t.shaded ? *t.shaded->image : shade(t, s);
     r.shade_ms = ms_since(t0);
     r.rays = t.rays_traced;
     r.estimate = t.error_estimate;

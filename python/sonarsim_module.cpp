@@ -114,9 +114,9 @@ class PySimulator {
         std::shared_ptr<const GroundTruth> gt;
         {
             py::gil_scoped_release release;
+            sim_->request({ground_truth, false});
             f = sim_->render();
-            if (ground_truth)
-                gt = std::make_shared<const GroundTruth>(compute_ground_truth(f->hits(), scene_));
+            gt = f->truth_ptr;
         }
         return {f, scene_, gt};
     }

@@ -1,7 +1,7 @@
 #include "core/analysis/study.hpp"
 
 #include "core/base/pose.hpp"
-#include "core/shading/shade.hpp"
+#include "core/shading/accumulate.hpp"
 #include "core/base/timing.hpp"
 #include "core/sampling/trace.hpp"
 
@@ -22,7 +22,7 @@ SceneDesc with_sampling(SceneDesc s, const Sampling& m) {
 
 PolarImage render_raw(const SceneGeometry& g, const SceneDesc& s, TraceResult* hits = nullptr) {
     TraceResult t = trace(g, s);
-    PolarImage img = t.shaded ? std::move(*t.shaded) : shade(t, s);
+    PolarImage img = t.shaded ? *t.shaded->image : shade(t, s);
     if (hits) *hits = std::move(t);
     return img;
 }

@@ -176,10 +176,10 @@ BatchSummary run_batch(const std::string& dir, const BatchOptions& options) {
                 sim->set_scene(s);
             else
                 sim.emplace(s);
+            sim->request({options.ground_truth, false});
             const auto f = sim->render();
             write_render_files(frame_prefix(dir, k), s, *f,
-                               options.ground_truth ? ground_truth_files(frame_prefix(dir, k),
-                                                                         compute_ground_truth(f->hits(), s))
+                               options.ground_truth ? ground_truth_files(frame_prefix(dir, k), *f->truth_ptr)
                                                     : std::vector<std::pair<std::string, Bytes>>{});
             ++progress.rendered;
         }

@@ -72,37 +72,49 @@ void Simulator::set_scene(const SceneDesc& scene) {
     dirty_ = std::min(dirty_, s == Stage::Geometry ? Stage::Trace : s);
 }
 
+void Simulator::request(const FrameExtras& extras) {
+    extras_ = extras;
+}
+
 std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
     // frame_ holds the newest stage results; a stage recomputed here gets a new object, the others are
     // shared.
     Frame next = frame_;
     const bool retrace = dirty_ <= Stage::Trace || !next.hits_ptr || (next.preview() && !control.preview);
     const Stage from = retrace ? Stage::Trace : dirty_;
-    bool shaded = false;
+    // One accumulation pass: every channel this frame needs that is not shared with the frame before.
+    const bool reshade = from <= Stage::Shade;
+    Channels c;
+    c.image = reshade;
+    c.sensor_inputs = reshade && needs_sensor_inputs(scene_);
+    c.path_orders = reshade && scene_.sampling.bounces > 0;
+    c.ground_truth = extras_.ground_truth && (reshade || !next.truth_ptr);
+    c.strongest = extras_.echo_paths && (reshade || !next.strongest_ptr);
+    if (reshade) next.truth_ptr.reset(), next.strongest_ptr.reset(), next.path_order_db.clear();
+    std::shared_ptr<const Accumulation> pass;
     if (retrace) {
-        TraceResult t = trace(*geometry_, scene_, control); // TraceCancelled: nothing has changed yet
+        TraceControl traced = control;
+        traced.channels = c;
+        TraceResult t = trace(*geometry_, scene_, traced); // TraceCancelled: nothing has changed yet
         next.trace_ms = t.trace_ms;
-        if (t.shaded) { // the tracer shaded its cells with this very scene
-            next.ideal_ptr = std::make_shared<const PolarImage>(std::move(*t.shaded));
-            t.shaded.reset();
-            next.alpha_db_per_m = shade_constants(scene_).alpha_db_per_m;
-            next.shade_ms = 0;
-            shaded = true;
-        }
+        pass = std::move(t.shaded); // the tracer ran the pass on its cells with this very scene
         next.hits_ptr = std::make_shared<const TraceResult>(std::move(t));
     }
-    if (from <= Stage::Shade) {
+    if (!pass && c.any()) {
         const auto t0 = std::chrono::steady_clock::now();
-        if (!shaded) {
-            next.ideal_ptr = std::make_shared<const PolarImage>(shade(*next.hits_ptr, scene_));
-            next.alpha_db_per_m = shade_constants(scene_).alpha_db_per_m;
-        }
-        next.inputs_ptr =
-            needs_sensor_inputs(scene_)
-                ? std::make_shared<const SensorInputs>(shade_sensor_inputs(*next.hits_ptr, scene_))
-                : nullptr;
-        next.shade_ms = shaded && !next.inputs_ptr ? 0 : ms_since(t0);
+        pass = std::make_shared<const Accumulation>(accumulate(*next.hits_ptr, scene_, c));
+        next.shade_ms = ms_since(t0);
+    } else if (reshade) {
+        next.shade_ms = 0; // shaded in the trace (its time is in trace_ms)
     }
+    if (pass) {
+        if (c.image) next.ideal_ptr = pass->image;
+        if (reshade) next.inputs_ptr = pass->inputs;
+        if (c.ground_truth) next.truth_ptr = pass->truth;
+        if (c.strongest) next.strongest_ptr = pass->strongest;
+        if (c.path_orders) next.path_order_db = pass->path_order_db;
+    }
+    if (reshade) next.alpha_db_per_m = shade_constants(scene_).alpha_db_per_m;
     if (from <= Stage::Sensor) {
         const auto t0 = std::chrono::steady_clock::now();
         next.polar_ptr = sensor_is_ideal(scene_)
@@ -134,8 +146,7 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
         size_t ghosts = 0;
         for (auto& g : f.hits().ghosts) ghosts += g.size();
         json orders = json::array();
-        for (double e : path_order_energy_db(f.hits(), s))
-            orders.push_back(std::isfinite(e) ? json(e) : json(nullptr));
+        for (double e : f.path_order_db) orders.push_back(std::isfinite(e) ? json(e) : json(nullptr));
         j["multipath"] = {
             {"rays", f.hits().multipath_rays},
             {"ghost_cells", ghosts},

@@ -7,7 +7,7 @@
 #include "core/display/image.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/scene.hpp"
-#include "core/shading/shade.hpp"
+#include "core/shading/accumulate.hpp"
 #include "core/sampling/trace.hpp"
 
 #include <cstdint>
@@ -27,7 +27,11 @@ struct Frame {
     std::shared_ptr<const SensorInputs> inputs_ptr; ///< what the sensor needs beyond it (or null)
     std::shared_ptr<const PolarImage> polar_ptr;    ///< the sensor's output [dB]; ideal_ptr itself when ideal
     std::shared_ptr<const Image8> sector_ptr;       ///< RGB fan
-    DisplayParams display;                          ///< the display range it is shown with (display.auto)
+    std::shared_ptr<const GroundTruth> truth_ptr;   ///< when asked for (Simulator::request), else null
+    /// Per image cell the strongest contribution (for drawing its path), when asked for, else null.
+    std::shared_ptr<const StrongestContribution> strongest_ptr;
+    std::vector<double> path_order_db; ///< with multipath (sampling.bounces > 0): echo per path order [dB]
+    DisplayParams display;             ///< the display range it is shown with (display.auto)
     double alpha_db_per_m = 0;
     double trace_ms = 0, shade_ms = 0, sensor_ms = 0, image_ms = 0; ///< each stage's latest run
 
@@ -45,6 +49,12 @@ struct Frame {
 /// scheme, absorption (f, T, D) and material q, mu, h re-trace: they decide where its rays go.
 Stage changed_stage(const SceneDesc& before, const SceneDesc& after);
 
+/// What a frame carries beyond the images, each made in the shading pass only when asked for.
+struct FrameExtras {
+    bool ground_truth = false; ///< Frame::truth_ptr
+    bool echo_paths = false;   ///< Frame::strongest_ptr
+};
+
 class Simulator {
   public:
     explicit Simulator(const SceneDesc& scene);
@@ -57,6 +67,9 @@ class Simulator {
     /// simulator is as before the call (its stale stages stay stale). `control.preview` (adaptive scheme)
     /// traces the base grid only; the next render() without it re-traces, even if the scene is unchanged.
     std::shared_ptr<const Frame> render(const TraceControl& control = {});
+    /// The extras the next frames carry; asking for one the last frame lacks re-runs the shading pass for it
+    /// alone on the next render() (the image stages are shared).
+    void request(const FrameExtras& extras);
     /// Stage that the next render() starts at.
     Stage pending() const { return dirty_; }
 
@@ -66,6 +79,7 @@ class Simulator {
     Frame frame_;
     std::unique_ptr<SectorResampler> resampler_; ///< rebuilt only when the image geometry changes
     Stage dirty_ = Stage::Trace;
+    FrameExtras extras_;
 };
 
 /// Metadata of a rendered frame: every effective parameter plus derived values and timings.

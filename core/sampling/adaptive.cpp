@@ -3,7 +3,7 @@
 #include "core/scene/params.hpp"
 #include "core/shading/physics.hpp"
 #include "core/analysis/reference.hpp"
-#include "core/shading/shade.hpp"
+#include "core/shading/accumulate.hpp"
 #include "core/sampling/trace.hpp"
 #include "core/sampling/multipath.hpp"
 #include "core/sampling/trace_detail.hpp"
@@ -613,9 +613,12 @@ TraceResult trace_pass(Context& ctx, int M0, TraceResult::ErrorEstimate& est) {
         for (auto& c : b) fine.rays_traced += c.rays;
     beams.clear(); // the nodes are no longer needed: free them before shading
     beams.shrink_to_fit();
-    PolarImage fine_image = shade(fine, s);
+    Channels channels = ctx.control.channels; // with the image: the estimate below needs it
+    channels.image = true;
+    auto shaded = std::make_shared<const Accumulation>(accumulate(fine, s, channels));
+    const PolarImage& fine_image = *shaded->image;
     if (ctx.control.preview) {
-        fine.shaded = std::move(fine_image);
+        fine.shaded = std::move(shaded);
         fine.preview = true;
         return fine;
     }
@@ -630,7 +633,7 @@ TraceResult trace_pass(Context& ctx, int M0, TraceResult::ErrorEstimate& est) {
         for (int i = 0; i < sampled; ++i)
             fine_sampled.level_db[size_t(b) * size_t(sampled) + size_t(i)] = fine_image.at(b, i * stride);
     const ImageError e = compare_images(shade(coarse, sampled_scene), fine_sampled);
-    fine.shaded = std::move(fine_image); // the caller need not shade these cells again
+    fine.shaded = std::move(shaded); // the caller need not shade these cells again
     // The coarse image's error is taken as three times the fine one's (first order at discontinuities, the
     // slowest case): fine error ~ |fine - coarse| / 2.
     est.valid = true;

@@ -5,8 +5,10 @@
 #include "core/scene/scene.hpp"
 
 #include "core/display/polar_image.hpp"
+#include "core/shading/channels.hpp"
 
 #include <atomic>
+#include <memory>
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
@@ -51,6 +53,8 @@ struct GhostCell {
     bool mixed() const { return tx_bounces != rx_bounces; }
 };
 
+struct Accumulation;
+
 struct TraceResult {
     int beams = 0;
     std::vector<std::vector<Cell>> cells; ///< per beam: the cells whose ray hit something within reach
@@ -58,9 +62,9 @@ struct TraceResult {
     std::vector<std::vector<GhostCell>> ghosts;
     std::uint64_t rays_traced = 0;
     std::uint64_t multipath_rays = 0; ///< continuation and shadow rays of the multipath ghosts
-    /// Set when the tracer already shaded its cells with the scene it was given (adaptive does, to estimate
-    /// its error); the L_EN image of those cells.
-    std::optional<PolarImage> shaded;
+    /// Set when the tracer already ran the accumulation pass on its cells with the scene it was given
+    /// (adaptive does, to estimate its error): the image channel and those TraceControl::channels asked for.
+    std::shared_ptr<const Accumulation> shaded;
     /// Adaptive scheme: estimated error of this sampling (difference to one refinement level coarser).
     struct ErrorEstimate {
         bool valid = false;
@@ -79,6 +83,9 @@ struct TraceControl {
     /// Adaptive scheme: the base grid only (no refinement, no error estimate), for an image within a
     /// frame budget while the user drags; uniform and spread ignore it.
     bool preview = false;
+    /// The channels the caller will shade from the traced cells: a tracer that shades its cells anyway
+    /// (adaptive) fills them in the same pass (TraceResult::shaded), so no cell's echo is evaluated twice.
+    Channels channels;
     bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
 };
 

@@ -5,7 +5,7 @@
 #pragma once
 #include "core/display/polar_image.hpp"
 #include "core/scene/scene.hpp"
-#include "core/shading/shade.hpp"
+#include "core/shading/accumulate.hpp"
 
 #include <cstdint>
 

@@ -32,18 +32,23 @@ struct GroundTruth {
     std::vector<std::int32_t> bounces;
 };
 
+/// Ground truth of the stored hits alone (accumulate() with the ground-truth channel); a Simulator asked for
+/// it (Simulator::request) makes it in the same pass as the image.
 GroundTruth compute_ground_truth(const TraceResult& hits, const SceneDesc& scene);
 
-/// The path of the strongest contribution to raw image cell (bin, beam), for drawing: world points from the
-/// sonar out to the scatterer and back (sonar, mirrors out, scatterer, mirrors back, sonar); no points
-/// where nothing echoes.
+/// Arrays of the given shape, each cell as where nothing echoes.
+GroundTruth empty_ground_truth(int bins, int beams);
+
+/// The path of a contribution to beam `beam` (index in BeamContributions order, e.g. the strongest one of an
+/// image cell from accumulate()'s strongest channel), for drawing: world points from the sonar out to the
+/// scatterer and back (sonar, mirrors out, scatterer, mirrors back, sonar); no points for index -1.
 struct EchoPath {
     std::vector<std::array<double, 3>> points_m;
     int bounces = 0;             ///< reflections out and back
     int out_bounces = 0;         ///< those on the way out: points_m[1 + out_bounces] is the scatterer
     std::int32_t object_id = -1; ///< the scatterer, as GroundTruth::object_id
 };
-EchoPath strongest_path(const TraceResult& hits, const SceneDesc& scene, int bin, int beam);
+EchoPath echo_path(const TraceResult& hits, const SceneDesc& scene, int beam, std::int32_t contribution);
 
 /// PREFIX_gt_<name>.npy for each array (float32, int32 for object_id and surfaces).
 std::vector<std::pair<std::string, Bytes>> ground_truth_files(const std::string& prefix,

@@ -60,7 +60,7 @@ TEST_CASE("adaptive rays do not grow with the tessellation of a smooth surface",
         SceneDesc dense = s;
         dense.sampling.scheme = SamplingScheme::Spread;
         dense.sampling.elevation_rays = 3000, dense.sampling.azimuth_rays = 4;
-        const ImageError e = compare_images(*t.shaded, shade(trace(g, dense), dense));
+        const ImageError e = compare_images(*t.shaded->image, shade(trace(g, dense), dense));
         INFO("triangles " << 2 * (sizes[k] - 1) * (sizes[k] - 1) << ", rays " << rays[k]);
         CHECK(e.rel_l1 < 0.01);
         CHECK(e.median_abs_db < 0.1);
@@ -109,5 +109,5 @@ TEST_CASE("a cancelled trace stops and throws, a preview traces the base grid on
     CHECK_FALSE(p.error_estimate.valid);
     REQUIRE(p.shaded);
     // The preview is the spread scheme on the same grid.
-    CHECK(compare_images(*p.shaded, shade(trace(g, spread), spread)).rel_l1 < 1e-6);
+    CHECK(compare_images(*p.shaded->image, shade(trace(g, spread), spread)).rel_l1 < 1e-6);
 }

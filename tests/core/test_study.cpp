@@ -2,7 +2,7 @@
 // must give the same image as the whole scene traced at once.
 #include "core/base/pose.hpp"
 #include "core/scene/scene_io.hpp"
-#include "core/shading/shade.hpp"
+#include "core/shading/accumulate.hpp"
 #include "core/analysis/study.hpp"
 #include "core/sampling/trace.hpp"
 

@@ -3,7 +3,8 @@
 
 Renders each example scene with its own sensor, the device sensor, ground truth and (in the tank) multipath;
 the three sampling schemes; and a small batch dataset with ARIS and MCAP files. Every file written is hashed;
-timings (`time_ms`, index.csv's `ms`) and the ARIS file's creation date are taken out before hashing, everything else must match.
+timings (`time_ms`, index.csv's `ms`) and the ARIS file's creation date are taken out before hashing, and
+the repository's absolute path (mesh paths in the metadata) is replaced by a placeholder, everything else must match.
 
   golden.py SONARSIM ASSETS OUTDIR MANIFEST            compare (exit 1 listing every file that differs)
   golden.py SONARSIM ASSETS OUTDIR MANIFEST --update   rewrite the manifest (only when an image is meant to change)
@@ -37,13 +38,13 @@ BATCH = ["--circle", "1.5,1.5,0,1.2,0.8,3", "--ground-truth", "--aris", "BATCHDI
          "BATCHDIR/rec.mcap", "--set", "sonar.beams=64", "--set", "sensor.model=device"]
 
 
-def normalise(path):
+def normalise(path, root):
     with open(path, "rb") as f:
         data = f.read()
-    if path.endswith(".json"):
+    if path.endswith(".json"):  # timings vary; mesh paths are absolute, in whichever clone this runs
         doc = json.loads(data)
         doc.pop("time_ms", None)
-        data = json.dumps(doc, sort_keys=True).encode()
+        data = json.dumps(doc, sort_keys=True).replace(root, "<repository>").encode()
     elif path.endswith("index.csv"):  # the ms column is a timing
         rows = [line.split(",") for line in data.decode().splitlines()]
         col = rows[0].index("ms")
@@ -82,7 +83,7 @@ def main():
             rel = os.path.relpath(p, out)
             if rel.endswith(".lock"):
                 continue
-            sums[rel] = normalise(p)
+            sums[rel] = normalise(p, os.path.dirname(os.path.abspath(assets)))
     if update:
         with open(manifest, "w") as f:
             for k in sorted(sums):

@@ -5,8 +5,10 @@ namespace sonarsim::ui {
 const EchoPath& HoveredPath::update(const RenderResult& shown, std::uint64_t shown_count, int bin, int beam) {
     if (valid_ && count_ == shown_count && bin_ == bin && beam_ == beam) return path_;
     valid_ = true, count_ = shown_count, bin_ = bin, beam_ = beam;
-    path_ = shown.frame && shown.frame->hits_ptr
-                ? strongest_path(*shown.frame->hits_ptr, shown.scene, bin, beam)
+    const auto& f = shown.frame;
+    const StrongestContribution* best = f ? f->strongest_ptr.get() : nullptr;
+    path_ = best && f->hits_ptr && bin >= 0 && bin < best->bins && beam >= 0 && beam < best->beams
+                ? echo_path(*f->hits_ptr, shown.scene, beam, best->at(bin, beam))
                 : EchoPath{};
     return path_;
 }

@@ -1,5 +1,6 @@
-// The echo path of a hovered image cell (core's strongest_path): computed once per frame and cell from the
-// shown frame and the scene it was made from, drawn in the 3D view and named in the hover readout.
+// The echo path of a hovered image cell: the strongest contribution the shading pass recorded for it
+// (Frame::strongest_ptr, full-quality frames only; previews show none), turned into points once per frame
+// and cell; drawn in the 3D view and named in the hover readout. Hovering shades nothing.
 #pragma once
 #include "ui/model/render_worker.hpp"
 

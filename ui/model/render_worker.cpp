@@ -99,11 +99,12 @@ void RenderWorker::loop() {
             TraceControl control;
             control.cancel = &cancel_;
             control.preview = job.preview;
+            // Full-quality frames carry each cell's strongest contribution (hovering draws its path without
+            // shading anything) and, when asked for, the ground truth, all made in the shading pass.
+            sim->request({job.ground_truth && !job.preview, !job.preview});
             r.frame = sim->render(control); // shares its stages with the simulator: no copy
             r.scene = sim->scene();
-            if (job.ground_truth && !job.preview)
-                r.ground_truth =
-                    std::make_shared<const GroundTruth>(compute_ground_truth(r.frame->hits(), r.scene));
+            r.ground_truth = r.frame->truth_ptr;
             r.stage = std::min(r.stage, carried);
             carried = Stage::None;
         } catch (const TraceCancelled&) {

@@ -1,0 +1,258 @@
+#include "core/shading/accumulate.hpp"
+
+#include "core/base/pose.hpp"
+#include "core/scene/sonar_grid.hpp"
+#include "core/sensor/sensor_patterns.hpp"
+#include "core/shading/footprint.hpp"
+#include "core/shading/log_sum.hpp"
+#include "core/shading/shade.hpp"
+#include "core/shading/truth_accumulator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tbb/parallel_for.h>
+
+namespace sonarsim {
+namespace {
+
+constexpr double kNegInf = -std::numeric_limits<double>::infinity();
+
+/// What every beam of one pass shares: the scene's constants and the outputs, written per beam column.
+struct Pass {
+    const TraceResult& hits;
+    const SceneDesc& s;
+    ShadeConstants k;
+    SonarGrid grid;
+    int K, N, S;
+    double r_min, r_max, dr;
+    bool spread;
+    glm::dmat3 R;
+    glm::dvec3 origin;
+    PolarImage* image = nullptr;
+    SensorInputs* inputs = nullptr;
+    GroundTruth* truth = nullptr;
+    StrongestContribution* strongest = nullptr;
+    std::vector<std::vector<LogSum>>* orders = nullptr; ///< [beam][order]
+    size_t order_count = 1;
+
+    Pass(const TraceResult& h, const SceneDesc& scene)
+        : hits(h), s(scene), k(shade_constants(scene)), grid(scene.sonar), K(grid.bins), N(grid.beams),
+          S(azimuth_subcolumns(scene)), r_min(grid.range_min_m), r_max(grid.range_max_m), dr(grid.bin_m),
+          spread(scene.sampling.scheme != SamplingScheme::Uniform),
+          R(rotation_matrix(scene.sonar.pose.orientation_deg)), origin(to_glm(scene.sonar.pose.position_m)) {}
+};
+
+/// One beam's sums; `Img`, `Sens`, `Gt`, `Ord`, `Str` say which channels it fills (compiled out otherwise).
+template <bool Img, bool Sens, bool Gt, bool Ord, bool Str> class BeamPass {
+  public:
+    BeamPass(const Pass& p, int beam) : p_(p), i_(beam), cells_(p.hits, beam) {}
+
+    void run() {
+        const double x_max = contribution_levels(cells_, p_.s, p_.k, x_);
+        if constexpr (Ord) orders();
+        if (x_max == kNegInf) return; // nothing echoes in this beam
+        const size_t K = size_t(p_.K);
+        const bool fine = Sens && p_.inputs->sub > 1, elevation = Sens && !p_.inputs->elevation_rad.empty();
+        if constexpr (Img) lin_.assign(K, 0.0), hit_.assign(K, 0);
+        if (fine) fine_.assign(K * size_t(p_.S), 0.0);
+        if (elevation) wsum_.assign(K, 0.0), esum_.assign(K, 0.0);
+        if constexpr (Gt) truth_.assign(K, TruthAccumulator{});
+        if constexpr (Str) best_.assign(K, 0.0), best_n_.assign(K, -1);
+        std::vector<double> share(size_t(p_.S), 1.0);
+        const double a_top = p_.grid.beam_port_edge_rad(i_), spacing = p_.grid.spacing_rad;
+        for (size_t n = 0; n < cells_.size(); ++n) {
+            if (x_[n] == kNegInf) continue;
+            const Cell& c = cells_[n];
+            const double w = std::exp(x_[n] - x_max);
+            if (fine) { // the cell's azimuth interval over the beam's sub-columns
+                const double a0 = c.azimuth_rad - 0.5 * c.azimuth_width_rad, a1 = a0 + c.azimuth_width_rad;
+                for (int q = 0; q < p_.S; ++q) {
+                    const double hi = a_top - q * spacing / p_.S, lo = hi - spacing / p_.S;
+                    share[size_t(q)] =
+                        std::max(0.0, std::min(a1, hi) - std::max(a0, lo)) / c.azimuth_width_rad;
+                }
+            }
+            [[maybe_unused]] const GhostCell* ghost = cells_.ghost(n);
+            [[maybe_unused]] std::uint64_t key = 0;
+            [[maybe_unused]] unsigned bit = 0;
+            [[maybe_unused]] double inc = 0, cos_a = 0, sin_a = 0;
+            if constexpr (Gt) { // the azimuth's sine and cosine once per cell (sonar_direction's products)
+                cos_a = std::cos(double(c.azimuth_rad)), sin_a = std::sin(double(c.azimuth_rad));
+                key = std::uint64_t(ghost ? ghost->order() : 0) << 32 | c.material;
+                bit = c.material == kSurfaceMaterial ? 63u : std::min(c.material, 62u);
+                inc = rad2deg(std::acos(std::clamp(double(c.cos_incidence), 0.0, 1.0)));
+            }
+            detail::for_each_bin(c, p_.spread, p_.K, p_.r_min, p_.r_max, p_.dr, [&](int b, double frac) {
+                const size_t bb = size_t(b);
+                const double v = w * frac;
+                if constexpr (Img) lin_[bb] += v, hit_[bb] = 1;
+                if (fine)
+                    for (int q = 0; q < p_.S; ++q)
+                        fine_[bb * size_t(p_.S) + size_t(q)] += v * share[size_t(q)];
+                if (elevation)
+                    wsum_[bb] += v, esum_[bb] += v * detail::elevation_at(c, p_.grid.bin_centre_m(b));
+                if constexpr (Gt)
+                    if (v > 0) {
+                        const double r = p_.grid.bin_centre_m(b), e = detail::elevation_at(c, r);
+                        const double ce = std::cos(e);
+                        const glm::dvec3 point =
+                            ghost ? glm::dvec3(c.point)
+                                  : p_.origin + r * (p_.R * glm::dvec3(ce * cos_a, ce * sin_a, std::sin(e)));
+                        truth_[bb].add(v, e, inc, point, key, bit);
+                    }
+                if constexpr (Str)
+                    if (v > best_[bb]) best_[bb] = v, best_n_[bb] = std::int32_t(n);
+            });
+        }
+        if constexpr (Img) write_image(x_max);
+        if (Sens) write_inputs(x_max, fine, elevation);
+        if constexpr (Gt)
+            for (int b = 0; b < p_.K; ++b) truth_[size_t(b)].write(*p_.truth, size_t(b) * p_.N + i_);
+        if constexpr (Str)
+            for (int b = 0; b < p_.K; ++b) p_.strongest->index[size_t(b) * p_.N + i_] = best_n_[size_t(b)];
+    }
+
+  private:
+    /// Echo per path order: each contribution's share inside the window, summed in the log domain.
+    void orders() {
+        auto& mine = (*p_.orders)[size_t(i_)];
+        for (size_t n = 0; n < cells_.size(); ++n) {
+            if (x_[n] == kNegInf) continue;
+            double inside = 0;
+            detail::for_each_bin(cells_[n], p_.spread, p_.K, p_.r_min, p_.r_max, p_.dr,
+                                 [&](int, double f) { inside += f; });
+            const GhostCell* g = cells_.ghost(n);
+            const size_t order = std::min(p_.order_count - 1, size_t(g ? g->order() : 0));
+            if (inside > 0) mine[order].add(x_[n] + std::log(inside));
+        }
+    }
+
+    void write_image(double x_max) {
+        const int K = p_.K, N = p_.N;
+        bool underflow = false;
+        for (int b = 0; b < K; ++b) underflow |= hit_[size_t(b)] && !(lin_[size_t(b)] > 0);
+        float* out = p_.image->level_db.data();
+        if (underflow) {
+            // Some bin lies more than ~3000 dB below the beam's peak: sum that beam in the log domain
+            // instead.
+            std::vector<LogSum> acc(static_cast<size_t>(K));
+            for (size_t n = 0; n < cells_.size(); ++n)
+                if (x_[n] != kNegInf)
+                    detail::for_each_bin(
+                        cells_[n], p_.spread, K, p_.r_min, p_.r_max, p_.dr,
+                        [&](int b, double frac) { acc[size_t(b)].add(x_[n] + std::log(frac)); });
+            for (int b = 0; b < K; ++b) {
+                const double lv = acc[size_t(b)].log_value();
+                if (lv != kNegInf) out[size_t(b) * N + i_] = float(lv / kLn10Over10 - p_.k.noise_level_db);
+            }
+            return;
+        }
+        for (int b = 0; b < K; ++b)
+            if (lin_[size_t(b)] > 0)
+                out[size_t(b) * N + i_] =
+                    float((x_max + std::log(lin_[size_t(b)])) / kLn10Over10 - p_.k.noise_level_db);
+    }
+
+    void write_inputs(double x_max, bool fine, bool elevation) {
+        SensorInputs& in = *p_.inputs;
+        const int K = p_.K, N = p_.N, S = p_.S;
+        for (int b = 0; b < K; ++b) {
+            if (elevation && wsum_[size_t(b)] > 0)
+                in.elevation_rad[size_t(b) * N + i_] = float(esum_[size_t(b)] / wsum_[size_t(b)]);
+            for (int q = 0; fine && q < S; ++q)
+                if (const double v = fine_[size_t(b) * S + q]; v > 0)
+                    in.fine.level_db[size_t(b) * N * S + size_t(i_) * S + q] =
+                        float((x_max + std::log(v)) / kLn10Over10 - p_.k.noise_level_db);
+        }
+    }
+
+    const Pass& p_;
+    const int i_;
+    const BeamContributions cells_;
+    std::vector<double> x_, lin_, fine_, wsum_, esum_, best_;
+    std::vector<char> hit_;
+    std::vector<TruthAccumulator> truth_;
+    std::vector<std::int32_t> best_n_;
+};
+
+/// Runs BeamPass over every beam with the channels of `c` as template arguments.
+template <bool... Fixed> void run_beams(const Pass& p, const Channels& c) {
+    constexpr size_t n = sizeof...(Fixed);
+    if constexpr (n == 5) {
+        tbb::parallel_for(0, std::min(p.N, p.hits.beams), [&](int i) { BeamPass<Fixed...>(p, i).run(); });
+    } else {
+        const bool flags[5] = {c.image, c.sensor_inputs, c.ground_truth, c.path_orders, c.strongest};
+        if (flags[n])
+            run_beams<Fixed..., true>(p, c);
+        else
+            run_beams<Fixed..., false>(p, c);
+    }
+}
+
+PolarImage empty_image(int bins, int beams) {
+    PolarImage img;
+    img.bins = bins, img.beams = beams;
+    img.level_db.assign(size_t(bins) * size_t(beams), -std::numeric_limits<float>::infinity());
+    return img;
+}
+
+} // namespace
+
+bool needs_sensor_inputs(const SceneDesc& s) {
+    return azimuth_subcolumns(s) > 1 || s.sensor.speckle != Speckle::Off;
+}
+
+Accumulation accumulate(const TraceResult& hits, const SceneDesc& s, const Channels& c) {
+    Pass p(hits, s);
+    const size_t cells = size_t(p.K) * size_t(p.N);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    auto image = c.image ? std::make_shared<PolarImage>(empty_image(p.K, p.N)) : nullptr;
+    auto inputs = c.sensor_inputs ? std::make_shared<SensorInputs>() : nullptr;
+    if (inputs) {
+        inputs->sub = p.S;
+        if (p.S > 1) inputs->fine = empty_image(p.K, p.N * p.S);
+        if (s.sensor.speckle != Speckle::Off) inputs->elevation_rad.assign(cells, nan);
+    }
+    auto truth = c.ground_truth ? std::make_shared<GroundTruth>(empty_ground_truth(p.K, p.N)) : nullptr;
+    auto strongest = c.strongest ? std::make_shared<StrongestContribution>() : nullptr;
+    if (strongest) strongest->bins = p.K, strongest->beams = p.N, strongest->index.assign(cells, -1);
+    p.order_count = size_t(2 * std::max(0, s.sampling.bounces) + 1);
+    std::vector<std::vector<LogSum>> orders(c.path_orders ? size_t(std::min(p.N, hits.beams)) : 0,
+                                            std::vector<LogSum>(p.order_count));
+    p.image = image.get(), p.inputs = inputs.get(), p.truth = truth.get(), p.strongest = strongest.get();
+    p.orders = &orders;
+    if (c.any()) run_beams<>(p, c);
+
+    Accumulation out;
+    out.image = std::move(image), out.inputs = std::move(inputs), out.truth = std::move(truth);
+    out.strongest = std::move(strongest);
+    if (c.path_orders) {
+        out.path_order_db.resize(p.order_count);
+        for (size_t o = 0; o < p.order_count; ++o) {
+            LogSum total;
+            for (auto& b : orders)
+                if (b[o].s > 0) total.add(b[o].log_value());
+            out.path_order_db[o] = total.log_value() / kLn10Over10;
+        }
+    }
+    return out;
+}
+
+PolarImage shade(const TraceResult& hits, const SceneDesc& s) {
+    Pass p(hits, s);
+    PolarImage image = empty_image(p.K, p.N);
+    p.image = &image;
+    Channels c;
+    c.image = true;
+    run_beams<>(p, c);
+    return image;
+}
+
+GroundTruth compute_ground_truth(const TraceResult& hits, const SceneDesc& s) {
+    Channels c;
+    c.ground_truth = true;
+    return *accumulate(hits, s, c).truth;
+}
+
+} // namespace sonarsim
