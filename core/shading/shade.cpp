@@ -13,7 +13,6 @@
 namespace sonarsim {
 namespace {
 
-constexpr double kLn10Over10 = 0.23025850929940458;
 constexpr double kNegInf = -std::numeric_limits<double>::infinity();
 
 /// Log-domain accumulator: value = exp(m) * s.
