@@ -1,13 +1,12 @@
 #include "ui/model/trajectory.hpp"
 
 #include "core/base/errors.hpp"
+#include "core/base/file_io.hpp"
 #include "core/io/output.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 namespace sonarsim::ui {
 
@@ -49,11 +48,8 @@ Trajectory parse_trajectory_csv(const std::string& text, const std::string& file
 }
 
 Trajectory load_trajectory(const std::string& path) {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) throw InputError(path, "", "cannot read the trajectory");
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return parse_trajectory_csv(ss.str(), path);
+    return parse_trajectory_csv(
+        read_file_bytes(path, kAnyFileSize, {path, "", "", "cannot read the trajectory"}), path);
 }
 
 void save_trajectory(const Trajectory& tr, const std::string& path) {
