@@ -5,15 +5,13 @@
 #include "ui/model/scene_files.hpp"
 
 #include "core/devices/devices.hpp"
+#include "core/geometry/mesh_formats.hpp"
 
 #include <filesystem>
 #include <imgui.h>
 #include <imgui_internal.h>
 
 namespace sonarsim::ui {
-namespace {
-const std::vector<std::string> kMeshExt = {".obj", ".ply", ".stl", ".off"};
-}
 
 void Viewer::menu_bar() {
     if (!ImGui::BeginMainMenuBar()) return;
@@ -88,7 +86,7 @@ void Viewer::help_window() {
                 ImGui::TableNextColumn();
                 ImGui::TextUnformatted(b.where);
                 ImGui::TableNextColumn();
-                ImGui::TextWrapped("%s", b.input);
+                ImGui::TextWrapped("%s", b.input.c_str());
                 ImGui::TableNextColumn();
                 ImGui::TextWrapped("%s", b.action);
             }
@@ -113,7 +111,7 @@ void Viewer::dialogs() {
                                 ? "."
                                 : std::filesystem::path(session_.scene().source_file).parent_path().string();
     if (ui_.want_open) open_dialog_.open("Open scene", false, {".json"}, dir, looks_like_scene_file);
-    if (ui_.want_add_mesh) mesh_dialog_.open("Add mesh", false, kMeshExt, dir);
+    if (ui_.want_add_mesh) mesh_dialog_.open("Add mesh", false, mesh_extensions(), dir);
     if (ui_.want_save) save_dialog_.open("Save scene", true, {".json"}, dir);
     if (ui_.want_reset_camera) reset_camera();
     ui_.want_open = ui_.want_add_mesh = ui_.want_save = ui_.want_reset_camera = false;
