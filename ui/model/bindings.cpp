@@ -47,7 +47,7 @@ const std::vector<Binding>& bindings() {
          "Ctrl+Shift+Z or Ctrl+Y",
          "redo",
          A::Redo,
-         {ctrl(key::Z) /* Shift: Ctrl+Z is above */, ctrl(key::Y)}},
+         {{key::Z, mods::Control | mods::Shift}, ctrl(key::Y)}},
         {"Keys", "P", "raw polar image / fan", A::TogglePolar, {plain(key::P)}},
         {"Keys", "H", "show the traced hits", A::ToggleHits, {plain(key::H)}},
         {"Keys",
