@@ -8,9 +8,9 @@
 // against the bytes that are really there, every index in range, every coordinate a finite float, only
 // property types OpenMesh converts), then OpenMesh parses them into a flat triangle array whose importer
 // watches for faces it would drop; its log streams are routed to the load, never to the terminal. OFF files
-// are read here. Nothing is "repaired": a file either loads as written or is rejected. Faces with fewer than
-// 3 distinct corners have no area and are skipped (OpenMesh does the same); a face that repeats a corner of
-// a larger polygon is an error.
+// are read without OpenMesh. Nothing is "repaired": a file either loads as written or is rejected. Faces with
+// fewer than 3 distinct corners have no area and are skipped (OpenMesh does the same); a face that repeats a
+// corner of a larger polygon is an error.
 //
 // One file per format: mesh_obj.cpp, mesh_ply.cpp, mesh_stl.cpp (checks, then OpenMesh), mesh_off.cpp (a
 // complete reader); openmesh_import.cpp runs OpenMesh on checked bytes. Every reader throws
