@@ -241,6 +241,21 @@ TEST_CASE("key shortcuts dispatch from the bindings table", "[ui][bindings]") {
     }
 }
 
+TEST_CASE("menu shortcut labels come from the bindings table", "[ui][bindings]") {
+    CHECK(shortcut_text(KeyAction::OpenScene) == "O");
+    CHECK(shortcut_text(KeyAction::Snapshot) == "S");
+    CHECK(shortcut_text(KeyAction::Quit) == "Ctrl+Q");
+    CHECK(shortcut_text(KeyAction::Undo) == "Ctrl+Z");
+    CHECK(shortcut_text(KeyAction::Redo) == "Ctrl+Shift+Z");
+    CHECK(shortcut_text(KeyAction::StartMeasure) == "M");
+    CHECK(shortcut_text(KeyAction::TogglePlay) == "Space");
+    CHECK(shortcut_text(KeyAction::Cancel) == "Escape");
+    CHECK(shortcut_text(KeyAction::None).empty());
+    // Every key row's input names its first key press.
+    for (const Binding& b : bindings())
+        if (!b.keys.empty()) CHECK(b.input.find(key_text(b.keys.front())) != std::string::npos);
+}
+
 TEST_CASE("the A-scan keeps its azimuth when the beam count changes", "[ui][ascan]") {
     // +1.2 deg is in beam 59 of 128 over 32 deg (0.25 deg each), beam 29 of 64, beam 118 of 256.
     const double az = 1.2;

@@ -1,4 +1,5 @@
-// The menu bar, Help -> Controls (every binding, from bindings.cpp) and the file dialogs.
+// The menu bar (shortcut labels from bindings.cpp), Help -> Controls (every binding, from bindings.cpp) and
+// the file dialogs.
 #include "ui/gl/viewer_app.hpp"
 
 #include "ui/model/bindings.hpp"
@@ -16,28 +17,32 @@ namespace sonarsim::ui {
 void Viewer::menu_bar() {
     if (!ImGui::BeginMainMenuBar()) return;
     if (ImGui::BeginMenu("File")) {
-        if (ImGui::MenuItem("Open scene...", "O")) ui_.want_open = true;
+        if (ImGui::MenuItem("Open scene...", shortcut_text(KeyAction::OpenScene).c_str()))
+            ui_.want_open = true;
         if (ImGui::MenuItem("Add mesh...")) ui_.want_add_mesh = true;
         if (ImGui::MenuItem("Save scene as...")) ui_.want_save = true;
         ImGui::Separator();
-        if (ImGui::MenuItem("Snapshot", "S")) ui_.want_snapshot = true;
+        if (ImGui::MenuItem("Snapshot", shortcut_text(KeyAction::Snapshot).c_str())) ui_.want_snapshot = true;
         ImGui::MenuItem("Annotated snapshot PNG", nullptr, &ui_.annotated_snapshot);
         bool gt = session_.ground_truth();
         if (ImGui::MenuItem("Ground truth (snapshots, hover)", nullptr, &gt)) session_.set_ground_truth(gt);
         ImGui::Separator();
-        if (ImGui::MenuItem("Quit", "Ctrl+Q")) quit_ = true;
+        if (ImGui::MenuItem("Quit", shortcut_text(KeyAction::Quit).c_str())) quit_ = true;
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Edit")) {
-        if (ImGui::MenuItem("Undo", "Ctrl+Z", false, undo_.undo_steps() > 0)) undo(false);
-        if (ImGui::MenuItem("Redo", "Ctrl+Shift+Z", false, undo_.redo_steps() > 0)) undo(true);
+        if (ImGui::MenuItem("Undo", shortcut_text(KeyAction::Undo).c_str(), false, undo_.undo_steps() > 0))
+            undo(false);
+        if (ImGui::MenuItem("Redo", shortcut_text(KeyAction::Redo).c_str(), false, undo_.redo_steps() > 0))
+            undo(true);
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("View")) {
-        ImGui::MenuItem("Raw polar image", "P", &sonar_->polar);
-        ImGui::MenuItem("Show traced hits", "H", &ui_.show_hits);
-        if (ImGui::MenuItem("Reset camera", "F")) reset_camera();
-        if (ImGui::MenuItem("Measure on the image", "M")) sonar_->start_measure();
+        ImGui::MenuItem("Raw polar image", shortcut_text(KeyAction::TogglePolar).c_str(), &sonar_->polar);
+        ImGui::MenuItem("Show traced hits", shortcut_text(KeyAction::ToggleHits).c_str(), &ui_.show_hits);
+        if (ImGui::MenuItem("Reset camera", shortcut_text(KeyAction::ResetCamera).c_str())) reset_camera();
+        if (ImGui::MenuItem("Measure on the image", shortcut_text(KeyAction::StartMeasure).c_str()))
+            sonar_->start_measure();
         ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
         ImGui::SliderFloat("UI scale", &ui_.ui_scale, 0.75f, 2.5f, "%.2f");
         ImGui::EndMenu();
@@ -58,7 +63,9 @@ void Viewer::menu_bar() {
                             s.sensor.model == SensorModel::Device))
             session_.set("sensor.model", "device");
         ImGui::Separator();
-        if (ImGui::MenuItem("Multipath (bounces)", "B", s.sampling.bounces > 0)) toggle_multipath();
+        if (ImGui::MenuItem("Multipath (bounces)", shortcut_text(KeyAction::ToggleMultipath).c_str(),
+                            s.sampling.bounces > 0))
+            toggle_multipath();
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Help")) {

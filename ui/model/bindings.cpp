@@ -76,4 +76,20 @@ const Binding* key_binding(int key, int mods) {
     return nullptr;
 }
 
+std::string key_text(const KeyMatch& keys) {
+    std::string s;
+    if (keys.required & mods::Control) s += "Ctrl+";
+    if (keys.required & mods::Shift) s += "Shift+";
+    if (keys.required & mods::Alt) s += "Alt+";
+    if (keys.key == key::Space) return s + "Space";
+    if (keys.key == key::Escape) return s + "Escape";
+    return s + char(keys.key); // letters: their upper-case ASCII code
+}
+
+std::string shortcut_text(KeyAction action) {
+    for (const Binding& b : bindings())
+        if (b.key_action == action && !b.keys.empty()) return key_text(b.keys.front());
+    return "";
+}
+
 } // namespace sonarsim::ui

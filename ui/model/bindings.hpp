@@ -49,4 +49,10 @@ const std::vector<Binding>& bindings();
 /// The binding whose keys match a press of `key` with `mods` (the first in table order), or null.
 const Binding* key_binding(int key, int mods);
 
+/// A key press as menus show it: "Ctrl+Shift+Z", "Space", "M".
+std::string key_text(const KeyMatch& keys);
+
+/// The first key press that runs `action` (key_text; "" if none), for menu items.
+std::string shortcut_text(KeyAction action);
+
 } // namespace sonarsim::ui
