@@ -13,8 +13,6 @@
 namespace sonarsim {
 namespace {
 
-constexpr double kLn10Over10 = 0.23025850929940458;
-
 // 8-point Gauss-Legendre on [-1, 1].
 constexpr double kGLx[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
                             -0.1834346424956498, 0.1834346424956498,  0.5255324099163290,

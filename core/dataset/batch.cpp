@@ -3,6 +3,7 @@
 #include "core/sensor/sensor.hpp"
 
 #include "core/base/errors.hpp"
+#include "core/base/file_io.hpp"
 #include "core/shading/ground_truth.hpp"
 #include "core/io/output.hpp"
 #include "core/scene/params.hpp"
@@ -14,10 +15,7 @@
 #include <cstdio>
 #include <fcntl.h>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <optional>
-#include <sstream>
 #include <sys/file.h>
 #include <unistd.h>
 
@@ -26,11 +24,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+/// The file's text, or "" when it cannot be read (a frame not written yet).
 std::string read_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
+    return try_read_file_bytes(path).value_or("");
 }
 
 /// Holds an exclusive lock on DIR/.index.lock while alive (concurrent shards rebuild the index in turn).
@@ -205,9 +201,8 @@ std::function<PolarImage(size_t)> dataset_images(const std::string& dir, size_t 
                     " is not complete; when every shard has finished, run `batch --resume` with it");
     return [dir](size_t k) {
         const std::string path = frame_prefix(dir, k) + ".npy";
-        std::ifstream in(path, std::ios::binary);
-        const Bytes bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-        return decode_npy(bytes, path);
+        const std::string bytes = read_text(path);
+        return decode_npy(Bytes(bytes.begin(), bytes.end()), path);
     };
 }
 

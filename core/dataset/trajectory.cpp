@@ -1,11 +1,11 @@
 #include "core/dataset/trajectory.hpp"
 
 #include "core/base/errors.hpp"
+#include "core/base/file_io.hpp"
 #include "core/base/pose.hpp"
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
 namespace sonarsim {
@@ -100,11 +100,8 @@ Trajectory parse_trajectory_csv(const std::string& text, const std::string& file
 }
 
 Trajectory load_trajectory_csv(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, "", "trajectory file cannot be read");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parse_trajectory_csv(text.str(), path);
+    return parse_trajectory_csv(
+        read_file_bytes(path, kAnyFileSize, {path, "", "", "trajectory file cannot be read"}), path);
 }
 
 Trajectory circle_trajectory(const std::string& spec, double rate_hz, const std::string& origin) {

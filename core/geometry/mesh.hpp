@@ -1,4 +1,4 @@
-// Triangle meshes: loading (OBJ/PLY/STL/OFF through OpenMesh), boxes, and placement in the world.
+// Triangle meshes: loading (the formats of mesh_formats.hpp), boxes, and placement in the world.
 // Shared, cached meshes: mesh_cache.hpp.
 #pragma once
 #include "core/scene/scene.hpp"
@@ -14,7 +14,8 @@ struct TriMesh {
     std::vector<glm::uvec3> triangles;
 };
 
-/// Loads a mesh file. Throws InputError(file, key, ...) if it is missing, unreadable, empty or malformed.
+/// Loads a mesh file by its format (mesh_formats.hpp). Throws InputError(file, key, ...) if it is missing,
+/// unreadable, empty or malformed.
 TriMesh load_mesh(const std::string& path, const std::string& scene_file, const std::string& key);
 
 /// Axis-aligned box of size (dx, dy, dz) [m] centred on the origin, 12 outward-facing triangles.
@@ -30,9 +31,6 @@ void check_single_precision(const glm::dvec3& world, const std::string& scene_fi
 /// InputError(scene_file, key + ".scale", ...) when a coordinate leaves single precision.
 TriMesh transformed_mesh(const TriMesh& mesh, const glm::dmat4& transform, const std::string& scene_file,
                          const std::string& key);
-
-/// World-space mesh of one object: its mesh (from the mesh cache) or box, placed by object_transform.
-TriMesh object_world_mesh(const ObjectDesc& object, const std::string& scene_file, const std::string& key);
 
 /// Axis-aligned bounds of a mesh (min, max); returns false for an empty mesh.
 bool mesh_bounds(const TriMesh& mesh, glm::vec3& lo, glm::vec3& hi);

@@ -162,4 +162,11 @@ std::size_t mesh_bytes(const TriMesh& m) {
     return m.vertices.capacity() * sizeof(glm::vec3) + m.triangles.capacity() * sizeof(glm::uvec3);
 }
 
+TriMesh object_world_mesh(const ObjectDesc& o, const std::string& scene_file, const std::string& key) {
+    const std::shared_ptr<const TriMesh> local =
+        o.box_m ? std::make_shared<const TriMesh>(make_box(*o.box_m))
+                : cached_mesh(o.mesh_resolved, scene_file, key + ".mesh");
+    return transformed_mesh(*local, object_transform(o), scene_file, key);
+}
+
 } // namespace sonarsim

@@ -49,6 +49,9 @@ class MeshCache {
 std::shared_ptr<const TriMesh> cached_mesh(const std::string& path, const std::string& scene_file,
                                            const std::string& key);
 
+/// World-space mesh of one object: its mesh (from the global cache) or box, placed by object_transform.
+TriMesh object_world_mesh(const ObjectDesc& object, const std::string& scene_file, const std::string& key);
+
 /// Heap bytes of a mesh's arrays.
 std::size_t mesh_bytes(const TriMesh& mesh);
 

@@ -1,6 +1,5 @@
 #include "core/pipeline/simulator.hpp"
 
-#include "core/io/output.hpp"
 #include "core/base/pose.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/sensor/sensor.hpp"

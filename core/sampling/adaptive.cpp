@@ -30,7 +30,6 @@ constexpr int kMaxPasses = 3;         // base refinements (x3) when the error es
 constexpr double kErrorsPerBin = 3;
 /// The error estimate looks at every kEstimateStride-th beam of images with 8 x that many beams or more.
 constexpr int kEstimateStride = 4;
-constexpr double kLn10Over10 = 0.23025850929940458;
 /// An azimuth split covers the base cells where neighbouring columns disagree and this many on each side
 /// (what differs between columns often moves in elevation from one to the next).
 constexpr int kRunMargin = 1;

@@ -1,6 +1,8 @@
 #include "core/scene/scene_io.hpp"
 
 #include "core/base/errors.hpp"
+#include "core/base/file_io.hpp"
+#include "core/geometry/mesh_formats.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -107,7 +109,8 @@ ObjectDesc parse_object(const json& v, const std::string& file, const std::strin
         const std::string kk = key + "." + k;
         if (k == "mesh") {
             if (!val.is_string() || val.get<std::string>().empty())
-                throw InputError(file, kk, "expected a non-empty path string (.obj, .ply, .stl, .off)");
+                throw InputError(file, kk,
+                                 "expected a non-empty path string (" + mesh_extensions_text() + ")");
             o.mesh = val.get<std::string>();
             std::filesystem::path p(o.mesh);
             o.mesh_resolved =
@@ -257,13 +260,9 @@ SceneDesc load_scene(const std::string& path, const GroupOverrides& group_overri
         throw InputError(path, "",
                          "file is " + std::to_string(size) + " bytes; scene files may be at most " +
                              std::to_string(kMaxSceneFileBytes) + " bytes (meshes belong in mesh files)");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, "", "cannot be read: " + std::string(std::strerror(errno)));
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    if (in.bad()) throw InputError(path, "", "read error");
+    const std::string text = read_file_bytes(path, kMaxSceneFileBytes);
     const std::string base = std::filesystem::absolute(path, ec).parent_path().string();
-    return parse_scene(ss.str(), path, base, group_overrides);
+    return parse_scene(text, path, base, group_overrides);
 }
 
 json scene_to_json(const SceneDesc& s) {

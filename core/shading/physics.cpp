@@ -9,7 +9,6 @@
 namespace sonarsim {
 
 namespace {
-constexpr double kLn10Over10 = 0.23025850929940458; // ln(10) / 10
 constexpr double kNegInf = -std::numeric_limits<double>::infinity();
 } // namespace
 

@@ -1,5 +1,6 @@
 // The active sonar equation's terms (SONAR_MODEL.md), all levels in dB.
 #pragma once
+#include "core/base/units.hpp"
 #include "core/scene/scene.hpp"
 
 namespace sonarsim {

@@ -2,6 +2,7 @@
 // (The same corpus also runs through the real binary: cases.txt.)
 #include "core/base/errors.hpp"
 #include "core/geometry/mesh.hpp"
+#include "core/geometry/mesh_cache.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/scene_io.hpp"
 

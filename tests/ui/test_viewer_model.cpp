@@ -5,6 +5,7 @@
 #include "ui/model/bindings.hpp"
 #include "ui/model/echo_path_view.hpp"
 #include "ui/model/image_views.hpp"
+#include "ui/model/input_events.hpp"
 #include "ui/model/measure.hpp"
 #include "ui/model/scene_files.hpp"
 #include "ui/model/script.hpp"
@@ -194,6 +195,65 @@ TEST_CASE("every binding has an input and an action and README names each input"
         INFO(b.input);
         CHECK(readme.find(b.input) != std::string::npos);
     }
+}
+
+TEST_CASE("key shortcuts dispatch from the bindings table", "[ui][bindings]") {
+    using A = KeyAction;
+    auto action = [](int k, int m) {
+        const Binding* b = key_binding(k, m);
+        return b ? b->key_action : A::None;
+    };
+    // Plain keys run with Shift or Alt held, never with Ctrl.
+    CHECK(action(key::S, 0) == A::Snapshot);
+    CHECK(action(key::S, mods::Shift) == A::Snapshot);
+    CHECK(action(key::S, mods::Alt) == A::Snapshot);
+    CHECK(action(key::S, mods::Control) == A::None);
+    CHECK(action(key::P, 0) == A::TogglePolar);
+    CHECK(action(key::H, 0) == A::ToggleHits);
+    CHECK(action(key::B, 0) == A::ToggleMultipath);
+    CHECK(action(key::F, 0) == A::ResetCamera);
+    CHECK(action(key::O, 0) == A::OpenScene);
+    CHECK(action(key::M, 0) == A::StartMeasure);
+    CHECK(action(key::R, 0) == A::ToggleRecord);
+    CHECK(action(key::Space, 0) == A::TogglePlay);
+    CHECK(action(key::Q, 0) == A::None);
+    CHECK(action(key::A, 0) == A::None);
+    // Ctrl chords.
+    CHECK(action(key::Z, mods::Control) == A::Undo);
+    CHECK(action(key::Z, mods::Control | mods::Alt) == A::Undo);
+    CHECK(action(key::Z, mods::Control | mods::Shift) == A::Redo);
+    CHECK(action(key::Y, mods::Control) == A::Redo);
+    CHECK(action(key::Y, mods::Control | mods::Shift) == A::Redo);
+    CHECK(action(key::Y, 0) == A::None);
+    CHECK(action(key::Z, 0) == A::None);
+    CHECK(action(key::Q, mods::Control) == A::Quit);
+    CHECK(action(key::Q, mods::Control | mods::Shift) == A::Quit);
+    // Escape with any modifiers, and also while a text field has the keys; nothing else is.
+    for (int m = 0; m < 8; ++m) CHECK(action(key::Escape, m) == A::Cancel);
+    for (const Binding& b : bindings()) {
+        INFO(b.input);
+        CHECK(b.keys.empty() == (b.key_action == A::None)); // keys run an action, an action has keys
+        CHECK(b.while_typing == (b.key_action == A::Cancel));
+        // No press runs two rows: the first match is the only one.
+        for (const KeyMatch& k : b.keys)
+            for (int m = 0; m < 8; ++m)
+                if (k.matches(k.key, m)) CHECK(key_binding(k.key, m) == &b);
+    }
+}
+
+TEST_CASE("menu shortcut labels come from the bindings table", "[ui][bindings]") {
+    CHECK(shortcut_text(KeyAction::OpenScene) == "O");
+    CHECK(shortcut_text(KeyAction::Snapshot) == "S");
+    CHECK(shortcut_text(KeyAction::Quit) == "Ctrl+Q");
+    CHECK(shortcut_text(KeyAction::Undo) == "Ctrl+Z");
+    CHECK(shortcut_text(KeyAction::Redo) == "Ctrl+Shift+Z");
+    CHECK(shortcut_text(KeyAction::StartMeasure) == "M");
+    CHECK(shortcut_text(KeyAction::TogglePlay) == "Space");
+    CHECK(shortcut_text(KeyAction::Cancel) == "Escape");
+    CHECK(shortcut_text(KeyAction::None).empty());
+    // Every key row's input names its first key press.
+    for (const Binding& b : bindings())
+        if (!b.keys.empty()) CHECK(b.input.find(key_text(b.keys.front())) != std::string::npos);
 }
 
 TEST_CASE("the A-scan keeps its azimuth when the beam count changes", "[ui][ascan]") {

@@ -2,6 +2,7 @@
 
 #include "ui/model/param_ranges.hpp"
 
+#include "core/geometry/mesh_formats.hpp"
 #include "core/shading/physics.hpp"
 
 #include <imgui.h>
@@ -343,7 +344,8 @@ void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, Tra
         if (ImGui::Button("Save scene...")) ui.want_save = true;
         ImGui::InputText(field_label("snapshots in", "snapdir").c_str(), &ui.snapshot_dir);
         ImGui::Checkbox("annotated PNG too", &ui.annotated_snapshot);
-        ImGui::TextWrapped("Drop a scene (.json) or mesh (.obj .ply .stl .off) on the window");
+        ImGui::TextWrapped("Drop a scene (.json) or mesh (%s) on the window",
+                           mesh_extensions_text(" ").c_str());
     }
     if (ImGui::CollapsingHeader("View")) {
         ImGui::Checkbox("show traced hits", &ui.show_hits);

@@ -1,45 +1,48 @@
-// The menu bar, Help -> Controls (every binding, from bindings.cpp) and the file dialogs.
+// The menu bar (shortcut labels from bindings.cpp), Help -> Controls (every binding, from bindings.cpp) and
+// the file dialogs.
 #include "ui/gl/viewer_app.hpp"
 
 #include "ui/model/bindings.hpp"
 #include "ui/model/scene_files.hpp"
 
 #include "core/devices/devices.hpp"
+#include "core/geometry/mesh_formats.hpp"
 
 #include <filesystem>
 #include <imgui.h>
 #include <imgui_internal.h>
 
 namespace sonarsim::ui {
-namespace {
-const std::vector<std::string> kMeshExt = {".obj", ".ply", ".stl", ".off"};
-}
 
 void Viewer::menu_bar() {
     if (!ImGui::BeginMainMenuBar()) return;
     if (ImGui::BeginMenu("File")) {
-        if (ImGui::MenuItem("Open scene...", "O")) ui_.want_open = true;
+        if (ImGui::MenuItem("Open scene...", shortcut_text(KeyAction::OpenScene).c_str()))
+            ui_.want_open = true;
         if (ImGui::MenuItem("Add mesh...")) ui_.want_add_mesh = true;
         if (ImGui::MenuItem("Save scene as...")) ui_.want_save = true;
         ImGui::Separator();
-        if (ImGui::MenuItem("Snapshot", "S")) ui_.want_snapshot = true;
+        if (ImGui::MenuItem("Snapshot", shortcut_text(KeyAction::Snapshot).c_str())) ui_.want_snapshot = true;
         ImGui::MenuItem("Annotated snapshot PNG", nullptr, &ui_.annotated_snapshot);
         bool gt = session_.ground_truth();
         if (ImGui::MenuItem("Ground truth (snapshots, hover)", nullptr, &gt)) session_.set_ground_truth(gt);
         ImGui::Separator();
-        if (ImGui::MenuItem("Quit", "Ctrl+Q")) quit_ = true;
+        if (ImGui::MenuItem("Quit", shortcut_text(KeyAction::Quit).c_str())) quit_ = true;
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Edit")) {
-        if (ImGui::MenuItem("Undo", "Ctrl+Z", false, undo_.undo_steps() > 0)) undo(false);
-        if (ImGui::MenuItem("Redo", "Ctrl+Shift+Z", false, undo_.redo_steps() > 0)) undo(true);
+        if (ImGui::MenuItem("Undo", shortcut_text(KeyAction::Undo).c_str(), false, undo_.undo_steps() > 0))
+            undo(false);
+        if (ImGui::MenuItem("Redo", shortcut_text(KeyAction::Redo).c_str(), false, undo_.redo_steps() > 0))
+            undo(true);
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("View")) {
-        ImGui::MenuItem("Raw polar image", "P", &sonar_->polar);
-        ImGui::MenuItem("Show traced hits", "H", &ui_.show_hits);
-        if (ImGui::MenuItem("Reset camera", "F")) reset_camera();
-        if (ImGui::MenuItem("Measure on the image", "M")) sonar_->start_measure();
+        ImGui::MenuItem("Raw polar image", shortcut_text(KeyAction::TogglePolar).c_str(), &sonar_->polar);
+        ImGui::MenuItem("Show traced hits", shortcut_text(KeyAction::ToggleHits).c_str(), &ui_.show_hits);
+        if (ImGui::MenuItem("Reset camera", shortcut_text(KeyAction::ResetCamera).c_str())) reset_camera();
+        if (ImGui::MenuItem("Measure on the image", shortcut_text(KeyAction::StartMeasure).c_str()))
+            sonar_->start_measure();
         ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
         ImGui::SliderFloat("UI scale", &ui_.ui_scale, 0.75f, 2.5f, "%.2f");
         ImGui::EndMenu();
@@ -60,7 +63,9 @@ void Viewer::menu_bar() {
                             s.sensor.model == SensorModel::Device))
             session_.set("sensor.model", "device");
         ImGui::Separator();
-        if (ImGui::MenuItem("Multipath (bounces)", "B", s.sampling.bounces > 0)) toggle_multipath();
+        if (ImGui::MenuItem("Multipath (bounces)", shortcut_text(KeyAction::ToggleMultipath).c_str(),
+                            s.sampling.bounces > 0))
+            toggle_multipath();
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Help")) {
@@ -88,7 +93,7 @@ void Viewer::help_window() {
                 ImGui::TableNextColumn();
                 ImGui::TextUnformatted(b.where);
                 ImGui::TableNextColumn();
-                ImGui::TextWrapped("%s", b.input);
+                ImGui::TextWrapped("%s", b.input.c_str());
                 ImGui::TableNextColumn();
                 ImGui::TextWrapped("%s", b.action);
             }
@@ -113,7 +118,7 @@ void Viewer::dialogs() {
                                 ? "."
                                 : std::filesystem::path(session_.scene().source_file).parent_path().string();
     if (ui_.want_open) open_dialog_.open("Open scene", false, {".json"}, dir, looks_like_scene_file);
-    if (ui_.want_add_mesh) mesh_dialog_.open("Add mesh", false, kMeshExt, dir);
+    if (ui_.want_add_mesh) mesh_dialog_.open("Add mesh", false, mesh_extensions(), dir);
     if (ui_.want_save) save_dialog_.open("Save scene", true, {".json"}, dir);
     if (ui_.want_reset_camera) reset_camera();
     ui_.want_open = ui_.want_add_mesh = ui_.want_save = ui_.want_reset_camera = false;

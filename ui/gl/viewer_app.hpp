@@ -14,6 +14,7 @@
 #include "ui/model/undo.hpp"
 #include "ui/model/view_controller.hpp"
 #include "ui/gl/viewer.hpp"
+#include "ui/model/bindings.hpp"
 
 #include "core/io/output.hpp"
 
@@ -44,6 +45,7 @@ class Viewer {
     // viewer_input.cpp
     void handle_events();
     void handle_key(const InputEvent& e);
+    void run_key_action(KeyAction action); ///< a key shortcut of the bindings table
     void apply_edit(const SceneDesc& next);
     void record_undo();
     void undo(bool redo);

@@ -5,13 +5,13 @@
 
 #include "ui/gl/viewer_app.hpp"
 
+#include "core/geometry/mesh_formats.hpp"
+
 #include <algorithm>
 #include <imgui.h>
 
 namespace sonarsim::ui {
 namespace {
-
-const std::vector<std::string> kMeshExt = {".obj", ".ply", ".stl", ".off"};
 
 std::string lower_ext(const std::string& path) {
     const size_t dot = path.find_last_of('.');
@@ -44,51 +44,58 @@ void Viewer::apply_edit(const SceneDesc& next) {
 }
 
 void Viewer::handle_key(const InputEvent& e) {
-    const ImGuiIO& io = ImGui::GetIO();
-    if (e.key == key::Escape) {
+    const Binding* b = key_binding(e.key, e.mods); // the one table (ui/model/bindings.cpp)
+    if (!b) return;
+    // A text field takes the keys; a dialog too. A slider or a 3D drag held does not.
+    const bool typing = ImGui::GetIO().WantTextInput || open_dialog_.is_open() || mesh_dialog_.is_open() ||
+                        save_dialog_.is_open();
+    if (typing && !b->while_typing) return;
+    run_key_action(b->key_action);
+}
+
+void Viewer::run_key_action(KeyAction action) {
+    switch (action) {
+    case KeyAction::None:
+        break;
+    case KeyAction::Cancel:
         close_menus();
         sonar_->cancel_measure();
-        return;
-    }
-    // A text field takes the keys; a dialog too. A slider or a 3D drag held does not.
-    if (io.WantTextInput || open_dialog_.is_open() || mesh_dialog_.is_open() || save_dialog_.is_open())
-        return;
-    const bool ctrl = e.mods & mods::Control, shift = e.mods & mods::Shift;
-    if (ctrl) {
-        if (e.key == key::Q) quit_ = true;
-        if (e.key == key::Z) undo(shift);
-        if (e.key == key::Y) undo(true);
-        return;
-    }
-    switch (e.key) {
-    case key::S:
+        break;
+    case KeyAction::Quit:
+        quit_ = true;
+        break;
+    case KeyAction::Undo:
+        undo(false);
+        break;
+    case KeyAction::Redo:
+        undo(true);
+        break;
+    case KeyAction::Snapshot:
         ++pending_snapshots_; // every tap is one snapshot, taken once the full-quality image is drawn
         break;
-    case key::P:
+    case KeyAction::TogglePolar:
         sonar_->polar = !sonar_->polar;
         break;
-    case key::H:
+    case KeyAction::ToggleHits:
         ui_.show_hits = !ui_.show_hits;
         break;
-    case key::F:
+    case KeyAction::ResetCamera:
         reset_camera();
         break;
-    case key::O:
+    case KeyAction::OpenScene:
         ui_.want_open = true;
         break;
-    case key::M:
+    case KeyAction::StartMeasure:
         sonar_->start_measure();
         break;
-    case key::B:
+    case KeyAction::ToggleMultipath:
         toggle_multipath();
         break;
-    case key::R:
+    case KeyAction::ToggleRecord:
         trajectory_.toggle_record(session_.scene().sonar.pose);
         break;
-    case key::Space:
+    case KeyAction::TogglePlay:
         trajectory_.toggle_play();
-        break;
-    default:
         break;
     }
 }
@@ -127,10 +134,10 @@ void Viewer::open_files(const std::vector<std::string>& paths) {
         const std::string e = lower_ext(path);
         if (e == ".json") {
             if (session_.open_scene(path)) reset_camera(), update_title();
-        } else if (std::find(kMeshExt.begin(), kMeshExt.end(), e) != kMeshExt.end()) {
+        } else if (const auto ext = mesh_extensions(); std::find(ext.begin(), ext.end(), e) != ext.end()) {
             session_.add_mesh(path);
         } else {
-            session_.set_error(path + ": not a scene (.json) or mesh (.obj .ply .stl .off)");
+            session_.set_error(path + ": not a scene (.json) or mesh (" + mesh_extensions_text(" ") + ")");
         }
     }
 }

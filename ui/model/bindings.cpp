@@ -1,8 +1,24 @@
 #include "ui/model/bindings.hpp"
 
+#include "core/geometry/mesh_formats.hpp"
+#include "ui/model/input_events.hpp"
+
 namespace sonarsim::ui {
+namespace {
+
+/// A plain key: runs without Ctrl (Shift and Alt are ignored).
+KeyMatch plain(int k) {
+    return {k, 0, mods::Control};
+}
+/// Ctrl + key.
+KeyMatch ctrl(int k, int excluded = 0) {
+    return {k, mods::Control, excluded};
+}
+
+} // namespace
 
 const std::vector<Binding>& bindings() {
+    using A = KeyAction;
     static const std::vector<Binding> table = {
         {"3D view", "left-drag (empty space or floor)", "orbit the camera"},
         {"3D view", "right- or middle-drag", "pan the camera"},
@@ -20,25 +36,60 @@ const std::vector<Binding>& bindings() {
         {"Sonar image", "hover",
          "elevation arc, echoing points and the strongest echo path (a ghost's mirrors) in 3D, the A-scan of "
          "that beam"},
-        {"Sonar image", "M, then drag", "measure: distance between two points, dB statistics of the box"},
-        {"Keys", "S", "snapshot"},
-        {"Keys", "Ctrl+Z", "undo the last scene edit"},
-        {"Keys", "Ctrl+Shift+Z or Ctrl+Y", "redo"},
-        {"Keys", "P", "raw polar image / fan"},
-        {"Keys", "H", "show the traced hits"},
-        {"Keys", "B", "multipath on / off: sampling.bounces 0 or its last non-zero value"},
-        {"Keys", "F", "reset the camera"},
-        {"Keys", "O", "open a scene"},
-        {"Keys", "R", "start / stop recording the sonar's trajectory"},
-        {"Keys", "Space", "play / pause the trajectory"},
-        {"Keys", "Escape", "close menus and dialogs, cancel a measurement"},
-        {"Keys", "Ctrl+Q", "quit"},
+        {"Sonar image",
+         "M, then drag",
+         "measure: distance between two points, dB statistics of the box",
+         A::StartMeasure,
+         {plain(key::M)}},
+        {"Keys", "S", "snapshot", A::Snapshot, {plain(key::S)}},
+        {"Keys", "Ctrl+Z", "undo the last scene edit", A::Undo, {ctrl(key::Z, mods::Shift)}},
+        {"Keys",
+         "Ctrl+Shift+Z or Ctrl+Y",
+         "redo",
+         A::Redo,
+         {{key::Z, mods::Control | mods::Shift}, ctrl(key::Y)}},
+        {"Keys", "P", "raw polar image / fan", A::TogglePolar, {plain(key::P)}},
+        {"Keys", "H", "show the traced hits", A::ToggleHits, {plain(key::H)}},
+        {"Keys",
+         "B",
+         "multipath on / off: sampling.bounces 0 or its last non-zero value",
+         A::ToggleMultipath,
+         {plain(key::B)}},
+        {"Keys", "F", "reset the camera", A::ResetCamera, {plain(key::F)}},
+        {"Keys", "O", "open a scene", A::OpenScene, {plain(key::O)}},
+        {"Keys", "R", "start / stop recording the sonar's trajectory", A::ToggleRecord, {plain(key::R)}},
+        {"Keys", "Space", "play / pause the trajectory", A::TogglePlay, {plain(key::Space)}},
+        {"Keys", "Escape", "close menus and dialogs, cancel a measurement", A::Cancel, {{key::Escape}}, true},
+        {"Keys", "Ctrl+Q", "quit", A::Quit, {ctrl(key::Q)}},
         {"Sliders", "drag", "change the value"},
         {"Sliders", "Shift+drag", "fine: a tenth of the speed"},
         {"Sliders", "Ctrl+click", "type a value"},
-        {"Window", "drop a .json scene or a mesh (.obj .ply .stl .off)", "open it / add it"},
+        {"Window", "drop a .json scene or a mesh (" + mesh_extensions_text(" ") + ")", "open it / add it"},
     };
     return table;
+}
+
+const Binding* key_binding(int key, int mods) {
+    for (const Binding& b : bindings())
+        for (const KeyMatch& c : b.keys)
+            if (c.matches(key, mods)) return &b;
+    return nullptr;
+}
+
+std::string key_text(const KeyMatch& keys) {
+    std::string s;
+    if (keys.required & mods::Control) s += "Ctrl+";
+    if (keys.required & mods::Shift) s += "Shift+";
+    if (keys.required & mods::Alt) s += "Alt+";
+    if (keys.key == key::Space) return s + "Space";
+    if (keys.key == key::Escape) return s + "Escape";
+    return s + char(keys.key); // letters: their upper-case ASCII code
+}
+
+std::string shortcut_text(KeyAction action) {
+    for (const Binding& b : bindings())
+        if (b.key_action == action && !b.keys.empty()) return key_text(b.keys.front());
+    return "";
 }
 
 } // namespace sonarsim::ui

@@ -1,15 +1,11 @@
 #include "ui/model/render_worker.hpp"
 
+#include "core/base/timing.hpp"
+
 #include <algorithm>
 #include <exception>
 
 namespace sonarsim::ui {
-namespace {
-double ms_since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-} // namespace
 
 RenderWorker::RenderWorker() : thread_([this] { loop(); }) {}
 

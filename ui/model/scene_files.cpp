@@ -1,23 +1,18 @@
 #include "ui/model/scene_files.hpp"
 
+#include "core/base/file_io.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/scene_io.hpp"
 
-#include <filesystem>
-#include <fstream>
+#include <optional>
 #include <set>
-#include <sstream>
 
 namespace sonarsim::ui {
 
 bool looks_like_scene_file(const std::string& path) {
-    std::error_code ec;
-    const auto size = std::filesystem::file_size(path, ec);
-    if (ec || size > kMaxSceneFileBytes) return false;
-    std::ifstream f(path, std::ios::binary);
-    std::stringstream ss;
-    ss << f.rdbuf();
-    const json j = json::parse(ss.str(), nullptr, false);
+    const std::optional<std::string> text = try_read_file_bytes(path, kMaxSceneFileBytes);
+    if (!text) return false;
+    const json j = json::parse(*text, nullptr, false);
     if (j.is_discarded() || !j.is_object()) return false;
     // The sections of core's parameter table (sonar, water, sensor, ...), objects and the seafloor.
     static const std::set<std::string> sections = [] {

@@ -1,10 +1,10 @@
 #include "ui/model/script.hpp"
 
 #include "core/base/errors.hpp"
+#include "core/base/file_io.hpp"
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -143,11 +143,7 @@ std::vector<ScriptStep> parse_script(const std::string& text, const std::string&
 }
 
 std::vector<ScriptStep> load_script(const std::string& path) {
-    std::ifstream f(path);
-    if (!f) throw InputError(path, "", "cannot read the script");
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return parse_script(ss.str(), path);
+    return parse_script(read_file_bytes(path, kAnyFileSize, {path, "", "", "cannot read the script"}), path);
 }
 
 std::vector<InputEvent> step_events(const ScriptStep& st, glm::dvec2& pos, int& held) {

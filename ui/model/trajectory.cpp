@@ -1,13 +1,12 @@
 #include "ui/model/trajectory.hpp"
 
 #include "core/base/errors.hpp"
+#include "core/base/file_io.hpp"
 #include "core/io/output.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 namespace sonarsim::ui {
 
@@ -23,8 +22,8 @@ Pose Trajectory::at(double t) const {
     if (t <= samples_.front().t_s) return samples_.front().pose;
     if (t >= samples_.back().t_s) return samples_.back().pose;
     const auto it = std::upper_bound(samples_.begin(), samples_.end(), t,
-                                     [](double v, const TrajectorySample& s) { return v < s.t_s; });
-    const TrajectorySample &b = *it, &a = *(it - 1);
+                                     [](double v, const TrajectoryPoint& s) { return v < s.t_s; });
+    const TrajectoryPoint &b = *it, &a = *(it - 1);
     const double span = b.t_s - a.t_s, u = span > 0 ? (t - a.t_s) / span : 1.0;
     if (u >= 1) return b.pose;
     Pose p;
@@ -37,23 +36,16 @@ Pose Trajectory::at(double t) const {
 }
 
 std::string trajectory_csv(const Trajectory& tr) {
-    sonarsim::Trajectory rows; // core's CSV: the one format batch, Python and the viewer share
-    for (const TrajectorySample& s : tr.samples()) rows.push_back({s.t_s, s.pose});
-    return trajectory_to_csv(rows);
+    return trajectory_to_csv(tr.samples()); // core's CSV: the one format batch, Python and the viewer share
 }
 
 Trajectory parse_trajectory_csv(const std::string& text, const std::string& file) {
-    Trajectory tr;
-    for (const TrajectoryPoint& p : sonarsim::parse_trajectory_csv(text, file)) tr.add(p.t_s, p.pose, false);
-    return tr;
+    return Trajectory(sonarsim::parse_trajectory_csv(text, file));
 }
 
 Trajectory load_trajectory(const std::string& path) {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) throw InputError(path, "", "cannot read the trajectory");
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return parse_trajectory_csv(ss.str(), path);
+    return parse_trajectory_csv(
+        read_file_bytes(path, kAnyFileSize, {path, "", "", "cannot read the trajectory"}), path);
 }
 
 void save_trajectory(const Trajectory& tr, const std::string& path) {

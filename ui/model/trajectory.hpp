@@ -6,36 +6,35 @@
 #include "core/dataset/trajectory.hpp"
 
 #include <string>
-#include <vector>
+#include <utility>
 
 namespace sonarsim::ui {
 
-struct TrajectorySample {
-    double t_s = 0;
-    Pose pose;
-};
-
+/// A recorded or loaded trajectory: core's poses (sonarsim::Trajectory, what batch and Python read), with
+/// recording (add) and replay (at) for the viewer.
 class Trajectory {
   public:
+    Trajectory() = default;
+    explicit Trajectory(sonarsim::Trajectory samples) : samples_(std::move(samples)) {}
     /// Appends a pose at time t (seconds from the first sample); while recording (`skip_repeat`), a pose
     /// equal to the last one is skipped.
     void add(double t_s, const Pose& pose, bool skip_repeat = true);
     void clear() { samples_.clear(); }
     bool empty() const { return samples_.empty(); }
     size_t size() const { return samples_.size(); }
-    const std::vector<TrajectorySample>& samples() const { return samples_; }
+    const sonarsim::Trajectory& samples() const { return samples_; }
     double duration_s() const { return samples_.empty() ? 0 : samples_.back().t_s - samples_.front().t_s; }
     /// The pose at time t, linear between samples (angles along the shorter way round), clamped to the ends.
     Pose at(double t_s) const;
 
   private:
-    std::vector<TrajectorySample> samples_;
+    sonarsim::Trajectory samples_;
 };
 
 /// CSV text with the header and full precision (parsing it gives the same doubles).
 std::string trajectory_csv(const Trajectory& trajectory);
-/// Parses CSV text with core's parser (parse_trajectory_csv in core/trajectory.hpp): throws InputError on a
-/// bad header, row, number or time order.
+/// Parses CSV text with core's parser (parse_trajectory_csv in core/dataset/trajectory.hpp): throws
+/// InputError on a bad header, row, number or time order.
 Trajectory parse_trajectory_csv(const std::string& text, const std::string& file);
 Trajectory load_trajectory(const std::string& path);
 /// Writes the CSV atomically; throws std::runtime_error.
