@@ -117,6 +117,12 @@ ParamSpec boolean(std::string key, Stage stage, std::string help, std::function<
 
 /// A sensor row: `ideal` is what sensor.model "ideal" sets, `device` what "device" sets where the preset
 /// says nothing (null: the model leaves the value alone).
+/// A row the adaptive sampler steers by (ValueSpec::steers_sampler).
+ParamSpec steers(ParamSpec p) {
+    p.steers_sampler = true;
+    return p;
+}
+
 ParamSpec sensor(ParamSpec p, json ideal, json device) {
     p.ideal_value = std::move(ideal);
     p.device_value = std::move(device);
@@ -133,6 +139,7 @@ MaterialSpec material(std::string key, std::string unit, double lo, double hi, b
     m.max = hi;
     m.min_exclusive = lo_ex;
     m.stage = Stage::Shade;
+    m.steers_sampler = true; // a material's level and lobe decide where the adaptive sampler refines
     m.help = std::move(help);
     m.field = field;
     return m;
@@ -223,9 +230,9 @@ std::vector<ParamSpec> build_scene_params() {
     t.push_back(vec3("sonar.orientation_deg", "deg", -360, 360, Stage::Trace,
                      "Roll, pitch, yaw; R = Rz(yaw) Ry(pitch) Rx(roll); positive pitch looks down",
                      [](S s) -> Vec3d& { return s.sonar.pose.orientation_deg; }));
-    t.push_back(number("sonar.frequency_khz", "kHz", 1, 10000, false, false, Stage::Shade,
-                       "Carrier frequency f (absorption, eq. 7)",
-                       [](S s) -> double& { return s.sonar.frequency_khz; }));
+    t.push_back(steers(number("sonar.frequency_khz", "kHz", 1, 10000, false, false, Stage::Shade,
+                              "Carrier frequency f (absorption, eq. 7)",
+                              [](S s) -> double& { return s.sonar.frequency_khz; })));
     t.push_back(number("sonar.azimuth_fov_deg", "deg", 0, 180, true, true, Stage::Trace,
                        "Azimuth field of view Theta",
                        [](S s) -> double& { return s.sonar.azimuth_fov_deg; }));
@@ -247,19 +254,20 @@ std::vector<ParamSpec> build_scene_params() {
                        [](S s) -> double& { return s.sonar.noise_level_db; }));
     // Bounds: the absorption formula (Ainslie & McColm 1998) holds for -6 < T < 35 degC and 0 < z < 7 km;
     // below -2 degC sea water is ice.
-    t.push_back(number("water.temperature_c", "degC", -2, 35, false, false, Stage::Shade,
-                       "Water temperature T (absorption formula range)",
-                       [](S s) -> double& { return s.water.temperature_c; }));
-    t.push_back(number("water.depth_m", "m", 0, 7000, false, false, Stage::Shade,
-                       "Water depth D (absorption)", [](S s) -> double& { return s.water.depth_m; }));
+    t.push_back(steers(number("water.temperature_c", "degC", -2, 35, false, false, Stage::Shade,
+                              "Water temperature T (absorption formula range)",
+                              [](S s) -> double& { return s.water.temperature_c; })));
+    t.push_back(steers(number("water.depth_m", "m", 0, 7000, false, false, Stage::Shade,
+                              "Water depth D (absorption)", [](S s) -> double& { return s.water.depth_m; })));
     t.push_back(optional_number("water.surface_height_m", "m", -1e6, 1e6, Stage::Trace,
                                 "Multipath: height z of the water surface, a pressure-release mirror that "
                                 "also backscatters (water.surface_material); null: no surface",
                                 [](S s) -> std::optional<double>& { return s.water.surface_height_m; }));
-    t.push_back(number("water.surface_roughness_m", "m", 0, 1, false, false, Stage::Shade,
-                       "Multipath: rms height sigma of the surface; coherent reflection (energy) R^2 = "
-                       "exp(-2 (2 k sigma cos theta)^2)",
-                       [](S s) -> double& { return s.water.surface_roughness_m; }));
+    t.push_back(
+        steers(number("water.surface_roughness_m", "m", 0, 1, false, false, Stage::Shade,
+                      "Multipath: rms height sigma of the surface; coherent reflection (energy) R^2 = "
+                      "exp(-2 (2 k sigma cos theta)^2)",
+                      [](S s) -> double& { return s.water.surface_roughness_m; })));
     t.push_back(integer("sampling.elevation_rays", 1, 1000000, Stage::Trace, "Elevation rays M per beam",
                         [](S s) -> int& { return s.sampling.elevation_rays; }));
     t.push_back(integer("sampling.azimuth_rays", 1, 1024, Stage::Trace, "Azimuth rays per beam",
@@ -385,8 +393,13 @@ json MaterialSpec::get(const Material& m) const {
     return std::isfinite(v) ? json(v) : json(nullptr);
 }
 
-Stage MaterialSpec::stage_of_change(double before, double after) const {
-    return optional && std::isfinite(before) != std::isfinite(after) ? Stage::Trace : stage;
+Stage ValueSpec::effective_stage(const SceneDesc& scene) const {
+    return steers_sampler && scene.sampling.scheme == SamplingScheme::Adaptive ? std::min(stage, Stage::Trace)
+                                                                               : stage;
+}
+
+Stage MaterialSpec::stage_of_change(double before, double after, const SceneDesc& scene) const {
+    return optional && std::isfinite(before) != std::isfinite(after) ? Stage::Trace : effective_stage(scene);
 }
 
 json validate_value(const ValueSpec& spec, const json& v, const std::string& file, const std::string& key) {
@@ -479,36 +492,38 @@ std::string material_keys_text() {
     return keys;
 }
 
-Stage set_material(Material& m, const std::string& field, const json& value, const std::string& file,
-                   const std::string& key) {
+void set_material(Material& m, const std::string& field, const json& value, const std::string& file,
+                  const std::string& key) {
     const MaterialSpec* spec = find_material_param(field);
     if (!spec) throw InputError(file, key, "unknown key; allowed: " + material_keys_text());
-    const double before = m.*(spec->field);
     m.*(spec->field) = spec->value_of(validate_value(*spec, value, file, key));
-    return spec->stage_of_change(before, m.*(spec->field));
 }
 
-Stage apply_setting(SceneDesc& scene, const std::string& key, const json& value, const std::string& file) {
+namespace {
+
+void set_value(SceneDesc& scene, const std::string& key, const json& value, const std::string& file) {
     if (auto* p = find_param(key)) {
         p->put(scene, validate_value(*p, value, file, key));
         if (key == "sonar.device") apply_device(scene);
         if (key == "sensor.model") apply_sensor_model(scene);
-        return is_group_key(key) ? Stage::Geometry : p->stage;
+        return;
     }
     const std::string floor_prefix = "seafloor.material.", surface_prefix = "water.surface_material.";
     if (key.rfind(floor_prefix, 0) == 0) {
         if (!scene.seafloor) throw InputError(file, key, "the scene has no seafloor");
-        return set_material(scene.seafloor->material, key.substr(floor_prefix.size()), value, file, key);
+        set_material(scene.seafloor->material, key.substr(floor_prefix.size()), value, file, key);
+        return;
     }
-    if (key.rfind(surface_prefix, 0) == 0)
-        return set_material(scene.water.surface_material, key.substr(surface_prefix.size()), value, file,
-                            key);
+    if (key.rfind(surface_prefix, 0) == 0) {
+        set_material(scene.water.surface_material, key.substr(surface_prefix.size()), value, file, key);
+        return;
+    }
     if (key == "seafloor.height_m") {
         ValueSpec s;
         s.key = key, s.unit = "m", s.min = -1e6, s.max = 1e6;
         if (!scene.seafloor) scene.seafloor = Seafloor{};
         scene.seafloor->height_m = validate_value(s, value, file, key).get<double>();
-        return Stage::Trace;
+        return;
     }
     if (key.rfind("objects.", 0) == 0) {
         const std::string rest = key.substr(8);
@@ -521,8 +536,10 @@ Stage apply_setting(SceneDesc& scene, const std::string& key, const json& value,
                              "object index must be in [0, " + std::to_string(scene.objects.size()) + ")");
         const std::string field = dot == std::string::npos ? "" : rest.substr(dot + 1);
         ObjectDesc& o = scene.objects[idx];
-        if (field.rfind("material.", 0) == 0)
-            return set_material(o.material, field.substr(9), value, file, key);
+        if (field.rfind("material.", 0) == 0) {
+            set_material(o.material, field.substr(9), value, file, key);
+            return;
+        }
         ValueSpec s;
         s.key = key, s.type = ParamType::Vec3, s.min = -1e6, s.max = 1e6;
         if (field == "position") {
@@ -534,13 +551,51 @@ Stage apply_setting(SceneDesc& scene, const std::string& key, const json& value,
             throw InputError(file, key,
                              "unknown object key for --set; allowed: position, orientation_deg, material.*");
         }
-        return Stage::Geometry;
+        return;
     }
     std::string known;
     for (auto& p : scene_params()) known += (known.empty() ? "" : ", ") + p.key;
     throw InputError(file, key,
                      "unknown key; allowed: " + known +
                          ", seafloor.height_m, seafloor.material.*, water.surface_material.*, objects.N.*");
+}
+
+} // namespace
+
+Stage apply_setting(SceneDesc& scene, const std::string& key, const json& value, const std::string& file) {
+    const SceneDesc before = scene;
+    set_value(scene, key, value, file);
+    return changed_stage(before, scene);
+}
+
+Stage changed_stage(const SceneDesc& a, const SceneDesc& b) {
+    Stage st = Stage::None;
+    auto mark = [&](Stage s) { st = std::min(st, s); };
+    for (auto& p : scene_params())
+        if (p.get(a) != p.get(b)) mark(p.effective_stage(b));
+    auto material_stage = [&](const Material& x, const Material& y) {
+        for (auto& p : material_params())
+            if (p.get(x) != p.get(y)) mark(p.stage_of_change(x.*p.field, y.*p.field, b));
+    };
+    material_stage(a.water.surface_material, b.water.surface_material);
+    if (a.objects.size() != b.objects.size()) {
+        mark(Stage::Geometry);
+    } else {
+        for (size_t i = 0; i < a.objects.size(); ++i) {
+            const ObjectDesc &x = a.objects[i], &y = b.objects[i];
+            if (x.mesh_resolved != y.mesh_resolved || x.box_m != y.box_m || x.position_m != y.position_m ||
+                x.orientation_deg != y.orientation_deg || x.scale != y.scale)
+                mark(Stage::Geometry);
+            material_stage(x.material, y.material);
+        }
+    }
+    if (bool(a.seafloor) != bool(b.seafloor))
+        mark(Stage::Trace);
+    else if (a.seafloor) {
+        if (a.seafloor->height_m != b.seafloor->height_m) mark(Stage::Trace);
+        material_stage(a.seafloor->material, b.seafloor->material);
+    }
+    return st;
 }
 
 std::pair<std::string, json> parse_setting_text(const std::string& text, const std::string& origin) {
