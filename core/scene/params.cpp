@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -329,6 +330,87 @@ std::vector<MaterialSpec> build_material_params() {
     };
 }
 
+template <class Part>
+PartSpec<Part> part(std::string key, std::string unit, ParamType type, double lo, double hi, bool lo_ex,
+                    Stage stage, std::string help) {
+    PartSpec<Part> p;
+    p.key = std::move(key), p.unit = std::move(unit), p.type = type, p.help = std::move(help);
+    p.min = lo, p.max = hi, p.min_exclusive = lo_ex, p.stage = stage;
+    return p;
+}
+
+/// An object's vec3 member.
+ObjectSpec object_vec3(std::string key, std::string unit, double lo, double hi, bool lo_ex, std::string help,
+                       Vec3d ObjectDesc::*field) {
+    ObjectSpec p = part<ObjectDesc>(std::move(key), std::move(unit), ParamType::Vec3, lo, hi, lo_ex,
+                                    Stage::Geometry, std::move(help));
+    p.get = [field](const ObjectDesc& o) { return json(o.*field); };
+    p.put = [field](ObjectDesc& o, const json& v, const std::string&) { o.*field = v.get<Vec3d>(); };
+    return p;
+}
+
+std::vector<ObjectSpec> build_object_params() {
+    std::vector<ObjectSpec> t;
+    ObjectSpec mesh = part<ObjectDesc>("mesh", "", ParamType::String, 0, 0, false, Stage::Geometry,
+                                       "Mesh file (.obj, .ply, .stl, .off), relative to the scene file");
+    mesh.get = [](const ObjectDesc& o) {
+        return o.box_m ? json(nullptr) : json(o.mesh_resolved.empty() ? o.mesh : o.mesh_resolved);
+    };
+    mesh.put = [](ObjectDesc& o, const json& v, const std::string& base) {
+        o.mesh = v.get<std::string>();
+        const std::filesystem::path p(o.mesh);
+        o.mesh_resolved =
+            p.is_absolute() ? p.string() : (std::filesystem::path(base) / p).lexically_normal().string();
+        o.box_m.reset();
+    };
+    mesh.check = [](const ValueSpec&, const json& v, const std::string& file, const std::string& key) {
+        if (!v.is_string() || v.get<std::string>().empty())
+            throw InputError(file, key, "expected a non-empty path string (.obj, .ply, .stl, .off)");
+        return v;
+    };
+    t.push_back(mesh);
+    ObjectSpec box = part<ObjectDesc>("box", "m", ParamType::Vec3, 0, 1e4, true, Stage::Geometry,
+                                      "Box size dx, dy, dz (instead of a mesh)");
+    box.get = [](const ObjectDesc& o) { return o.box_m ? json(*o.box_m) : json(nullptr); };
+    box.put = [](ObjectDesc& o, const json& v, const std::string&) {
+        o.box_m = v.get<Vec3d>();
+        o.mesh.clear(), o.mesh_resolved.clear();
+    };
+    t.push_back(box);
+    t.push_back(object_vec3("position", "m", -1e6, 1e6, false, "Box centre / mesh origin x, y, z",
+                            &ObjectDesc::position_m));
+    t.push_back(object_vec3("orientation_deg", "deg", -360, 360, false, "Roll, pitch, yaw of the object",
+                            &ObjectDesc::orientation_deg));
+    ObjectSpec scale = object_vec3("scale", "", 0, 1e6, true, "Scale per axis, or one number for all three",
+                                   &ObjectDesc::scale);
+    scale.check = [](const ValueSpec& spec, const json& v, const std::string& file, const std::string& key) {
+        if (!v.is_number()) return validate_value(spec, v, file, key);
+        ValueSpec one = spec;
+        one.type = ParamType::Number;
+        const double x = validate_value(one, v, file, key).get<double>();
+        return json(Vec3d{x, x, x});
+    };
+    t.push_back(scale);
+    ObjectSpec name = part<ObjectDesc>("name", "", ParamType::String, 0, 0, false, Stage::None, "A label");
+    name.get = [](const ObjectDesc& o) { return json(o.name); };
+    name.put = [](ObjectDesc& o, const json& v, const std::string&) { o.name = v.get<std::string>(); };
+    name.check = [](const ValueSpec&, const json& v, const std::string& file, const std::string& key) {
+        if (!v.is_string()) throw InputError(file, key, "expected a string");
+        return v;
+    };
+    name.written = false;
+    t.push_back(name);
+    return t;
+}
+
+std::vector<SeafloorSpec> build_seafloor_params() {
+    SeafloorSpec h = part<Seafloor>("height_m", "m", ParamType::Number, -1e6, 1e6, false, Stage::Trace,
+                                    "Height z of the flat seafloor");
+    h.get = [](const Seafloor& f) { return json(f.height_m); };
+    h.put = [](Seafloor& f, const json& v, const std::string&) { f.height_m = v.get<double>(); };
+    return {h};
+}
+
 std::string type_name(const json& v) {
     if (v.is_null()) return "null";
     if (v.is_boolean()) return "a boolean";
@@ -357,6 +439,28 @@ const std::vector<MaterialSpec>& material_params() {
     return table;
 }
 
+const std::vector<ObjectSpec>& object_params() {
+    static const std::vector<ObjectSpec> table = build_object_params();
+    return table;
+}
+
+const std::vector<SeafloorSpec>& seafloor_params() {
+    static const std::vector<SeafloorSpec> table = build_seafloor_params();
+    return table;
+}
+
+const ObjectSpec* find_object_param(const std::string& key) {
+    for (auto& p : object_params())
+        if (p.key == key) return &p;
+    return nullptr;
+}
+
+const SeafloorSpec* find_seafloor_param(const std::string& key) {
+    for (auto& p : seafloor_params())
+        if (p.key == key) return &p;
+    return nullptr;
+}
+
 const ParamSpec* find_param(const std::string& key) {
     for (auto& p : scene_params())
         if (p.key == key) return &p;
@@ -379,6 +483,7 @@ std::string allowed_text(const ValueSpec& spec) {
                         (spec.max_exclusive ? ")" : "]");
     std::string unit = spec.unit.empty() ? "" : " " + spec.unit;
     if (spec.type == ParamType::Bool) return "true or false";
+    if (spec.type == ParamType::String) return "a string";
     if (spec.type == ParamType::Integer) return "an integer in " + range;
     if (spec.type == ParamType::Vec3) return "an array of 3 finite numbers in " + range + unit;
     return "a finite number in " + range + unit + (spec.optional ? ", or null (absent)" : "");
@@ -434,6 +539,9 @@ json validate_value(const ValueSpec& spec, const json& v, const std::string& fil
         }
         return json(out);
     }
+    case ParamType::String:
+        if (!v.is_string()) throw InputError(file, key, "expected a string, got " + type_name(v));
+        return v;
     case ParamType::Bool:
         if (!v.is_boolean()) throw InputError(file, key, "expected true or false, got " + type_name(v));
         return v;
@@ -508,23 +616,23 @@ void set_value(SceneDesc& scene, const std::string& key, const json& value, cons
         if (key == "sensor.model") apply_sensor_model(scene);
         return;
     }
-    const std::string floor_prefix = "seafloor.material.", surface_prefix = "water.surface_material.";
-    if (key.rfind(floor_prefix, 0) == 0) {
-        if (!scene.seafloor) throw InputError(file, key, "the scene has no seafloor");
-        set_material(scene.seafloor->material, key.substr(floor_prefix.size()), value, file, key);
-        return;
-    }
+    const std::string surface_prefix = "water.surface_material.";
     if (key.rfind(surface_prefix, 0) == 0) {
         set_material(scene.water.surface_material, key.substr(surface_prefix.size()), value, file, key);
         return;
     }
-    if (key == "seafloor.height_m") {
-        ValueSpec s;
-        s.key = key, s.unit = "m", s.min = -1e6, s.max = 1e6;
-        if (!scene.seafloor) scene.seafloor = Seafloor{};
-        scene.seafloor->height_m = validate_value(s, value, file, key).get<double>();
+    if (key.rfind("seafloor.material.", 0) == 0) {
+        if (!scene.seafloor) throw InputError(file, key, "the scene has no seafloor");
+        set_material(scene.seafloor->material, key.substr(18), value, file, key);
         return;
     }
+    if (key.rfind("seafloor.", 0) == 0)
+        if (const SeafloorSpec* p = find_seafloor_param(key.substr(9))) {
+            const json v = p->validated(value, file, key);
+            if (!scene.seafloor) scene.seafloor = Seafloor{};
+            p->put(*scene.seafloor, v, "");
+            return;
+        }
     if (key.rfind("objects.", 0) == 0) {
         const std::string rest = key.substr(8);
         const size_t dot = rest.find('.');
@@ -540,24 +648,20 @@ void set_value(SceneDesc& scene, const std::string& key, const json& value, cons
             set_material(o.material, field.substr(9), value, file, key);
             return;
         }
-        ValueSpec s;
-        s.key = key, s.type = ParamType::Vec3, s.min = -1e6, s.max = 1e6;
-        if (field == "position") {
-            o.position_m = validate_value(s, value, file, key).get<Vec3d>();
-        } else if (field == "orientation_deg") {
-            s.min = -360, s.max = 360;
-            o.orientation_deg = validate_value(s, value, file, key).get<Vec3d>();
-        } else {
-            throw InputError(file, key,
-                             "unknown object key for --set; allowed: position, orientation_deg, material.*");
-        }
+        const ObjectSpec* p = find_object_param(field);
+        if (!p)
+            throw InputError(file, key, "unknown key; allowed: " + part_keys_text(object_params()) + ".*");
+        // A mesh path given on the command line or in the viewer is relative to the working directory.
+        std::error_code ec;
+        p->put(o, p->validated(value, file, key), std::filesystem::current_path(ec).string());
         return;
     }
     std::string known;
     for (auto& p : scene_params()) known += (known.empty() ? "" : ", ") + p.key;
+    for (auto& p : seafloor_params()) known += ", seafloor." + p.key;
     throw InputError(file, key,
                      "unknown key; allowed: " + known +
-                         ", seafloor.height_m, seafloor.material.*, water.surface_material.*, objects.N.*");
+                         ", seafloor.material.*, water.surface_material.*, objects.N.*");
 }
 
 } // namespace
@@ -582,17 +686,16 @@ Stage changed_stage(const SceneDesc& a, const SceneDesc& b) {
         mark(Stage::Geometry);
     } else {
         for (size_t i = 0; i < a.objects.size(); ++i) {
-            const ObjectDesc &x = a.objects[i], &y = b.objects[i];
-            if (x.mesh_resolved != y.mesh_resolved || x.box_m != y.box_m || x.position_m != y.position_m ||
-                x.orientation_deg != y.orientation_deg || x.scale != y.scale)
-                mark(Stage::Geometry);
-            material_stage(x.material, y.material);
+            for (auto& p : object_params())
+                if (p.get(a.objects[i]) != p.get(b.objects[i])) mark(p.effective_stage(b));
+            material_stage(a.objects[i].material, b.objects[i].material);
         }
     }
     if (bool(a.seafloor) != bool(b.seafloor))
         mark(Stage::Trace);
     else if (a.seafloor) {
-        if (a.seafloor->height_m != b.seafloor->height_m) mark(Stage::Trace);
+        for (auto& p : seafloor_params())
+            if (p.get(*a.seafloor) != p.get(*b.seafloor)) mark(p.effective_stage(b));
         material_stage(a.seafloor->material, b.seafloor->material);
     }
     return st;

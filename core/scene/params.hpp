@@ -13,7 +13,7 @@ namespace sonarsim {
 
 using json = nlohmann::json;
 
-enum class ParamType { Number, Integer, Vec3, Enum, Bool };
+enum class ParamType { Number, Integer, Vec3, Enum, Bool, String };
 
 /// What must be recomputed when a parameter changes (each stage implies the ones after it).
 enum class Stage { Geometry = 0, Trace = 1, Shade = 2, Sensor = 3, Display = 4, None = 5 };
@@ -79,6 +79,36 @@ std::string material_keys_text();
 /// Returns the value in canonical form (integers as integers, vec3 as 3 numbers).
 json validate_value(const ValueSpec& spec, const json& value, const std::string& file,
                     const std::string& key_path);
+
+/// A key of one part of a scene (an object, the seafloor) with accessors into it. Its material's keys are
+/// the material rows ("objects.N.material.q").
+template <class Part> struct PartSpec : ValueSpec {
+    std::function<json(const Part&)> get; ///< null: absent (mesh of a box), not written
+    /// Sets the value (already validated); `base_dir` resolves relative mesh paths.
+    std::function<void(Part&, const json&, const std::string& base_dir)> put;
+    /// Validation beyond validate_value (a mesh path, a name, a scale given as one number); null: none.
+    std::function<json(const ValueSpec&, const json&, const std::string& file, const std::string& key)> check;
+    bool written = true; ///< scene_to_json writes it (a name is a label only)
+    /// The value checked against the row: `check`, else validate_value.
+    json validated(const json& value, const std::string& file, const std::string& key) const {
+        return check ? check(*this, value, file, key) : validate_value(*this, value, file, key);
+    }
+};
+using ObjectSpec = PartSpec<ObjectDesc>;
+using SeafloorSpec = PartSpec<Seafloor>;
+
+/// Object keys (mesh, box, position, orientation_deg, scale, name): stage Geometry (name: None).
+const std::vector<ObjectSpec>& object_params();
+/// Seafloor keys (height_m).
+const std::vector<SeafloorSpec>& seafloor_params();
+const ObjectSpec* find_object_param(const std::string& key);
+const SeafloorSpec* find_seafloor_param(const std::string& key);
+/// "KEYS, material": the keys of a part, for error messages ("mesh, box, ..., material").
+template <class Part> std::string part_keys_text(const std::vector<PartSpec<Part>>& rows) {
+    std::string keys;
+    for (auto& p : rows) keys += p.key + ", ";
+    return keys + "material";
+}
 
 /// Human-readable description of what is allowed, e.g. "a number in (0, 180)".
 std::string allowed_text(const ValueSpec& spec);
