@@ -12,57 +12,14 @@
 #include <cmath>
 
 namespace sonarsim {
-namespace {} // namespace
-
-Stage changed_stage(const SceneDesc& a, const SceneDesc& b) {
-    Stage st = Stage::None;
-    auto mark = [&](Stage s) { st = std::min(st, s); };
-    // The adaptive scheme places its rays where the echo level varies, so the parameters that change how it
-    // varies over a surface or between materials (absorption, nu, q, the specular lobe) re-trace; pure
-    // level offsets of the whole image (L_S, L_N) and display settings still only re-shade or re-map.
-    const bool adaptive = b.sampling.scheme == SamplingScheme::Adaptive;
-    const Stage shaping = adaptive ? Stage::Trace : Stage::Shade;
-    for (auto& p : scene_params())
-        if (p.get(a) != p.get(b))
-            mark(p.key == "sonar.frequency_khz" || p.key == "water.temperature_c" ||
-                         p.key == "water.depth_m" || p.key == "water.surface_roughness_m"
-                     ? shaping
-                     : p.stage);
-    auto material_stage = [&](const Material& x, const Material& y) {
-        if (x.q != y.q || x.mu != y.mu || x.h_deg != y.h_deg) mark(shaping);
-        // nu sets a material's level against the others', which decides where the adaptive sampler's
-        // refinement is worth its rays.
-        if (x.nu_db != y.nu_db) mark(shaping);
-        // A mirror appearing or going changes the traced paths; its loss, the ghosts' levels.
-        if (x.is_mirror() != y.is_mirror()) mark(Stage::Trace);
-        if (x.is_mirror() && x.reflection_db != y.reflection_db) mark(shaping);
-    };
-    material_stage(a.water.surface_material, b.water.surface_material);
-    if (a.objects.size() != b.objects.size()) {
-        mark(Stage::Geometry);
-    } else {
-        for (size_t i = 0; i < a.objects.size(); ++i) {
-            const ObjectDesc &x = a.objects[i], &y = b.objects[i];
-            if (x.mesh_resolved != y.mesh_resolved || x.box_m != y.box_m || x.position_m != y.position_m ||
-                x.orientation_deg != y.orientation_deg || x.scale != y.scale)
-                mark(Stage::Geometry);
-            material_stage(x.material, y.material);
-        }
-    }
-    if (bool(a.seafloor) != bool(b.seafloor))
-        mark(Stage::Trace);
-    else if (a.seafloor) {
-        if (a.seafloor->height_m != b.seafloor->height_m) mark(Stage::Trace);
-        material_stage(a.seafloor->material, b.seafloor->material);
-    }
-    return st;
-}
-
 Simulator::Simulator(const SceneDesc& scene)
     : scene_(scene), geometry_(std::make_unique<SceneGeometry>(scene)) {}
 
 void Simulator::set_scene(const SceneDesc& scene) {
-    const Stage s = changed_stage(scene_, scene);
+    set_scene(scene, changed_stage(scene_, scene));
+}
+
+void Simulator::set_scene(const SceneDesc& scene, Stage s) {
     // Objects only moved, turned or scaled: new instance transforms, no mesh read and no BVH rebuilt.
     // Otherwise a new geometry from the mesh cache. Either may throw, keeping the old geometry.
     if (s == Stage::Geometry && !geometry_->update_transforms(scene))

@@ -45,10 +45,6 @@ struct Frame {
     bool preview() const { return hits_ptr && hits_ptr->preview; }
 };
 
-/// Earliest stage at which two scenes differ (Stage::None if they render identically). Under the adaptive
-/// scheme, absorption (f, T, D) and material q, mu, h re-trace: they decide where its rays go.
-Stage changed_stage(const SceneDesc& before, const SceneDesc& after);
-
 /// What a frame carries beyond the images, each made in the shading pass only when asked for.
 struct FrameExtras {
     bool ground_truth = false; ///< Frame::truth_ptr
@@ -60,6 +56,8 @@ class Simulator {
     explicit Simulator(const SceneDesc& scene);
     /// Replace the scene; only the stages it affects are recomputed on the next render().
     void set_scene(const SceneDesc& scene);
+    /// The same, with `changed` = changed_stage(scene(), scene) already known (or an earlier stage).
+    void set_scene(const SceneDesc& scene, Stage changed);
     const SceneDesc& scene() const { return scene_; }
     const SceneGeometry& geometry() const { return *geometry_; }
     /// Recomputes what is stale and returns the frame, which shares the unchanged stages with earlier ones.

@@ -1,6 +1,7 @@
 #include "core/scene/params.hpp"
 
 #include "core/devices/devices.hpp"
+#include "core/geometry/mesh_formats.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/pose.hpp"
 #include "core/sensor/sensor_patterns.hpp"
@@ -8,6 +9,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -117,6 +119,12 @@ ParamSpec boolean(std::string key, Stage stage, std::string help, std::function<
 
 /// A sensor row: `ideal` is what sensor.model "ideal" sets, `device` what "device" sets where the preset
 /// says nothing (null: the model leaves the value alone).
+/// A row the adaptive sampler steers by (ValueSpec::steers_sampler).
+ParamSpec steers(ParamSpec p) {
+    p.steers_sampler = true;
+    return p;
+}
+
 ParamSpec sensor(ParamSpec p, json ideal, json device) {
     p.ideal_value = std::move(ideal);
     p.device_value = std::move(device);
@@ -133,6 +141,7 @@ MaterialSpec material(std::string key, std::string unit, double lo, double hi, b
     m.max = hi;
     m.min_exclusive = lo_ex;
     m.stage = Stage::Shade;
+    m.steers_sampler = true; // a material's level and lobe decide where the adaptive sampler refines
     m.help = std::move(help);
     m.field = field;
     return m;
@@ -223,9 +232,9 @@ std::vector<ParamSpec> build_scene_params() {
     t.push_back(vec3("sonar.orientation_deg", "deg", -360, 360, Stage::Trace,
                      "Roll, pitch, yaw; R = Rz(yaw) Ry(pitch) Rx(roll); positive pitch looks down",
                      [](S s) -> Vec3d& { return s.sonar.pose.orientation_deg; }));
-    t.push_back(number("sonar.frequency_khz", "kHz", 1, 10000, false, false, Stage::Shade,
-                       "Carrier frequency f (absorption, eq. 7)",
-                       [](S s) -> double& { return s.sonar.frequency_khz; }));
+    t.push_back(steers(number("sonar.frequency_khz", "kHz", 1, 10000, false, false, Stage::Shade,
+                              "Carrier frequency f (absorption, eq. 7)",
+                              [](S s) -> double& { return s.sonar.frequency_khz; })));
     t.push_back(number("sonar.azimuth_fov_deg", "deg", 0, 180, true, true, Stage::Trace,
                        "Azimuth field of view Theta",
                        [](S s) -> double& { return s.sonar.azimuth_fov_deg; }));
@@ -247,19 +256,20 @@ std::vector<ParamSpec> build_scene_params() {
                        [](S s) -> double& { return s.sonar.noise_level_db; }));
     // Bounds: the absorption formula (Ainslie & McColm 1998) holds for -6 < T < 35 degC and 0 < z < 7 km;
     // below -2 degC sea water is ice.
-    t.push_back(number("water.temperature_c", "degC", -2, 35, false, false, Stage::Shade,
-                       "Water temperature T (absorption formula range)",
-                       [](S s) -> double& { return s.water.temperature_c; }));
-    t.push_back(number("water.depth_m", "m", 0, 7000, false, false, Stage::Shade,
-                       "Water depth D (absorption)", [](S s) -> double& { return s.water.depth_m; }));
+    t.push_back(steers(number("water.temperature_c", "degC", -2, 35, false, false, Stage::Shade,
+                              "Water temperature T (absorption formula range)",
+                              [](S s) -> double& { return s.water.temperature_c; })));
+    t.push_back(steers(number("water.depth_m", "m", 0, 7000, false, false, Stage::Shade,
+                              "Water depth D (absorption)", [](S s) -> double& { return s.water.depth_m; })));
     t.push_back(optional_number("water.surface_height_m", "m", -1e6, 1e6, Stage::Trace,
                                 "Multipath: height z of the water surface, a pressure-release mirror that "
                                 "also backscatters (water.surface_material); null: no surface",
                                 [](S s) -> std::optional<double>& { return s.water.surface_height_m; }));
-    t.push_back(number("water.surface_roughness_m", "m", 0, 1, false, false, Stage::Shade,
-                       "Multipath: rms height sigma of the surface; coherent reflection (energy) R^2 = "
-                       "exp(-2 (2 k sigma cos theta)^2)",
-                       [](S s) -> double& { return s.water.surface_roughness_m; }));
+    t.push_back(
+        steers(number("water.surface_roughness_m", "m", 0, 1, false, false, Stage::Shade,
+                      "Multipath: rms height sigma of the surface; coherent reflection (energy) R^2 = "
+                      "exp(-2 (2 k sigma cos theta)^2)",
+                      [](S s) -> double& { return s.water.surface_roughness_m; })));
     t.push_back(integer("sampling.elevation_rays", 1, 1000000, Stage::Trace, "Elevation rays M per beam",
                         [](S s) -> int& { return s.sampling.elevation_rays; }));
     t.push_back(integer("sampling.azimuth_rays", 1, 1024, Stage::Trace, "Azimuth rays per beam",
@@ -321,6 +331,88 @@ std::vector<MaterialSpec> build_material_params() {
     };
 }
 
+template <class Part>
+PartSpec<Part> part(std::string key, std::string unit, ParamType type, double lo, double hi, bool lo_ex,
+                    Stage stage, std::string help) {
+    PartSpec<Part> p;
+    p.key = std::move(key), p.unit = std::move(unit), p.type = type, p.help = std::move(help);
+    p.min = lo, p.max = hi, p.min_exclusive = lo_ex, p.stage = stage;
+    return p;
+}
+
+/// An object's vec3 member.
+ObjectSpec object_vec3(std::string key, std::string unit, double lo, double hi, bool lo_ex, std::string help,
+                       Vec3d ObjectDesc::*field) {
+    ObjectSpec p = part<ObjectDesc>(std::move(key), std::move(unit), ParamType::Vec3, lo, hi, lo_ex,
+                                    Stage::Geometry, std::move(help));
+    p.get = [field](const ObjectDesc& o) { return json(o.*field); };
+    p.put = [field](ObjectDesc& o, const json& v, const std::string&) { o.*field = v.get<Vec3d>(); };
+    return p;
+}
+
+std::vector<ObjectSpec> build_object_params() {
+    std::vector<ObjectSpec> t;
+    ObjectSpec mesh =
+        part<ObjectDesc>("mesh", "", ParamType::String, 0, 0, false, Stage::Geometry,
+                         "Mesh file (" + mesh_extensions_text() + "), relative to the scene file");
+    mesh.get = [](const ObjectDesc& o) {
+        return o.box_m ? json(nullptr) : json(o.mesh_resolved.empty() ? o.mesh : o.mesh_resolved);
+    };
+    mesh.put = [](ObjectDesc& o, const json& v, const std::string& base) {
+        o.mesh = v.get<std::string>();
+        const std::filesystem::path p(o.mesh);
+        o.mesh_resolved =
+            p.is_absolute() ? p.string() : (std::filesystem::path(base) / p).lexically_normal().string();
+        o.box_m.reset();
+    };
+    mesh.check = [](const ValueSpec&, const json& v, const std::string& file, const std::string& key) {
+        if (!v.is_string() || v.get<std::string>().empty())
+            throw InputError(file, key, "expected a non-empty path string (" + mesh_extensions_text() + ")");
+        return v;
+    };
+    t.push_back(mesh);
+    ObjectSpec box = part<ObjectDesc>("box", "m", ParamType::Vec3, 0, 1e4, true, Stage::Geometry,
+                                      "Box size dx, dy, dz (instead of a mesh)");
+    box.get = [](const ObjectDesc& o) { return o.box_m ? json(*o.box_m) : json(nullptr); };
+    box.put = [](ObjectDesc& o, const json& v, const std::string&) {
+        o.box_m = v.get<Vec3d>();
+        o.mesh.clear(), o.mesh_resolved.clear();
+    };
+    t.push_back(box);
+    t.push_back(object_vec3("position", "m", -1e6, 1e6, false, "Box centre / mesh origin x, y, z",
+                            &ObjectDesc::position_m));
+    t.push_back(object_vec3("orientation_deg", "deg", -360, 360, false, "Roll, pitch, yaw of the object",
+                            &ObjectDesc::orientation_deg));
+    ObjectSpec scale = object_vec3("scale", "", 0, 1e6, true, "Scale per axis, or one number for all three",
+                                   &ObjectDesc::scale);
+    scale.check = [](const ValueSpec& spec, const json& v, const std::string& file, const std::string& key) {
+        if (!v.is_number()) return validate_value(spec, v, file, key);
+        ValueSpec one = spec;
+        one.type = ParamType::Number;
+        const double x = validate_value(one, v, file, key).get<double>();
+        return json(Vec3d{x, x, x});
+    };
+    t.push_back(scale);
+    ObjectSpec name = part<ObjectDesc>("name", "", ParamType::String, 0, 0, false, Stage::None, "A label");
+    name.get = [](const ObjectDesc& o) { return json(o.name); };
+    name.put = [](ObjectDesc& o, const json& v, const std::string&) { o.name = v.get<std::string>(); };
+    name.check = [](const ValueSpec&, const json& v, const std::string& file, const std::string& key) {
+        if (!v.is_string()) throw InputError(file, key, "expected a string");
+        return v;
+    };
+    name.written = false;
+    t.push_back(name);
+    return t;
+}
+
+std::vector<SeafloorSpec> build_seafloor_params() {
+    SeafloorSpec h = part<Seafloor>("height_m", "m", ParamType::Number, -1e6, 1e6, false, Stage::Trace,
+                                    "Height z of the flat seafloor");
+    h.get = [](const Seafloor& f) { return json(f.height_m); };
+    h.put = [](Seafloor& f, const json& v, const std::string&) { f.height_m = v.get<double>(); };
+    return {h};
+}
+
 std::string type_name(const json& v) {
     if (v.is_null()) return "null";
     if (v.is_boolean()) return "a boolean";
@@ -349,6 +441,28 @@ const std::vector<MaterialSpec>& material_params() {
     return table;
 }
 
+const std::vector<ObjectSpec>& object_params() {
+    static const std::vector<ObjectSpec> table = build_object_params();
+    return table;
+}
+
+const std::vector<SeafloorSpec>& seafloor_params() {
+    static const std::vector<SeafloorSpec> table = build_seafloor_params();
+    return table;
+}
+
+const ObjectSpec* find_object_param(const std::string& key) {
+    for (auto& p : object_params())
+        if (p.key == key) return &p;
+    return nullptr;
+}
+
+const SeafloorSpec* find_seafloor_param(const std::string& key) {
+    for (auto& p : seafloor_params())
+        if (p.key == key) return &p;
+    return nullptr;
+}
+
 const ParamSpec* find_param(const std::string& key) {
     for (auto& p : scene_params())
         if (p.key == key) return &p;
@@ -371,6 +485,7 @@ std::string allowed_text(const ValueSpec& spec) {
                         (spec.max_exclusive ? ")" : "]");
     std::string unit = spec.unit.empty() ? "" : " " + spec.unit;
     if (spec.type == ParamType::Bool) return "true or false";
+    if (spec.type == ParamType::String) return "a string";
     if (spec.type == ParamType::Integer) return "an integer in " + range;
     if (spec.type == ParamType::Vec3) return "an array of 3 finite numbers in " + range + unit;
     return "a finite number in " + range + unit + (spec.optional ? ", or null (absent)" : "");
@@ -385,8 +500,13 @@ json MaterialSpec::get(const Material& m) const {
     return std::isfinite(v) ? json(v) : json(nullptr);
 }
 
-Stage MaterialSpec::stage_of_change(double before, double after) const {
-    return optional && std::isfinite(before) != std::isfinite(after) ? Stage::Trace : stage;
+Stage ValueSpec::effective_stage(const SceneDesc& scene) const {
+    return steers_sampler && scene.sampling.scheme == SamplingScheme::Adaptive ? std::min(stage, Stage::Trace)
+                                                                               : stage;
+}
+
+Stage MaterialSpec::stage_of_change(double before, double after, const SceneDesc& scene) const {
+    return optional && std::isfinite(before) != std::isfinite(after) ? Stage::Trace : effective_stage(scene);
 }
 
 json validate_value(const ValueSpec& spec, const json& v, const std::string& file, const std::string& key) {
@@ -421,6 +541,9 @@ json validate_value(const ValueSpec& spec, const json& v, const std::string& fil
         }
         return json(out);
     }
+    case ParamType::String:
+        if (!v.is_string()) throw InputError(file, key, "expected a string, got " + type_name(v));
+        return v;
     case ParamType::Bool:
         if (!v.is_boolean()) throw InputError(file, key, "expected true or false, got " + type_name(v));
         return v;
@@ -479,37 +602,39 @@ std::string material_keys_text() {
     return keys;
 }
 
-Stage set_material(Material& m, const std::string& field, const json& value, const std::string& file,
-                   const std::string& key) {
+void set_material(Material& m, const std::string& field, const json& value, const std::string& file,
+                  const std::string& key) {
     const MaterialSpec* spec = find_material_param(field);
     if (!spec) throw InputError(file, key, "unknown key; allowed: " + material_keys_text());
-    const double before = m.*(spec->field);
     m.*(spec->field) = spec->value_of(validate_value(*spec, value, file, key));
-    return spec->stage_of_change(before, m.*(spec->field));
 }
 
-Stage apply_setting(SceneDesc& scene, const std::string& key, const json& value, const std::string& file) {
+namespace {
+
+void set_value(SceneDesc& scene, const std::string& key, const json& value, const std::string& file) {
     if (auto* p = find_param(key)) {
         p->put(scene, validate_value(*p, value, file, key));
         if (key == "sonar.device") apply_device(scene);
         if (key == "sensor.model") apply_sensor_model(scene);
-        return is_group_key(key) ? Stage::Geometry : p->stage;
+        return;
     }
-    const std::string floor_prefix = "seafloor.material.", surface_prefix = "water.surface_material.";
-    if (key.rfind(floor_prefix, 0) == 0) {
+    const std::string surface_prefix = "water.surface_material.";
+    if (key.rfind(surface_prefix, 0) == 0) {
+        set_material(scene.water.surface_material, key.substr(surface_prefix.size()), value, file, key);
+        return;
+    }
+    if (key.rfind("seafloor.material.", 0) == 0) {
         if (!scene.seafloor) throw InputError(file, key, "the scene has no seafloor");
-        return set_material(scene.seafloor->material, key.substr(floor_prefix.size()), value, file, key);
+        set_material(scene.seafloor->material, key.substr(18), value, file, key);
+        return;
     }
-    if (key.rfind(surface_prefix, 0) == 0)
-        return set_material(scene.water.surface_material, key.substr(surface_prefix.size()), value, file,
-                            key);
-    if (key == "seafloor.height_m") {
-        ValueSpec s;
-        s.key = key, s.unit = "m", s.min = -1e6, s.max = 1e6;
-        if (!scene.seafloor) scene.seafloor = Seafloor{};
-        scene.seafloor->height_m = validate_value(s, value, file, key).get<double>();
-        return Stage::Trace;
-    }
+    if (key.rfind("seafloor.", 0) == 0)
+        if (const SeafloorSpec* p = find_seafloor_param(key.substr(9))) {
+            const json v = p->validated(value, file, key);
+            if (!scene.seafloor) scene.seafloor = Seafloor{};
+            p->put(*scene.seafloor, v, "");
+            return;
+        }
     if (key.rfind("objects.", 0) == 0) {
         const std::string rest = key.substr(8);
         const size_t dot = rest.find('.');
@@ -521,26 +646,61 @@ Stage apply_setting(SceneDesc& scene, const std::string& key, const json& value,
                              "object index must be in [0, " + std::to_string(scene.objects.size()) + ")");
         const std::string field = dot == std::string::npos ? "" : rest.substr(dot + 1);
         ObjectDesc& o = scene.objects[idx];
-        if (field.rfind("material.", 0) == 0)
-            return set_material(o.material, field.substr(9), value, file, key);
-        ValueSpec s;
-        s.key = key, s.type = ParamType::Vec3, s.min = -1e6, s.max = 1e6;
-        if (field == "position") {
-            o.position_m = validate_value(s, value, file, key).get<Vec3d>();
-        } else if (field == "orientation_deg") {
-            s.min = -360, s.max = 360;
-            o.orientation_deg = validate_value(s, value, file, key).get<Vec3d>();
-        } else {
-            throw InputError(file, key,
-                             "unknown object key for --set; allowed: position, orientation_deg, material.*");
+        if (field.rfind("material.", 0) == 0) {
+            set_material(o.material, field.substr(9), value, file, key);
+            return;
         }
-        return Stage::Geometry;
+        const ObjectSpec* p = find_object_param(field);
+        if (!p)
+            throw InputError(file, key, "unknown key; allowed: " + part_keys_text(object_params()) + ".*");
+        // A mesh path given on the command line or in the viewer is relative to the working directory.
+        std::error_code ec;
+        p->put(o, p->validated(value, file, key), std::filesystem::current_path(ec).string());
+        return;
     }
     std::string known;
     for (auto& p : scene_params()) known += (known.empty() ? "" : ", ") + p.key;
+    for (auto& p : seafloor_params()) known += ", seafloor." + p.key;
     throw InputError(file, key,
                      "unknown key; allowed: " + known +
-                         ", seafloor.height_m, seafloor.material.*, water.surface_material.*, objects.N.*");
+                         ", seafloor.material.*, water.surface_material.*, objects.N.*");
+}
+
+} // namespace
+
+Stage apply_setting(SceneDesc& scene, const std::string& key, const json& value, const std::string& file) {
+    const SceneDesc before = scene;
+    set_value(scene, key, value, file);
+    return changed_stage(before, scene);
+}
+
+Stage changed_stage(const SceneDesc& a, const SceneDesc& b) {
+    Stage st = Stage::None;
+    auto mark = [&](Stage s) { st = std::min(st, s); };
+    for (auto& p : scene_params())
+        if (p.get(a) != p.get(b)) mark(p.effective_stage(b));
+    auto material_stage = [&](const Material& x, const Material& y) {
+        for (auto& p : material_params())
+            if (p.get(x) != p.get(y)) mark(p.stage_of_change(x.*p.field, y.*p.field, b));
+    };
+    material_stage(a.water.surface_material, b.water.surface_material);
+    if (a.objects.size() != b.objects.size()) {
+        mark(Stage::Geometry);
+    } else {
+        for (size_t i = 0; i < a.objects.size(); ++i) {
+            for (auto& p : object_params())
+                if (p.get(a.objects[i]) != p.get(b.objects[i])) mark(p.effective_stage(b));
+            material_stage(a.objects[i].material, b.objects[i].material);
+        }
+    }
+    if (bool(a.seafloor) != bool(b.seafloor))
+        mark(Stage::Trace);
+    else if (a.seafloor) {
+        for (auto& p : seafloor_params())
+            if (p.get(*a.seafloor) != p.get(*b.seafloor)) mark(p.effective_stage(b));
+        material_stage(a.seafloor->material, b.seafloor->material);
+    }
+    return st;
 }
 
 std::pair<std::string, json> parse_setting_text(const std::string& text, const std::string& origin) {

@@ -117,6 +117,7 @@ struct ObjectDesc {
     Vec3d orientation_deg{0, 0, 0};
     Vec3d scale{1, 1, 1};
     Material material;
+    std::string name; ///< a label (not written to the metadata)
 };
 
 struct SceneDesc {

@@ -2,7 +2,6 @@
 
 #include "core/base/errors.hpp"
 #include "core/base/file_io.hpp"
-#include "core/geometry/mesh_formats.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -94,53 +93,21 @@ Material parse_material(const json& v, const std::string& file, const std::strin
     return m;
 }
 
-Vec3d vec3_value(const json& v, double lo, double hi, const std::string& file, const std::string& key,
-                 bool positive = false) {
-    ValueSpec s;
-    s.type = ParamType::Vec3, s.min = lo, s.max = hi, s.min_exclusive = positive;
-    return validate_value(s, v, file, key).get<Vec3d>();
-}
-
 ObjectDesc parse_object(const json& v, const std::string& file, const std::string& key,
                         const std::string& base) {
     require_object(v, file, key);
     ObjectDesc o;
     for (auto& [k, val] : v.items()) {
         const std::string kk = key + "." + k;
-        if (k == "mesh") {
-            if (!val.is_string() || val.get<std::string>().empty())
-                throw InputError(file, kk,
-                                 "expected a non-empty path string (" + mesh_extensions_text() + ")");
-            o.mesh = val.get<std::string>();
-            std::filesystem::path p(o.mesh);
-            o.mesh_resolved =
-                p.is_absolute() ? p.string() : (std::filesystem::path(base) / p).lexically_normal().string();
-        } else if (k == "box") {
-            o.box_m = vec3_value(val, 0, 1e4, file, kk, true);
-        } else if (k == "position") {
-            o.position_m = vec3_value(val, -1e6, 1e6, file, kk);
-        } else if (k == "orientation_deg") {
-            o.orientation_deg = vec3_value(val, -360, 360, file, kk);
-        } else if (k == "scale") {
-            if (val.is_number()) {
-                ValueSpec s;
-                s.min = 0, s.max = 1e6, s.min_exclusive = true;
-                const double x = validate_value(s, val, file, kk).get<double>();
-                o.scale = {x, x, x};
-            } else {
-                o.scale = vec3_value(val, 0, 1e6, file, kk, true);
-            }
-        } else if (k == "material") {
+        if (k == "material") {
             o.material = parse_material(val, file, kk);
-        } else if (k == "name") {
-            if (!val.is_string()) throw InputError(file, kk, "expected a string");
+        } else if (const ObjectSpec* p = find_object_param(k)) {
+            p->put(o, p->validated(val, file, kk), base);
         } else {
-            throw InputError(
-                file, kk,
-                "unknown key; allowed: mesh, box, position, orientation_deg, scale, material, name");
+            throw InputError(file, kk, "unknown key; allowed: " + part_keys_text(object_params()));
         }
     }
-    if (o.mesh.empty() == !o.box_m)
+    if (v.contains("mesh") == v.contains("box"))
         throw InputError(file, key, "an object needs exactly one of \"mesh\" or \"box\"");
     return o;
 }
@@ -224,14 +191,13 @@ SceneDesc parse_scene(const std::string& text, const std::string& file, const st
             require_object(body, file, section);
             Seafloor f;
             for (auto& [k, val] : body.items()) {
-                if (k == "height_m") {
-                    ValueSpec s;
-                    s.unit = "m", s.min = -1e6, s.max = 1e6;
-                    f.height_m = validate_value(s, val, file, "seafloor.height_m").get<double>();
-                } else if (k == "material") {
+                if (k == "material") {
                     f.material = parse_material(val, file, "seafloor.material");
+                } else if (const SeafloorSpec* p = find_seafloor_param(k)) {
+                    p->put(f, p->validated(val, file, "seafloor." + k), base_dir);
                 } else {
-                    throw InputError(file, "seafloor." + k, "unknown key; allowed: height_m, material");
+                    throw InputError(file, "seafloor." + k,
+                                     "unknown key; allowed: " + part_keys_text(seafloor_params()));
                 }
             }
             scene.seafloor = f;
@@ -277,18 +243,19 @@ json scene_to_json(const SceneDesc& s) {
         return o;
     };
     if (s.water.surface_height_m) j["water"]["surface_material"] = material(s.water.surface_material);
-    if (s.seafloor)
-        j["seafloor"] = {{"height_m", s.seafloor->height_m}, {"material", material(s.seafloor->material)}};
+    auto part = [&](const auto& rows, const auto& x) {
+        json o;
+        for (auto& p : rows)
+            if (p.written && !p.get(x).is_null()) o[p.key] = p.get(x);
+        return o;
+    };
+    if (s.seafloor) {
+        j["seafloor"] = part(seafloor_params(), *s.seafloor);
+        j["seafloor"]["material"] = material(s.seafloor->material);
+    }
     j["objects"] = json::array();
     for (auto& o : s.objects) {
-        json jo;
-        if (o.box_m)
-            jo["box"] = *o.box_m;
-        else
-            jo["mesh"] = o.mesh_resolved.empty() ? o.mesh : o.mesh_resolved;
-        jo["position"] = o.position_m;
-        jo["orientation_deg"] = o.orientation_deg;
-        jo["scale"] = o.scale;
+        json jo = part(object_params(), o);
         jo["material"] = material(o.material);
         j["objects"].push_back(jo);
     }

@@ -1,11 +1,11 @@
 // Sums of intensities carried as natural logarithms, for levels far outside double's range.
 #pragma once
+#include "core/base/units.hpp"
+
 #include <cmath>
 #include <limits>
 
 namespace sonarsim {
-
-constexpr double kLn10Over10 = 0.23025850929940458; ///< ln(10) / 10: dB to natural-log units
 
 /// Log-domain accumulator: value = exp(m) * s.
 struct LogSum {

@@ -76,6 +76,30 @@ TEST_CASE("uniform and spread schemes re-shade on absorption and material change
     }
 }
 
+TEST_CASE("a material edit re-traces under the adaptive scheme and re-shades otherwise", "[simulator]") {
+    // The adaptive sampler places its rays by the materials' levels: the re-render equals a fresh render
+    // only if it re-traces. apply_setting, changed_stage and the Simulator give the same answer.
+    for (SamplingScheme scheme :
+         {SamplingScheme::Adaptive, SamplingScheme::Uniform, SamplingScheme::Spread}) {
+        const Stage expected = scheme == SamplingScheme::Adaptive ? Stage::Trace : Stage::Shade;
+        SceneDesc before = default_scene();
+        before.sampling.scheme = scheme;
+        SceneDesc after = before;
+        CHECK(apply_setting(after, "seafloor.material.nu_db", -30.0, "test") == expected);
+        CHECK(changed_stage(before, after) == expected);
+        Simulator sim(before);
+        const auto first = sim.render();
+        sim.set_scene(after);
+        CHECK(sim.pending() == expected);
+        const auto inc = sim.render();
+        CHECK((inc->hits_ptr == first->hits_ptr) == (expected == Stage::Shade));
+        Simulator fresh(after);
+        const auto ref = fresh.render();
+        CHECK(inc->polar().level_db == ref->polar().level_db);
+        CHECK(inc->sector().pixels == ref->sector().pixels);
+    }
+}
+
 TEST_CASE("frames share the stages a change leaves alone", "[simulator]") {
     SceneDesc s = default_scene();
     Simulator sim(s);

@@ -19,12 +19,16 @@ RenderWorker::~RenderWorker() {
     thread_.join();
 }
 
-std::uint64_t RenderWorker::request(const SceneDesc& scene, bool preview, bool ground_truth) {
+std::uint64_t RenderWorker::request(const SceneDesc& scene, bool preview, bool ground_truth,
+                                    std::optional<Stage> changed) {
     std::uint64_t id;
     {
         std::lock_guard<std::mutex> lock(mutex_);
         id = next_id_++;
-        queued_ = Job{id, scene, preview, ground_truth};
+        // A replaced request's change still has to be made: the earlier of the two stages.
+        if (changed && queued_)
+            changed = queued_->changed ? std::min(*changed, *queued_->changed) : queued_->changed;
+        queued_ = Job{id, scene, preview, ground_truth, changed};
         // Restart on change: a full render of an outdated scene is stopped inside its trace. A running
         // preview is let finish (a few ms): cancelling previews in favour of newer previews while the user
         // drags would show nothing at all.
@@ -69,6 +73,7 @@ bool RenderWorker::busy() const {
 void RenderWorker::loop() {
     std::unique_ptr<Simulator> sim; // its own Simulator: core's is not thread-safe
     Stage carried = Stage::None;    // what cancelled renders had started to recompute
+    bool known = false;             // the simulator holds the previous request's scene
     for (;;) {
         Job job;
         {
@@ -89,9 +94,11 @@ void RenderWorker::loop() {
                 sim = std::make_unique<Simulator>(job.scene);
                 r.stage = Stage::Geometry;
             } else {
-                r.stage = changed_stage(sim->scene(), job.scene);
-                sim->set_scene(job.scene); // a bad mesh throws; the last good geometry stays
+                r.stage = known && job.changed ? *job.changed : changed_stage(sim->scene(), job.scene);
+                known = false;
+                sim->set_scene(job.scene, r.stage); // a bad mesh throws; the last good geometry stays
             }
+            known = true;
             TraceControl control;
             control.cancel = &cancel_;
             control.preview = job.preview;

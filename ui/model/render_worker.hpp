@@ -41,7 +41,10 @@ class RenderWorker {
     /// Queues a scene; replaces a queued one that has not started and cancels a running full render.
     /// `preview`: the adaptive sampler's base grid only (TraceControl::preview). Returns the request id
     /// (increasing).
-    std::uint64_t request(const SceneDesc& scene, bool preview = false, bool ground_truth = false);
+    /// `changed`: changed_stage from the scene of the previous request to this one, when the caller knows it
+    /// (computed once per edit); otherwise the worker compares the scenes itself.
+    std::uint64_t request(const SceneDesc& scene, bool preview = false, bool ground_truth = false,
+                          std::optional<Stage> changed = std::nullopt);
     /// The newest finished result not yet taken, if any (older unread results are dropped).
     std::optional<RenderResult> take();
     /// Waits until the result of request `id` (or a newer one) is done; false on timeout.
@@ -66,6 +69,7 @@ class RenderWorker {
         SceneDesc scene;
         bool preview = false;
         bool ground_truth = false;
+        std::optional<Stage> changed; ///< changed_stage from the previous request's scene, if known
     };
     std::optional<Job> queued_;
     std::optional<RenderResult> result_;

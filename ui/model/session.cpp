@@ -33,6 +33,7 @@ void Session::set_scene(SceneDesc next) {
     if (st == Stage::None && next.source_file == scene_.source_file) return;
     if (st == Stage::Geometry) update_geometry(next); // throws InputError: caller keeps the old scene
     scene_ = std::move(next);
+    if (changed_) changed_ = std::min(*changed_, st);
     dirty_ = true;
 }
 
@@ -72,6 +73,7 @@ bool Session::open_scene(const std::string& path) {
         geometry_ = std::move(geometry);
         ++meshes_version_;
         dirty_ = true;
+        changed_.reset(); // the worker compares the scenes
         status_ = "opened " + path;
         error_.clear();
         return true;
@@ -124,13 +126,15 @@ std::uint64_t Session::submit(bool interacting, Clock::time_point now) {
         dirty_ = false;
         last_change_ = now;
         full_pending_ = interacting;
-        requested_id_ = worker_.request(scene_, interacting, ground_truth_);
+        requested_id_ = worker_.request(scene_, interacting, ground_truth_, changed_);
+        changed_ = Stage::None;
         return requested_id_;
     }
     if (full_pending_ && (!interacting || now - last_change_ >= kRest)) {
         // The input rests: the same scene again, in full quality (the worker re-traces a preview).
         full_pending_ = false;
-        requested_id_ = worker_.request(scene_, false, ground_truth_);
+        requested_id_ = worker_.request(scene_, false, ground_truth_); // the worker compares the scenes
+        changed_ = Stage::None;
         return requested_id_;
     }
     return 0;
@@ -144,6 +148,7 @@ bool Session::poll() {
         // The newest request failed (a mesh that the worker could not load): go back to the last good scene.
         if (r->id == requested_id_ && !dirty_) {
             scene_ = last_good_;
+            changed_.reset();                                   // the worker compares the scenes
             full_pending_ = shown_ && shown_->frame->preview(); // the full image of the last good scene
             try {
                 update_geometry(scene_);

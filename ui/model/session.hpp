@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -97,6 +98,8 @@ class Session {
     std::unique_ptr<SceneGeometry> geometry_;
     std::uint64_t meshes_version_ = 0;
     bool dirty_ = true;
+    /// changed_stage since the last request, accumulated edit by edit (empty: unknown, the worker compares).
+    std::optional<Stage> changed_;
     bool ground_truth_ = false;
     std::uint64_t requested_id_ = 0, shown_count_ = 0;
     bool full_pending_ = false;       ///< the last request for scene_ was a preview
