@@ -18,10 +18,10 @@ namespace {} // namespace
 Stage changed_stage(const SceneDesc& a, const SceneDesc& b) {
     Stage st = Stage::None;
     auto mark = [&](Stage s) { st = std::min(st, s); };
-    // The adaptive scheme places its rays where the echo level varies, so the parameters that change how it
+    // Adaptive placement puts its rays where the echo level varies, so the parameters that change how it
     // varies over a surface or between materials (absorption, nu, q, the specular lobe) re-trace; pure
     // level offsets of the whole image (L_S, L_N) and display settings still only re-shade or re-map.
-    const bool adaptive = b.sampling.scheme == SamplingScheme::Adaptive;
+    const bool adaptive = b.sampling.placement == RayPlacement::Adaptive;
     const Stage shaping = adaptive ? Stage::Trace : Stage::Shade;
     for (auto& p : scene_params())
         if (p.get(a) != p.get(b))

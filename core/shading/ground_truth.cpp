@@ -59,7 +59,7 @@ GroundTruth compute_ground_truth(const TraceResult& hits, const SceneDesc& s) {
     const ShadeConstants k = shade_constants(s);
     const int K = s.sonar.range_bins, N = s.sonar.beams;
     const double r_min = s.sonar.range_min_m, r_max = s.sonar.range_max_m, dr = (r_max - r_min) / K;
-    const bool spread = s.sampling.scheme != SamplingScheme::Uniform;
+    const bool spread = s.sampling.binning == EchoBinning::Footprint;
     const glm::dmat3 R = rotation_matrix(s.sonar.pose.orientation_deg);
     const glm::dvec3 origin = to_glm(s.sonar.pose.position_m);
     const float nan = std::numeric_limits<float>::quiet_NaN();
@@ -122,7 +122,7 @@ EchoPath strongest_path(const TraceResult& hits, const SceneDesc& s, int bin, in
     const int K = s.sonar.range_bins;
     if (beam < 0 || beam >= std::min(s.sonar.beams, hits.beams) || bin < 0 || bin >= K) return out;
     const double r_min = s.sonar.range_min_m, r_max = s.sonar.range_max_m, dr = (r_max - r_min) / K;
-    const bool spread = s.sampling.scheme != SamplingScheme::Uniform;
+    const bool spread = s.sampling.binning == EchoBinning::Footprint;
     const BeamContributions cells(hits, beam);
     std::vector<double> x;
     if (!std::isfinite(contribution_levels(cells, s, shade_constants(s), x))) return out;

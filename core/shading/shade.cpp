@@ -38,8 +38,8 @@ const Material& material_of(const SceneDesc& s, unsigned m) {
     return s.objects.at(m - 1).material;
 }
 
-double cell_fraction_in(const Cell& c, SamplingScheme scheme, double r0, double r1) {
-    if (scheme == SamplingScheme::Uniform) return (c.range_m >= r0 && c.range_m < r1) ? 1.0 : 0.0;
+double cell_fraction_in(const Cell& c, EchoBinning binning, double r0, double r1) {
+    if (binning == EchoBinning::Point) return (c.range_m >= r0 && c.range_m < r1) ? 1.0 : 0.0;
     const detail::Footprint f = detail::footprint_of(c);
     if (f.p + f.q <= 1e-9 * (r1 - r0)) return (f.lo >= r0 && f.lo < r1) ? 1.0 : 0.0;
     return f.cdf(r1) - f.cdf(r0);
@@ -96,7 +96,7 @@ PolarImage shade(const TraceResult& hits, const SceneDesc& s) {
     const ShadeConstants k = shade_constants(s);
     const int K = s.sonar.range_bins, N = s.sonar.beams;
     const double r_min = s.sonar.range_min_m, r_max = s.sonar.range_max_m, dr = (r_max - r_min) / K;
-    const bool spread = s.sampling.scheme != SamplingScheme::Uniform;
+    const bool spread = s.sampling.binning == EchoBinning::Footprint;
 
     PolarImage img;
     img.bins = K, img.beams = N;
@@ -147,7 +147,7 @@ std::vector<double> path_order_energy_db(const TraceResult& hits, const SceneDes
     const ShadeConstants k = shade_constants(s);
     const int K = s.sonar.range_bins, N = std::min(s.sonar.beams, hits.beams);
     const double r_min = s.sonar.range_min_m, r_max = s.sonar.range_max_m, dr = (r_max - r_min) / K;
-    const bool spread = s.sampling.scheme != SamplingScheme::Uniform;
+    const bool spread = s.sampling.binning == EchoBinning::Footprint;
     const size_t orders = size_t(2 * std::max(0, s.sampling.bounces) + 1);
     std::vector<std::vector<LogSum>> per_beam(static_cast<size_t>(N), std::vector<LogSum>(orders));
     tbb::parallel_for(0, N, [&](int i) {
@@ -182,7 +182,7 @@ SensorInputs shade_sensor_inputs(const TraceResult& hits, const SceneDesc& s) {
     const int K = s.sonar.range_bins, N = s.sonar.beams, S = azimuth_subcolumns(s);
     const double r_min = s.sonar.range_min_m, r_max = s.sonar.range_max_m, dr = (r_max - r_min) / K;
     const double theta = deg2rad(s.sonar.azimuth_fov_deg), spacing = theta / N;
-    const bool spread = s.sampling.scheme != SamplingScheme::Uniform;
+    const bool spread = s.sampling.binning == EchoBinning::Footprint;
     const bool fine = S > 1, elevation = s.sensor.speckle != Speckle::Off;
     const float nan = std::numeric_limits<float>::quiet_NaN();
 
