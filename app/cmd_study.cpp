@@ -59,7 +59,8 @@ int run_study(const StudyOptions& o) {
               << " MB\n";
 
     std::vector<Sampling> ladder = default_ladder(o.quick);
-    ladder.push_back({scene.sampling.scheme, scene.sampling.elevation_rays, scene.sampling.azimuth_rays});
+    ladder.push_back(
+        {*scheme_of(scene.sampling), scene.sampling.elevation_rays, scene.sampling.azimuth_rays});
     std::ostringstream csv;
     csv << "label,scheme,elevation_rays,azimuth_rays,rays,time_ms,rel_l1,median_abs_db,p95_abs_db,holes,"
            "echoing_bins,estimated_rel_l1,estimated_median_db\n";

@@ -5,6 +5,7 @@
 // fixed rays (the cost per ray of the continuations and shadow rays alone). Also the error estimate.
 #include "bench.hpp"
 
+#include "core/scene/sampling_scheme.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/pipeline/simulator.hpp"
 
@@ -32,7 +33,7 @@ int run_multipath_bench(const std::string& repo, int repeats) {
             double direct_ms = 0;
             for (int bounces = 0; bounces <= 2; ++bounces) {
                 SceneDesc s = c.scene;
-                s.sampling.scheme = scheme;
+                set_scheme(s.sampling, scheme);
                 s.sampling.bounces = bounces;
                 Simulator sim(s);
                 std::vector<double> ms;
@@ -50,8 +51,8 @@ int run_multipath_bench(const std::string& repo, int repeats) {
                 const double med = ms[ms.size() / 2];
                 if (bounces == 0) direct_ms = med;
                 std::printf("%-44s %-9s %7d %10llu %10llu %8.1f ms %8.2fx %9.3f\n", c.name.c_str(),
-                            scheme == SamplingScheme::Adaptive ? "adaptive" : "spread", bounces,
-                            (unsigned long long)rays, (unsigned long long)mp_rays, med, med / direct_ms,
+                            scheme_name(scheme), bounces, (unsigned long long)rays,
+                            (unsigned long long)mp_rays, med, med / direct_ms,
                             scheme == SamplingScheme::Adaptive ? err : 0.0);
                 std::fflush(stdout);
             }

@@ -22,11 +22,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-const char* scheme_name(SamplingScheme s) {
-    static const char* names[] = {"uniform", "spread", "adaptive"};
-    return names[int(s)];
-}
-
 struct Setting {
     Sampling sampling;
     std::string role; ///< "default" (the scene's own), "paper" (uniform 281), "spread" (the ladder)
@@ -35,7 +30,7 @@ struct Setting {
 /// Default (the scene's sampling), the paper's uniform 281 and the spread ladder.
 std::vector<Setting> settings(const SceneDesc& s, bool quick) {
     using S = SamplingScheme;
-    const Sampling own{s.sampling.scheme, s.sampling.elevation_rays, s.sampling.azimuth_rays};
+    const Sampling own{*scheme_of(s.sampling), s.sampling.elevation_rays, s.sampling.azimuth_rays};
     std::vector<Setting> v = {{own, "default"}};
     auto add = [&](Sampling m, const char* role) {
         for (const Setting& x : v)
@@ -144,7 +139,7 @@ int run_worker(const WorkerOptions& o) {
     for (size_t n = 0; n < list.size(); ++n) {
         const Setting& st = list[n];
         SceneDesc s = scene;
-        s.sampling.scheme = st.sampling.scheme;
+        set_scheme(s.sampling, st.sampling.scheme);
         s.sampling.elevation_rays = st.sampling.elevation_rays;
         s.sampling.azimuth_rays = st.sampling.azimuth_rays;
         status_line("  " + o.name + ": [" + std::to_string(n + 1) + "/" + std::to_string(list.size()) + "] " +

@@ -14,7 +14,7 @@ namespace sonarsim {
 namespace {
 
 SceneDesc with_sampling(SceneDesc s, const Sampling& m) {
-    s.sampling.scheme = m.scheme;
+    set_scheme(s.sampling, m.scheme);
     s.sampling.elevation_rays = m.elevation_rays;
     s.sampling.azimuth_rays = m.azimuth_rays;
     return s;
@@ -30,8 +30,7 @@ PolarImage render_raw(const SceneGeometry& g, const SceneDesc& s, TraceResult* h
 } // namespace
 
 std::string Sampling::label() const {
-    static const char* names[] = {"uniform", "spread", "adaptive"};
-    return std::string(names[int(scheme)]) + " " + std::to_string(elevation_rays) + "x" +
+    return std::string(scheme_name(scheme)) + " " + std::to_string(elevation_rays) + "x" +
            std::to_string(azimuth_rays);
 }
 
@@ -69,7 +68,7 @@ SceneDesc beam_subscene(const SceneDesc& scene, int first, int last) {
 
 PolarImage render_in_chunks(const SceneGeometry& g, const SceneDesc& scene, const Sampling& m, int per_chunk,
                             const Progress& progress, std::uint64_t* rays) {
-    if (m.scheme == SamplingScheme::Adaptive)
+    if (kSamplingSchemes[size_t(m.scheme)].placement == RayPlacement::Adaptive)
         throw std::invalid_argument("render_in_chunks: adaptive sampling compares neighbouring beams");
     const SceneDesc s = with_sampling(scene, m);
     const int N = s.sonar.beams, K = s.sonar.range_bins;

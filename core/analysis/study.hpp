@@ -2,6 +2,7 @@
 #pragma once
 #include "core/geometry/geometry.hpp"
 #include "core/analysis/reference.hpp"
+#include "core/scene/sampling_scheme.hpp"
 #include "core/scene/scene.hpp"
 
 #include <cstddef>

@@ -106,8 +106,8 @@ TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s, const Trac
 
 TraceResult trace(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control) {
     const auto t0 = std::chrono::steady_clock::now();
-    TraceResult out = s.sampling.scheme == SamplingScheme::Adaptive ? trace_adaptive(g, s, control)
-                                                                    : trace_uniform(g, s, control);
+    TraceResult out = s.sampling.placement == RayPlacement::Adaptive ? trace_adaptive(g, s, control)
+                                                                     : trace_uniform(g, s, control);
     out.trace_ms = ms_since(t0);
     return out;
 }

@@ -94,7 +94,7 @@ struct TraceCancelled : std::runtime_error {
     TraceCancelled() : std::runtime_error("trace cancelled") {}
 };
 
-/// Traces the scene with the scheme it asks for (sampling.scheme).
+/// Traces the scene with the ray placement it asks for (sampling.placement).
 TraceResult trace(const SceneGeometry& geometry, const SceneDesc& scene, const TraceControl& control = {});
 
 /// The paper's regular grid: beams x azimuth_rays x elevation_rays rays at cell centres (midpoint rule).

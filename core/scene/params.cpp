@@ -1,5 +1,7 @@
 #include "core/scene/params.hpp"
 
+#include "core/scene/sampling_scheme.hpp"
+
 #include "core/devices/devices.hpp"
 #include "core/geometry/mesh_formats.hpp"
 #include "core/base/errors.hpp"
@@ -278,12 +280,23 @@ std::vector<ParamSpec> build_scene_params() {
         "sampling.normals", {"mesh", "paper"}, Stage::Trace,
         "Incidence from the true surface normal, or the paper's neighbour-difference normal (eq. 13-14)",
         [](S s) -> NormalSource& { return s.sampling.normals; }));
-    t.push_back(enumeration<SamplingScheme>(
-        "sampling.scheme", {"uniform", "spread", "adaptive"}, Stage::Trace,
-        "uniform: each ray's echo in the bin of its range (the paper); spread: each ray's echo spread over "
-        "the range interval its solid-angle cell covers; adaptive: spread, with elevation cells refined "
-        "until sampling.tolerance_db is met",
-        [](S s) -> SamplingScheme& { return s.sampling.scheme; }));
+    ParamSpec scheme; // a name for the combination of sampling.placement and sampling.binning
+    scheme.key = "sampling.scheme";
+    scheme.type = ParamType::Enum;
+    for (const NamedSampling& n : kSamplingSchemes) scheme.choices.push_back(n.name);
+    scheme.stage = Stage::Trace;
+    scheme.help =
+        "Names of sampling.placement + sampling.binning: uniform = grid + point (the paper), spread = "
+        "grid + footprint, adaptive = adaptive + footprint";
+    scheme.get = [](const SceneDesc& s) {
+        const auto named = scheme_of(s.sampling);
+        return json(named ? scheme_name(*named) : "adaptive placement with point binning");
+    };
+    scheme.put = [](SceneDesc& s, const json& v) {
+        for (const NamedSampling& n : kSamplingSchemes)
+            if (v.get<std::string>() == n.name) set_scheme(s.sampling, n.scheme);
+    };
+    t.push_back(scheme);
     t.push_back(number("sampling.tolerance_db", "dB", 0, 10, true, false, Stage::Trace,
                        "adaptive: target median |dB error| over echoing bins, as the sampler estimates it; "
                        "it refines until met",
@@ -311,6 +324,24 @@ std::vector<ParamSpec> build_scene_params() {
                nullptr, true));
     add_sensor_params(t);
     return t;
+}
+
+/// Keys scene files and `--set` accept that scene_to_json does not write: it writes sampling.scheme, the
+/// name of their combination, so that every existing scene's metadata stays as it was.
+std::vector<ParamSpec> build_input_params() {
+    using S = SceneDesc&;
+    return {
+        enumeration<RayPlacement>(
+            "sampling.placement", {"grid", "adaptive"}, Stage::Trace,
+            "Where rays go: grid: elevation_rays x azimuth_rays per beam; adaptive: that "
+            "grid refined until sampling.tolerance_db is met (needs footprint binning)",
+            [](S s) -> RayPlacement& { return s.sampling.placement; }),
+        enumeration<EchoBinning>(
+            "sampling.binning", {"point", "footprint"}, Stage::Trace,
+            "Where a ray's echo goes: point: the bin of its range (the paper); footprint: "
+            "spread over the range interval its solid-angle cell covers",
+            [](S s) -> EchoBinning& { return s.sampling.binning; }),
+    };
 }
 
 MaterialSpec optional_material(MaterialSpec m) {
@@ -463,8 +494,15 @@ const SeafloorSpec* find_seafloor_param(const std::string& key) {
     return nullptr;
 }
 
+const std::vector<ParamSpec>& input_params() {
+    static const std::vector<ParamSpec> table = build_input_params();
+    return table;
+}
+
 const ParamSpec* find_param(const std::string& key) {
     for (auto& p : scene_params())
+        if (p.key == key) return &p;
+    for (auto& p : input_params())
         if (p.key == key) return &p;
     return nullptr;
 }
@@ -501,8 +539,9 @@ json MaterialSpec::get(const Material& m) const {
 }
 
 Stage ValueSpec::effective_stage(const SceneDesc& scene) const {
-    return steers_sampler && scene.sampling.scheme == SamplingScheme::Adaptive ? std::min(stage, Stage::Trace)
-                                                                               : stage;
+    return steers_sampler && scene.sampling.placement == RayPlacement::Adaptive
+               ? std::min(stage, Stage::Trace)
+               : stage;
 }
 
 Stage MaterialSpec::stage_of_change(double before, double after, const SceneDesc& scene) const {
@@ -737,7 +776,12 @@ void validate_scene(const SceneDesc& s, const std::string& file) {
         throw InputError(file, "sonar.range_min_m",
                          "range_min_m (" + fmt(s.sonar.range_min_m) + ") must be below range_max_m (" +
                              fmt(s.sonar.range_max_m) + ")");
-    if (s.sampling.normals == NormalSource::Paper && s.sampling.scheme == SamplingScheme::Adaptive)
+    if (s.sampling.placement == RayPlacement::Adaptive && s.sampling.binning == EchoBinning::Point)
+        throw InputError(file, "sampling.binning",
+                         "adaptive placement needs \"footprint\" binning (its refinement and error estimate "
+                         "assume each cell's echo spread over its range footprint): use sampling.placement "
+                         "\"grid\" with \"point\" binning (sampling.scheme \"uniform\")");
+    if (s.sampling.normals == NormalSource::Paper && s.sampling.placement == RayPlacement::Adaptive)
         throw InputError(file, "sampling.normals",
                          "\"paper\" normals need the regular ray grid: use sampling.scheme \"uniform\" or "
                          "\"spread\" with them");
@@ -810,9 +854,10 @@ std::string params_markdown() {
     SceneDesc defaults;
     std::ostringstream md;
     md << "| key | unit | default | allowed | what |\n|---|---|---|---|---|\n";
-    for (auto& p : scene_params())
-        md << "| `" << p.key << "` | " << p.unit << " | `" << p.get(defaults).dump() << "` | "
-           << allowed_text(p) << " | " << p.help << " |\n";
+    for (const auto* list : {&scene_params(), &input_params()})
+        for (auto& p : *list)
+            md << "| `" << p.key << "` | " << p.unit << " | `" << p.get(defaults).dump() << "` | "
+               << allowed_text(p) << " | " << p.help << " |\n";
     Material m;
     for (auto& p : material_params())
         md << "| `material." << p.key << "` | " << p.unit << " | `" << p.get(m).dump() << "` | "

@@ -63,6 +63,9 @@ struct MaterialSpec : ValueSpec {
 };
 
 const std::vector<ParamSpec>& scene_params();
+/// Keys read (scene files, `--set`, find_param) but not written by scene_to_json: sampling.placement and
+/// sampling.binning, written as sampling.scheme (the name of their combination).
+const std::vector<ParamSpec>& input_params();
 const std::vector<MaterialSpec>& material_params();
 const ParamSpec* find_param(const std::string& key);
 const MaterialSpec* find_material_param(const std::string& key);

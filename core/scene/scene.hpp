@@ -53,15 +53,21 @@ struct WaterParams {
 };
 
 enum class NormalSource { Mesh, Paper };
+/// Where rays go: the regular grid (trace.cpp), or the grid refined where the error needs it (adaptive.cpp).
+enum class RayPlacement { Grid, Adaptive };
+/// Where a ray's echo goes: the bin of its range, or spread over its cell's range footprint (shade.cpp).
+enum class EchoBinning { Point, Footprint };
+/// The named combinations of placement and binning (sampling.scheme; see scene/sampling_scheme.hpp).
 enum class SamplingScheme { Uniform, Spread, Adaptive };
 
 struct SamplingParams {
-    int elevation_rays = 101; ///< adaptive: rays of the base grid; uniform, spread: all rays (paper: 281)
+    int elevation_rays = 101; ///< adaptive: rays of the base grid; grid: all rays (paper: 281)
     int azimuth_rays = 1;
     NormalSource normals = NormalSource::Mesh;
-    SamplingScheme scheme = SamplingScheme::Adaptive;
-    double tolerance_db = 0.1; ///< adaptive scheme's target error [dB]
-    int max_rays = 2000000;    ///< adaptive scheme's budget of rays per image, refinement included
+    RayPlacement placement = RayPlacement::Adaptive;
+    EchoBinning binning = EchoBinning::Footprint;
+    double tolerance_db = 0.1; ///< adaptive placement's target error [dB]
+    int max_rays = 2000000;    ///< adaptive placement's budget of rays per image, refinement included
     int bounces = 0;           ///< specular reflections followed per leg (multipath); 0: direct paths only
 };
 

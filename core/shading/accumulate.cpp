@@ -39,7 +39,7 @@ struct Pass {
     Pass(const TraceResult& h, const SceneDesc& scene)
         : hits(h), s(scene), k(shade_constants(scene)), grid(scene.sonar), K(grid.bins), N(grid.beams),
           S(azimuth_subcolumns(scene)), r_min(grid.range_min_m), r_max(grid.range_max_m), dr(grid.bin_m),
-          spread(scene.sampling.scheme != SamplingScheme::Uniform),
+          spread(scene.sampling.binning == EchoBinning::Footprint),
           R(rotation_matrix(scene.sonar.pose.orientation_deg)), origin(to_glm(scene.sonar.pose.position_m)) {}
 };
 

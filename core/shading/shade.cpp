@@ -24,8 +24,8 @@ const Material& material_of(const SceneDesc& s, unsigned m) {
     return s.objects.at(m - 1).material;
 }
 
-double cell_fraction_in(const Cell& c, SamplingScheme scheme, double r0, double r1) {
-    if (scheme == SamplingScheme::Uniform) return (c.range_m >= r0 && c.range_m < r1) ? 1.0 : 0.0;
+double cell_fraction_in(const Cell& c, EchoBinning binning, double r0, double r1) {
+    if (binning == EchoBinning::Point) return (c.range_m >= r0 && c.range_m < r1) ? 1.0 : 0.0;
     const detail::Footprint f = detail::footprint_of(c);
     if (f.p + f.q <= 1e-9 * (r1 - r0)) return (f.lo >= r0 && f.lo < r1) ? 1.0 : 0.0;
     return f.cdf(r1) - f.cdf(r0);

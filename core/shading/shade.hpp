@@ -12,9 +12,9 @@ namespace sonarsim {
 /// Material of index `m` (kFloorMaterial or object index + 1).
 const Material& material_of(const SceneDesc& scene, unsigned m);
 
-/// Fraction of a cell's echo that falls in [r0, r1): "uniform" puts all of it in the bin of its range;
-/// "spread" distributes it over the cell's range footprint (sum of its elevation and azimuth extents).
-double cell_fraction_in(const Cell& cell, SamplingScheme scheme, double r0, double r1);
+/// Fraction of a cell's echo that falls in [r0, r1): "point" binning puts all of it in the bin of its range;
+/// "footprint" distributes it over the cell's range footprint (sum of its elevation and azimuth extents).
+double cell_fraction_in(const Cell& cell, EchoBinning binning, double r0, double r1);
 
 /// One reflection's 10 log10 |R|^2 [dB] on mirror `material` at incidence cos_incidence: the water surface's
 /// coherent reflection -2 (2 k sigma cos)^2 10 log10 e (pressure release, |R0| = 1), or -reflection_db.

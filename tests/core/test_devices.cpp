@@ -1,6 +1,7 @@
 // Device presets (assets/devices/*.json): each parses, sets only parameter-table keys with valid values and
 // sources, applies through sonar.device, and renders a visible image of a floor with the device sensor.
 #include "core/devices/devices.hpp"
+#include "core/scene/sampling_scheme.hpp"
 #include "core/base/errors.hpp"
 #include "core/display/image.hpp"
 #include "core/scene/params.hpp"
@@ -46,7 +47,7 @@ SceneDesc floor_scene(const std::string& name) {
     s.sonar.pose.position_m = {0, 0, r_mid * std::sin(pitch_deg * M_PI / 180)};
     s.sonar.pose.orientation_deg = {0, pitch_deg, 0};
     // The sampling scheme is not what this test is about: spread is quick and leaves no bin empty.
-    s.sampling.scheme = SamplingScheme::Spread;
+    set_scheme(s.sampling, SamplingScheme::Spread);
     validate_scene(s, "test");
     return s;
 }

@@ -1,5 +1,6 @@
 // Energy bookkeeping: the echo a beam's cells carry ends up, all of it and only it, in that beam's bins.
 #include "support.hpp"
+#include "core/scene/sampling_scheme.hpp"
 
 #include "core/shading/physics.hpp"
 #include "core/base/pose.hpp"
@@ -41,7 +42,7 @@ Cell hand_cell(float r, float e_lo, float e_hi, float a_lo, float a_hi) {
 TEST_CASE("each beam's bins hold exactly the sum of its cells' intensities", "[energy]") {
     for (SamplingScheme scheme : {SamplingScheme::Uniform, SamplingScheme::Spread}) {
         SceneDesc s = inside_scene();
-        s.sampling.scheme = scheme;
+        set_scheme(s.sampling, scheme);
         s.sampling.azimuth_rays = 2;
         INFO((scheme == SamplingScheme::Spread ? "spread" : "uniform"));
         Simulator sim(s);
@@ -94,7 +95,7 @@ TEST_CASE("cell_fraction_in sums to 1 over the bins covering each cell", "[energ
     double worst = 0;
     for (int i = 0; i < s.sonar.beams; i += 5)
         for (const Cell& c : f->hits().cells[size_t(i)]) {
-            for (SamplingScheme scheme : {SamplingScheme::Uniform, SamplingScheme::Spread}) {
+            for (EchoBinning binning : {EchoBinning::Point, EchoBinning::Footprint}) {
                 double lo, hi;
                 footprint(c, lo, hi);
                 const int k0 =
@@ -104,9 +105,9 @@ TEST_CASE("cell_fraction_in sums to 1 over the bins covering each cell", "[energ
                              int(std::floor((std::max<double>(hi, c.range_m) - edges[0]) / dr)) + 1);
                 double sum = 0, all = 0;
                 for (int b = k0; b <= k1; ++b)
-                    sum += cell_fraction_in(c, scheme, edges[size_t(b)], edges[size_t(b) + 1]);
+                    sum += cell_fraction_in(c, binning, edges[size_t(b)], edges[size_t(b) + 1]);
                 for (int b = 0; b < s.sonar.range_bins; ++b)
-                    all += cell_fraction_in(c, scheme, edges[size_t(b)], edges[size_t(b) + 1]);
+                    all += cell_fraction_in(c, binning, edges[size_t(b)], edges[size_t(b) + 1]);
                 worst = std::max(worst, std::abs(sum - 1));
                 CHECK(all == Approx(sum).margin(1e-15)); // nothing outside the footprint
             }
@@ -120,7 +121,7 @@ TEST_CASE("cell_fraction_in against hand values", "[energy]") {
     // Elevation extent U[1.0, 1.2] plus azimuth extent U[-0.05, 0.05] about r = 1.1: a trapezoid on
     // [0.95, 1.25] rising over 0.1 m, flat over 0.1 m, falling over 0.1 m (p = 0.1, q = 0.2).
     const Cell c = hand_cell(1.1f, 1.0f, 1.2f, 1.05f, 1.15f);
-    const auto S = SamplingScheme::Spread;
+    const auto S = EchoBinning::Footprint;
     CHECK(cell_fraction_in(c, S, 0.90, 0.95) == Approx(0.0).margin(1e-6));
     CHECK(cell_fraction_in(c, S, 0.95, 1.00) == Approx(0.0625).margin(1e-6)); // x^2 / (2pq), x = 0.05
     CHECK(cell_fraction_in(c, S, 0.95, 1.05) == Approx(0.25).margin(1e-6));   // p / (2q)
@@ -134,7 +135,7 @@ TEST_CASE("cell_fraction_in against hand values", "[energy]") {
     const Cell flat = hand_cell(1.1f, 1.0f, 1.2f, 1.1f, 1.1f);
     CHECK(cell_fraction_in(flat, S, 1.0, 1.05) == Approx(0.25).margin(1e-6));
     // Uniform: all of it in the bin that holds its range, half-open [r0, r1).
-    const auto U = SamplingScheme::Uniform;
+    const auto U = EchoBinning::Point;
     CHECK(cell_fraction_in(c, U, 1.0, 1.09) == 0.0);
     CHECK(cell_fraction_in(c, U, 1.09, 1.2) == 1.0);
     const Cell edge = hand_cell(1.125f, 1.0f, 1.2f, 1.1f, 1.15f);

@@ -1,6 +1,7 @@
 // A bare flat floor against the semi-analytic echo integral of SONAR_MODEL.md (floor_reference.cpp).
 // Error measure: relative L1 of linear intensity, sum |E_sim - E_ref| / sum E_ref over all bins.
 #include "floor_reference.hpp"
+#include "core/scene/sampling_scheme.hpp"
 #include "support.hpp"
 
 #include "core/analysis/reference.hpp"
@@ -62,7 +63,7 @@ const std::vector<double>& reference(const FloorCase& c) {
 
 double simulated_error(const FloorCase& c, SamplingScheme scheme, int elevation_rays, int azimuth_rays) {
     SceneDesc s = floor_scene(c);
-    s.sampling.scheme = scheme;
+    set_scheme(s.sampling, scheme);
     s.sampling.elevation_rays = elevation_rays;
     s.sampling.azimuth_rays = azimuth_rays;
     Simulator sim(s);

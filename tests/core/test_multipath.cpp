@@ -2,6 +2,7 @@
 // and |R|^2 predict; the floor's first multiple by way of the surface; nothing changes without bounces or
 // mirrors; the energy of each path order adds up to the image's.
 #include "support.hpp"
+#include "core/scene/sampling_scheme.hpp"
 
 #include "core/shading/ground_truth.hpp"
 #include "core/shading/physics.hpp"
@@ -184,7 +185,7 @@ TEST_CASE("energy is accounted per path order", "[multipath]") {
     // The tank: walls, floor and surface mirrors, two targets. Same rays (spread scheme) with and without
     // multipath, so the direct order must equal the image without bounces, and the orders sum to the image.
     SceneDesc s = load_scene(std::string(SONARSIM_ASSETS) + "/scenes/tank.json");
-    s.sampling.scheme = SamplingScheme::Spread;
+    set_scheme(s.sampling, SamplingScheme::Spread);
     s.sampling.elevation_rays = 101;
     for (int bounces : {1, 2}) {
         s.sampling.bounces = bounces;

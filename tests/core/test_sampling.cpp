@@ -1,5 +1,6 @@
 // The adaptive sampler on a smooth tessellated surface, its ray budget, cancellation and preview.
 #include "support.hpp"
+#include "core/scene/sampling_scheme.hpp"
 
 #include "core/analysis/reference.hpp"
 #include "core/scene/scene_io.hpp"
@@ -58,7 +59,7 @@ TEST_CASE("adaptive rays do not grow with the tessellation of a smooth surface",
         rays[k] = t.rays_traced;
         // Against a dense spread reference: the error target of the default settings.
         SceneDesc dense = s;
-        dense.sampling.scheme = SamplingScheme::Spread;
+        set_scheme(dense.sampling, SamplingScheme::Spread);
         dense.sampling.elevation_rays = 3000, dense.sampling.azimuth_rays = 4;
         const ImageError e = compare_images(*t.shaded->image, shade(trace(g, dense), dense));
         INFO("triangles " << 2 * (sizes[k] - 1) * (sizes[k] - 1) << ", rays " << rays[k]);
@@ -98,7 +99,7 @@ TEST_CASE("a cancelled trace stops and throws, a preview traces the base grid on
     c.cancel = &cancel;
     CHECK_THROWS_AS(trace(g, s, c), TraceCancelled);
     SceneDesc spread = s;
-    spread.sampling.scheme = SamplingScheme::Spread;
+    set_scheme(spread.sampling, SamplingScheme::Spread);
     CHECK_THROWS_AS(trace(g, spread, c), TraceCancelled);
 
     TraceControl preview;

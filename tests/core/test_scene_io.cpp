@@ -4,6 +4,7 @@
 
 #include "core/base/errors.hpp"
 #include "core/scene/params.hpp"
+#include "core/scene/sampling_scheme.hpp"
 #include "core/scene/scene_io.hpp"
 
 #include <catch2/catch.hpp>
@@ -55,7 +56,7 @@ TEST_CASE("scene_to_json -> parse_scene round trip", "[scene]") {
     s.sonar.pose.position_m = {1.25, -3.5, 2.0};
     s.sonar.range_bins = 300, s.sonar.beams = 96, s.sonar.range_max_m = 7.5;
     s.sampling.elevation_rays = 123, s.sampling.azimuth_rays = 3;
-    s.sampling.scheme = SamplingScheme::Uniform, s.sampling.normals = NormalSource::Paper;
+    set_scheme(s.sampling, SamplingScheme::Uniform), s.sampling.normals = NormalSource::Paper;
     s.water.temperature_c = 4.5;
     s.seafloor->material.mu = 0.25, s.seafloor->material.h_deg = 7.0;
     ObjectDesc mesh;
@@ -67,7 +68,7 @@ TEST_CASE("scene_to_json -> parse_scene round trip", "[scene]") {
     const json j = scene_to_json(s);
     const SceneDesc back = parse_scene(j.dump(), "roundtrip.json", "/nonexistent");
     CHECK(scene_to_json(back).dump(2) == j.dump(2));
-    CHECK(back.sampling.scheme == SamplingScheme::Uniform);
+    CHECK(scheme_of(back.sampling) == SamplingScheme::Uniform);
     CHECK(back.sampling.normals == NormalSource::Paper);
     REQUIRE(back.objects.size() == 2);
     CHECK(back.objects[1].mesh_resolved == mesh.mesh_resolved); // absolute path stays as it is
@@ -140,4 +141,43 @@ TEST_CASE("bad inputs throw InputError naming the key", "[scene]") {
 
     e = input_error([&] { load_scene(test::out_path("no_such_scene.json")); });
     CHECK_THAT(e.what(), Catch::Contains("no_such_scene.json"));
+}
+
+TEST_CASE("sampling.placement and sampling.binning: the schemes name their combinations", "[scene]") {
+    const std::pair<const char*, std::pair<const char*, const char*>> named[] = {
+        {"uniform", {"grid", "point"}},
+        {"spread", {"grid", "footprint"}},
+        {"adaptive", {"adaptive", "footprint"}}};
+    for (const auto& [scheme, settings] : named) {
+        INFO(scheme);
+        const std::string by_name = std::string(R"({"sampling": {"scheme": ")") + scheme + R"("}})";
+        const std::string by_settings = std::string(R"({"sampling": {"placement": ")") + settings.first +
+                                        R"(", "binning": ")" + settings.second + R"("}})";
+        const SceneDesc a = parse_scene(by_name, "name.json", "/"),
+                        b = parse_scene(by_settings, "two.json", "/");
+        CHECK(scene_to_json(a) == scene_to_json(b));
+        CHECK(a.sampling.placement == b.sampling.placement);
+        CHECK(a.sampling.binning == b.sampling.binning);
+        // Written as the scheme's name only, so that existing scenes' metadata stays as it was.
+        const json j = scene_to_json(b)["sampling"];
+        CHECK(j["scheme"] == scheme);
+        CHECK_FALSE(j.contains("placement"));
+        CHECK_FALSE(j.contains("binning"));
+    }
+    // --set either form, applied in order: the scheme sets both, a setting changes one.
+    SceneDesc s = default_scene();
+    apply_setting_text(s, "sampling.placement=grid", "--set");
+    CHECK(scheme_of(s.sampling) == SamplingScheme::Spread);
+    apply_setting_text(s, "sampling.binning=point", "--set");
+    CHECK(scheme_of(s.sampling) == SamplingScheme::Uniform);
+    apply_setting_text(s, "sampling.scheme=adaptive", "--set");
+    CHECK(s.sampling.placement == RayPlacement::Adaptive);
+    CHECK(s.sampling.binning == EchoBinning::Footprint);
+    // Adaptive placement with point binning has no name and is rejected with one message.
+    const InputError e =
+        input_error([] { parse_scene(R"({"sampling": {"binning": "point"}})", "adaptive_point.json", "/"); });
+    CHECK(std::string(e.what()).find("sampling.binning: adaptive placement needs \"footprint\" binning") !=
+          std::string::npos);
+    CHECK(find_param("sampling.placement") != nullptr);
+    CHECK_THROWS_AS(apply_setting_text(s, "sampling.placement=random", "--set"), InputError);
 }

@@ -1,5 +1,6 @@
 // The staged pipeline: a change re-runs only the stages it affects, and the result equals a fresh render.
 #include "core/scene/scene_io.hpp"
+#include "core/scene/sampling_scheme.hpp"
 #include "core/pipeline/simulator.hpp"
 
 #include <atomic>
@@ -61,7 +62,7 @@ TEST_CASE("incremental re-render equals a fresh render and starts at the right s
 TEST_CASE("uniform and spread schemes re-shade on absorption and material changes", "[simulator]") {
     for (SamplingScheme scheme : {SamplingScheme::Uniform, SamplingScheme::Spread}) {
         SceneDesc before = default_scene();
-        before.sampling.scheme = scheme;
+        set_scheme(before.sampling, scheme);
         SceneDesc after = before;
         after.water.temperature_c = 20;
         after.objects[0].material.mu = 0.5;

@@ -1,6 +1,7 @@
 // The streamed reference of `sonarsim study` and the benchmark: a scene traced a chunk of beams at a time
 // must give the same image as the whole scene traced at once.
 #include "core/base/pose.hpp"
+#include "core/scene/sampling_scheme.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/shading/accumulate.hpp"
 #include "core/analysis/study.hpp"
@@ -22,7 +23,7 @@ double max_abs_diff(const glm::dmat3& a, const glm::dmat3& b) {
 }
 
 PolarImage whole(const SceneGeometry& g, SceneDesc s, const Sampling& m) {
-    s.sampling.scheme = m.scheme;
+    set_scheme(s.sampling, m.scheme);
     s.sampling.elevation_rays = m.elevation_rays;
     s.sampling.azimuth_rays = m.azimuth_rays;
     return shade(trace(g, s), s);

@@ -1,5 +1,6 @@
 // Stiff and extreme inputs give finite, correct images: no NaN, no +inf, -inf only where nothing echoes.
 #include "core/shading/physics.hpp"
+#include "core/scene/sampling_scheme.hpp"
 #include "core/analysis/reference.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/pipeline/simulator.hpp"
@@ -19,7 +20,7 @@ SceneDesc floor_scene(double height_m, Vec3d orientation_deg,
     s.seafloor = Seafloor{};
     s.sonar.pose.position_m = {0, 0, height_m};
     s.sonar.pose.orientation_deg = orientation_deg;
-    s.sampling.scheme = scheme;
+    set_scheme(s.sampling, scheme);
     return s;
 }
 
@@ -189,7 +190,7 @@ TEST_CASE("zero-area and non-manifold triangles: degenerate ones add nothing", "
 
 TEST_CASE("1 beam, 1 elevation ray, and 100000 elevation rays", "[stiff]") {
     SceneDesc one = floor_scene(1.0, {0, 30, 0});
-    one.sonar.beams = 1, one.sampling.elevation_rays = 1, one.sampling.scheme = SamplingScheme::Spread;
+    one.sonar.beams = 1, one.sampling.elevation_rays = 1, set_scheme(one.sampling, SamplingScheme::Spread);
     {
         const PolarImage img = render(one), ref = floor_reference(one, 16);
         REQUIRE(check_finite(img) > 0);

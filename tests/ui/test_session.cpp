@@ -1,6 +1,7 @@
 // The viewer's non-GL session: bad values and files keep the last good scene; the worker's newest request
 // wins; every slider of the controls panel visibly changes the image.
 #include "support.hpp"
+#include "core/scene/sampling_scheme.hpp"
 
 #include "ui/model/param_ranges.hpp"
 #include "ui/model/render_worker.hpp"
@@ -86,7 +87,7 @@ TEST_CASE("the newest request supersedes older ones", "[ui][worker]") {
 TEST_CASE("a mesh the worker cannot load is reported and the old geometry stays", "[ui][worker]") {
     ui::RenderWorker worker;
     SceneDesc s = default_scene();
-    s.sampling.scheme = SamplingScheme::Spread; // every physics change re-shades
+    set_scheme(s.sampling, SamplingScheme::Spread); // every physics change re-shades
     auto id = worker.request(s);
     REQUIRE(worker.wait_for(id, 60s));
     REQUIRE(worker.take()->frame);
@@ -107,7 +108,7 @@ TEST_CASE("a mesh the worker cannot load is reported and the old geometry stays"
     REQUIRE(r);
     CHECK(r->frame);
     CHECK(r->stage == Stage::Shade);
-    s.sampling.scheme = SamplingScheme::Adaptive;
+    set_scheme(s.sampling, SamplingScheme::Adaptive);
     s.sonar.noise_level_db = 14;
     id = worker.request(s);
     REQUIRE(worker.wait_for(id, 60s));
@@ -249,7 +250,7 @@ TEST_CASE("a drag renders previews, then the full image once the input rests", "
 
 TEST_CASE("a preview request of a scheme without previews needs no second render", "[ui][session]") {
     SceneDesc s = default_scene();
-    s.sampling.scheme = SamplingScheme::Spread;
+    set_scheme(s.sampling, SamplingScheme::Spread);
     ui::Session session(s);
     REQUIRE(session.submit(true) != 0);
     REQUIRE(session.wait_latest(60s));

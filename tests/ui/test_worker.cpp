@@ -1,6 +1,7 @@
 // The render worker under load: a newer request stops a running full render inside its trace, so the newer
 // image arrives in far less time than the old render takes alone; a running preview is let finish.
 #include "ui/model/render_worker.hpp"
+#include "core/scene/sampling_scheme.hpp"
 
 #include "core/scene/scene_io.hpp"
 
@@ -23,7 +24,7 @@ double ms_since(Clock::time_point t0) {
 /// The Fig. 9 scene with 2000 x 9 spread rays per beam (2.3 M rays): a render of several hundred ms.
 SceneDesc slow_scene() {
     SceneDesc s = default_scene();
-    s.sampling.scheme = SamplingScheme::Spread;
+    set_scheme(s.sampling, SamplingScheme::Spread);
     s.sampling.elevation_rays = 2000;
     s.sampling.azimuth_rays = 9;
     return s;
@@ -32,7 +33,7 @@ SceneDesc slow_scene() {
 /// The same scene with 101 spread rays per beam (170x fewer).
 SceneDesc cheap_scene() {
     SceneDesc s = default_scene();
-    s.sampling.scheme = SamplingScheme::Spread;
+    set_scheme(s.sampling, SamplingScheme::Spread);
     return s;
 }
 

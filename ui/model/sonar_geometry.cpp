@@ -165,7 +165,7 @@ std::vector<glm::vec3> echoing_points(const TraceResult& hits, const SceneDesc& 
     const double dr = (s.sonar.range_max_m - s.sonar.range_min_m) / s.sonar.range_bins;
     const double r0 = s.sonar.range_min_m + bin * dr, r1 = r0 + dr;
     for (const Cell& c : hits.cells[size_t(beam)])
-        if (cell_fraction_in(c, s.sampling.scheme, r0, r1) > 0) out.push_back(c.point);
+        if (cell_fraction_in(c, s.sampling.binning, r0, r1) > 0) out.push_back(c.point);
     return out;
 }
 

@@ -1,0 +1,75 @@
+// Adaptive sampling, internal (adaptive*.cpp, refine_*.cpp, tests): the cells of a column as the sampler
+// refines them, and the columns of a beam.
+#pragma once
+#include "core/sampling/multipath.hpp"
+#include "core/sampling/trace_detail.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace sonarsim::adaptive {
+
+using detail::Angle;
+
+constexpr int kElevationLevels = 5; // ternary splits: cells down to 1/243 of the base width
+constexpr int kAzimuthLevels = 3; // columns split in three locally: down to 1/27 of the base width (specular)
+constexpr int kEdgeAzimuthLevels = 2; // ... and down to 1/9 where neighbouring columns see different surfaces
+constexpr int kMaxPasses = 3;         // base refinements (x3) when the error estimate misses the tolerance
+/// Cells whose errors may add up in one bin: a pair is worth refining when its possible error exceeds
+/// 1 / kErrorsPerBin of what the tolerance allows the bin.
+constexpr double kErrorsPerBin = 3;
+/// The error estimate looks at every kEstimateStride-th beam of images with 8 x that many beams or more.
+constexpr int kEstimateStride = 4;
+constexpr double kLn10Over10 = 0.23025850929940458;
+/// An azimuth split covers the base cells where neighbouring columns disagree and this many on each side
+/// (what differs between columns often moves in elevation from one to the next).
+constexpr int kRunMargin = 1;
+
+/// One elevation cell of a column.
+struct Node {
+    double e = 0, de = 0; ///< centre and width [rad]
+    std::optional<Hit> hit;
+    glm::dvec3 p{0};
+    double density_db = 0;   ///< echo level per steradian (cell_echo_db with dOmega = B_v(e), the pattern)
+    double dr_de = 0;        ///< |d range / d elevation| on the hit plane [m/rad]
+    double footprint_m = 0;  ///< dr_de * de: the range the cell spans [m]
+    double per_metre_db = 0; ///< echo per metre of range when the footprint spans bins (see set_width)
+    bool fresh = true;       ///< created or resized since its neighbours were last compared
+    int group = 0;           ///< siblings of one split (or base triples) share a group
+    int j = 0;               ///< the base cell it lies in
+    bool refine = false;
+    bool alone_checked = false; ///< needs_split_alone() depends on the node only: evaluate it once
+    Angle angle;                ///< e with its sine and cosine
+    /// Multipath: what the specular continuation of a mirror hit meets, its echo per steradian as a double
+    /// path (reflection losses aside) and |d range / d elevation| there.
+    detail::Multipath::Continuation via;
+    double via_density_db = 0, via_dr_de = 0;
+};
+
+/// Sets the cell width of a node that hit and what follows from it for the neighbour comparisons (bin_m:
+/// the range bin width [m]).
+inline void set_width(Node& n, double de, double bin_m) {
+    n.de = de, n.fresh = true;
+    n.footprint_m = n.dr_de * de;
+    n.per_metre_db = n.density_db + 10 * std::log10(n.angle.c * de / std::max(n.footprint_m, bin_m));
+}
+
+/// One azimuth column of a beam: its elevation cells.
+struct Column {
+    double a = 0, da = 0;
+    int beam = 0;
+    int j0 = 0, j1 = 0;      ///< the base cells [j0, j1) it covers (a split refines only where it is needed)
+    bool sibling = false;    ///< made by the last azimuth split, beside its siblings (same group)
+    int group = 0;           ///< sibling columns of one split (or base triples) share a group
+    std::vector<Node> nodes; ///< ordered by decreasing elevation
+    std::vector<Node> base;  ///< the base grid as first traced (for comparing neighbouring columns)
+    std::uint64_t rays = 0;
+};
+
+/// The columns of each beam.
+using Beams = std::vector<std::vector<Column>>;
+
+} // namespace sonarsim::adaptive

@@ -1,0 +1,160 @@
+// Adaptive sampling: columns split in azimuth, only over the base cells where they disagree with their
+// neighbours (or hold a specular lobe or an absorption step narrower than themselves).
+#include "core/sampling/adaptive_sampler.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <utility>
+
+namespace sonarsim::adaptive {
+namespace {
+
+/// One flag per base cell of each column of each beam.
+using Marks = std::vector<std::vector<std::vector<char>>>;
+
+/// Marks the base cells where neighbouring columns x and y (x to port) see different surfaces; mx and my
+/// hold one flag per base cell of each.
+void mark_disagreement(const Sampler& sp, const Column& x, const Column& y, std::vector<char>& mx,
+                       std::vector<char>& my) {
+    const Angle a_edge(0.5 * (x.a + y.a)); // the columns' shared azimuth edge
+    for (int j = std::max(x.j0, y.j0); j < std::min(x.j1, y.j1); ++j) {
+        const Node &nx = x.base[size_t(j - x.j0)], &ny = y.base[size_t(j - y.j0)];
+        if (sp.criteria.discontinuous(nx, x, ny, y, EdgeRay{a_edge, 0, &nx.angle}))
+            mx[size_t(j - x.j0)] = my[size_t(j - y.j0)] = 1;
+    }
+}
+
+/// Level lv's neighbour comparisons in beam i: within the beam (after the first level only between the
+/// siblings of a split) and, at the first level, across the beam's edges (each beam marks only its own
+/// columns).
+void mark_neighbours(const Sampler& sp, const Beams& beams, int i, int lv, int M0,
+                     std::vector<std::vector<char>>& m) {
+    const auto& cols = beams[size_t(i)];
+    const int N = int(beams.size());
+    for (size_t k = 0; k + 1 < cols.size(); ++k)
+        if (lv == 0 || (cols[k].sibling && cols[k + 1].sibling && cols[k].group == cols[k + 1].group))
+            mark_disagreement(sp, cols[k], cols[k + 1], m[k], m[k + 1]);
+    if (lv != 0) return;
+    std::vector<char> other(static_cast<size_t>(M0));
+    if (i > 0) mark_disagreement(sp, beams[size_t(i) - 1].back(), cols.front(), other, m.front());
+    if (i + 1 < N) mark_disagreement(sp, cols.back(), beams[size_t(i) + 1].front(), m.back(), other);
+}
+
+/// Cells that need a narrower column on their own: a specular lobe or an absorption step across it.
+/// Columns already at the finest width are left unmarked. Returns whether any cell is marked.
+bool mark_alone(const Sampler& sp, const std::vector<Column>& cols, double min_da,
+                std::vector<std::vector<char>>& m) {
+    bool any = false;
+    for (size_t k = 0; k < cols.size(); ++k) {
+        const Column& c = cols[k];
+        for (auto& n : c.nodes)
+            if (sp.criteria.specular_in_azimuth(n, c.a - c.da / 2, c.a + c.da / 2, c.da) ||
+                sp.criteria.absorbed_across_azimuth(n, c))
+                m[k][size_t(n.j - c.j0)] = 1;
+        if (c.da <= min_da) std::fill(m[k].begin(), m[k].end(), 0);
+        any = any || std::find(m[k].begin(), m[k].end(), 1) != m[k].end();
+    }
+    return any;
+}
+
+/// The runs [lo, hi) of base cells of column c to split: marked cells widened by kRunMargin each side.
+std::vector<std::pair<int, int>> marked_runs(const Column& c, const std::vector<char>& marked) {
+    const int n = c.j1 - c.j0;
+    std::vector<std::pair<int, int>> runs;
+    for (int j = 0; j < n; ++j) {
+        bool m = false;
+        for (int d = -kRunMargin; d <= kRunMargin && !m; ++d)
+            m = j + d >= 0 && j + d < n && marked[size_t(j + d)];
+        if (!m) continue;
+        if (!runs.empty() && runs.back().second == c.j0 + j)
+            ++runs.back().second;
+        else
+            runs.emplace_back(c.j0 + j, c.j0 + j + 1);
+    }
+    return runs;
+}
+
+/// Splits column c in three over each run of marked base cells (widened by one cell each side): the
+/// middle takes c's rays there, two new columns are traced beside it over that run only. What c keeps
+/// outside the runs stays as it is. Appends the results to `out`.
+void split_column(const Sampler& sp, Column&& c, const std::vector<char>& marked, int M0, int& next_group,
+                  std::vector<Column>& out) {
+    std::vector<Column> triples;
+    std::vector<char> moved(c.nodes.size(), 0);
+    const double da = c.da / 3;
+    for (auto [lo, hi] : marked_runs(c, marked)) {
+        if (!sp.reserve(2 * std::uint64_t(hi - lo))) continue; // budget spent: this run stays as it is
+        Column mid;
+        mid.a = c.a, mid.da = da, mid.beam = c.beam, mid.j0 = lo, mid.j1 = hi;
+        for (size_t k = 0; k < c.nodes.size(); ++k)
+            if (c.nodes[k].j >= lo && c.nodes[k].j < hi) mid.nodes.push_back(c.nodes[k]), moved[k] = 1;
+        mid.base.assign(c.base.begin() + (lo - c.j0), c.base.begin() + (hi - c.j0));
+        Column port = sp.trace_column(c.a + da, da, M0, c.beam, lo, hi); // port side first
+        sp.refine_column(port, M0);
+        Column starboard = sp.trace_column(c.a - da, da, M0, c.beam, lo, hi);
+        sp.refine_column(starboard, M0);
+        const int g = next_group++;
+        for (Column* t : {&port, &mid, &starboard}) {
+            t->group = g, t->sibling = true;
+            triples.push_back(std::move(*t));
+        }
+    }
+    // What stays of c: its cells outside the runs, never merged with others in the coarse image.
+    Column rest = std::move(c);
+    std::vector<Node> kept;
+    for (size_t k = 0; k < rest.nodes.size(); ++k)
+        if (!moved[k]) kept.push_back(std::move(rest.nodes[k]));
+    rest.nodes.swap(kept);
+    rest.group = next_group++, rest.sibling = false;
+    if (rest.nodes.empty() && !triples.empty())
+        triples[1].rays += rest.rays; // the middle column of the first run took them all
+    else
+        out.push_back(std::move(rest));
+    for (auto& t : triples) out.push_back(std::move(t));
+}
+
+/// Replaces the columns of one beam by their splits where marked.
+void split_marked_columns(const Sampler& sp, std::vector<Column>& cols,
+                          const std::vector<std::vector<char>>& m, int M0, int& next_group) {
+    std::vector<Column> next;
+    for (size_t k = 0; k < cols.size(); ++k) {
+        if (std::find(m[k].begin(), m[k].end(), 1) == m[k].end()) {
+            cols[k].sibling = false;
+            next.push_back(std::move(cols[k]));
+        } else {
+            split_column(sp, std::move(cols[k]), m[k], M0, next_group, next);
+        }
+    }
+    cols.swap(next);
+}
+
+} // namespace
+
+void Sampler::refine_azimuth(Beams& beams, int M0) const {
+    const int N = int(beams.size()), K0 = s.sampling.azimuth_rays;
+    const double w = deg2rad(s.sonar.azimuth_fov_deg) / N;
+    const double min_da = w / K0 / std::pow(3.0, kAzimuthLevels) * 1.0001;
+    std::vector<int> next_group(static_cast<size_t>(N), 3 * K0 + 3); // above every base group id
+    for (int lv = 0; lv < azimuth_levels; ++lv) {
+        if (control.cancelled()) break;
+        Marks mark(static_cast<size_t>(N));
+        std::atomic<bool> any{false};
+        tbb::parallel_for(0, N, [&](int i) {
+            const auto& cols = beams[size_t(i)];
+            auto& m = mark[size_t(i)];
+            m.resize(cols.size());
+            for (size_t k = 0; k < cols.size(); ++k) m[k].assign(size_t(cols[k].j1 - cols[k].j0), 0);
+            if (lv < kEdgeAzimuthLevels) mark_neighbours(*this, beams, i, lv, M0, m);
+            if (mark_alone(*this, cols, min_da, m)) any = true;
+        });
+        if (!any) break;
+        tbb::parallel_for(0, N, [&](int i) {
+            split_marked_columns(*this, beams[size_t(i)], mark[size_t(i)], M0, next_group[size_t(i)]);
+        });
+    }
+}
+
+} // namespace sonarsim::adaptive

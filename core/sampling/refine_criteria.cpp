@@ -1,0 +1,154 @@
+// Adaptive sampling: the refinement criteria (see refine_criteria.hpp and core/ARCHITECTURE.md).
+#include "core/sampling/refine_criteria.hpp"
+
+#include "core/shading/shade.hpp"
+
+#include <cmath>
+
+namespace sonarsim::adaptive {
+
+RefineCriteria::RefineCriteria(const SceneDesc& scene, const detail::RayFrame& frame, bool multipath)
+    : s_(scene), frame_(frame), multipath_(multipath), k_(shade_constants(scene)),
+      jump_db_(10 * scene.sampling.tolerance_db), range_jump_db_(4 * scene.sampling.tolerance_db),
+      bin_m_((scene.sonar.range_max_m - scene.sonar.range_min_m) / scene.sonar.range_bins),
+      gap_m_(0.5 * bin_m_),
+      tol_rel_db_(10 * std::log10((std::pow(10.0, scene.sampling.tolerance_db / 10) - 1) / kErrorsPerBin)) {}
+
+bool RefineCriteria::discontinuous(const Node& x, const Column& cx, const Node& y, const Column& cy,
+                                   const EdgeRay& edge) const {
+    return discontinuous_direct(x, cx, y, cy, edge) || (multipath_ && via_discontinuous(x, cx, y, cy));
+}
+
+bool RefineCriteria::discontinuous_direct(const Node& x, const Column& cx, const Node& y, const Column& cy,
+                                          const EdgeRay& edge) const {
+    if (bool(x.hit) != bool(y.hit)) return worth_refining(x, cx, y, cy, -1);
+    if (!x.hit) return false;
+    if (surface_edge(*x.hit, x.p, *y.hit, y.p, edge)) return worth_refining(x, cx, y, cy, -1);
+    const double density_step_db = std::abs(x.density_db - y.density_db);
+    if (density_step_db > jump_db_) return worth_refining(x, cx, y, cy, density_step_db);
+    // Cells whose range footprint spans bins spread their echo evenly over it; where the echo per metre
+    // of range changes between neighbours on one plane (grazing incidence: r(e) is far from linear over
+    // the cell), that spreading needs finer cells. Between the facets of a smooth tessellated surface
+    // the change is the facets' own (their normals step), and the density test above bounds it.
+    if (x.hit->prim != y.hit->prim || !(std::max(x.footprint_m, y.footprint_m) > bin_m_)) return false;
+    const double per_metre_step_db = std::abs(x.per_metre_db - y.per_metre_db);
+    return per_metre_step_db > range_jump_db_ && worth_refining(x, cx, y, cy, per_metre_step_db);
+}
+
+/// Multipath: the continuations of neighbouring mirror cells x and y meet different surfaces, or one
+/// meets nothing, or their levels step, where that matters against the image (as for direct cells).
+bool RefineCriteria::via_discontinuous(const Node& x, const Column& cx, const Node& y,
+                                       const Column& cy) const {
+    if (!x.via.reflected && !y.via.reflected) return false;
+    const bool hx = bool(x.via.hit), hy = bool(y.via.hit);
+    if (hx != hy) return significant_via(hx ? x : y, hx ? cx : cy, 0.5);
+    if (!hx) return false;
+    const Hit &a = *x.via.hit, &b = *y.via.hit;
+    const double reach = x.via_dr_de * x.de + y.via_dr_de * y.de + gap_m_; // what a smooth surface spans
+    const bool edge = a.material != b.material || (a.prim != b.prim && std::abs(a.t - b.t) > reach);
+    if (edge) return significant_via(x, cx, 0.5) || significant_via(y, cy, 0.5);
+    const double step_db = std::abs(x.via_density_db - y.via_density_db);
+    if (step_db <= jump_db_) return false;
+    const double f = 0.5 * (1 - std::pow(10.0, -0.1 * step_db));
+    return significant_via(x, cx, f) || significant_via(y, cy, f);
+}
+
+/// True when a surface edge lies between the hits of x and y: another material, or, on one object, hits
+/// on different triangles whose tangent planes disagree by more than half a range bin about where the
+/// ray along the cells' shared edge meets the surface (a silhouette, an occlusion, a crease that moves
+/// echo between bins). A finely tessellated smooth surface passes: its planes agree to second order in
+/// the spacing, so the number of rays does not grow with the number of triangles.
+bool RefineCriteria::surface_edge(const Hit& x, const glm::dvec3& px, const Hit& y, const glm::dvec3& py,
+                                  const EdgeRay& edge) const {
+    if (x.material != y.material) return true;
+    if (x.material == kFloorMaterial || x.material == kSurfaceMaterial || x.prim == y.prim) return false;
+    const glm::dvec3 d_edge = edge.dir(frame_);
+    const double rx = detail::plane_range(frame_.origin, px, x.normal, d_edge);
+    const double ry = detail::plane_range(frame_.origin, py, y.normal, d_edge);
+    return rx < 0 || ry < 0 || std::abs(rx - ry) > gap_m_;
+}
+
+/// A pair whose cells disagree is refined only where the error it can cause is significant against the
+/// image: half the echo of a cell at a surface edge, half the difference of the two levels on one
+/// surface. Pairs on rough surfaces whose cells are a small part of their bins' echo stay coarse;
+/// silhouettes, shadows and bright facets against their background do not.
+/// step_db: the difference of the two levels (a negative value: an edge).
+bool RefineCriteria::worth_refining(const Node& x, const Column& cx, const Node& y, const Column& cy,
+                                    double step_db) const {
+    const double f = step_db < 0 ? 0.5 : 0.5 * (1 - std::pow(10.0, -0.1 * step_db));
+    return significant(x, cx, f) || significant(y, cy, f);
+}
+
+/// Whether an error of a fraction `f` of the echo of node n's cell (in column c), spread over the cell's
+/// range footprint, exceeds the relative error per bin that the tolerance allows in the base image's bin
+/// of that range. Computed in dB, so that no level underflows.
+bool RefineCriteria::significant(const Node& n, const Column& c, double f) const {
+    if (base_db.empty()) return true;
+    return n.hit && significant_at(n.density_db, n.hit->t, n.footprint_m, n, c, f);
+}
+
+bool RefineCriteria::significant_via(const Node& n, const Column& c, double f) const {
+    return n.via.hit && significant_at(n.via_density_db, n.via.hit->t, n.via_dr_de * n.de, n, c, f);
+}
+
+/// The same for an echo of `density_db` per steradian at range r spread over `footprint_m`.
+bool RefineCriteria::significant_at(double density_db, double r, double footprint_m, const Node& n,
+                                    const Column& c, double f) const {
+    if (base_db.empty()) return true;
+    if (!(f > 0)) return false;
+    const double b = std::floor((r - s_.sonar.range_min_m) / bin_m_);
+    if (!(b >= 0 && b < s_.sonar.range_bins)) return false; // outside the window: no bin to spoil
+    const double bin_db = base_db[size_t(c.beam) * size_t(s_.sonar.range_bins) + size_t(b)]; // may be -inf
+    const double error_db =
+        density_db + 10 * std::log10(f * n.angle.c * n.de * c.da / std::max(1.0, footprint_m / bin_m_));
+    return error_db > tol_rel_db_ + bin_db;
+}
+
+/// Direction of normal incidence on the node's plane, in the sonar frame.
+glm::dvec3 RefineCriteria::normal_direction_sonar(const Node& n) const {
+    const glm::dvec3 v = glm::dot(n.hit->normal, n.p - frame_.origin) > 0 ? n.hit->normal : -n.hit->normal;
+    return glm::transpose(frame_.R) * v;
+}
+
+bool RefineCriteria::needs_split_alone(const Node& n, const Angle& a) const {
+    if (!n.hit) return false;
+    if (absorbed_across(n.footprint_m)) return true;
+    const Material& m = material_of(s_, n.hit->material);
+    if (m.mu > 0 && n.de > deg2rad(m.h_deg) / 4) {
+        const glm::dvec3 v = normal_direction_sonar(n);
+        const double e_star = std::atan2(v.z, v.x * a.c + v.y * a.s);
+        if (std::abs(e_star - n.e) < n.de / 2 + 2 * deg2rad(m.h_deg)) return true;
+    }
+    for (double edge : {n.e - n.de / 2, n.e + n.de / 2})
+        if (detail::plane_range(frame_.origin, n.p, n.hit->normal, frame_.dir(a, Angle(edge))) < 0)
+            return true;
+    return false;
+}
+
+/// Absorption alone changes the echo by more than the range-spreading threshold across a cell's range
+/// footprint, which spreads its echo evenly (very high frequencies: at 10 MHz, 110 dB per metre of range;
+/// where a bin holds few cells, at the aperture's edges, the split of a cell's echo between bins must then
+/// follow the level within it).
+bool RefineCriteria::absorbed_across(double footprint_m) const {
+    return 2 * k_.alpha_db_per_m * footprint_m > range_jump_db_;
+}
+
+bool RefineCriteria::absorbed_across_azimuth(const Node& n, const Column& c) const {
+    if (!n.hit || !(k_.alpha_db_per_m > 0)) return false;
+    const Angle a(c.a);
+    const glm::dvec3 d = frame_.dir(a, n.angle);
+    const glm::dvec3 d_a = frame_.R * glm::dvec3(-n.angle.c * a.s, n.angle.c * a.c, 0);
+    return absorbed_across(std::abs(n.hit->t * glm::dot(n.hit->normal, d_a) / glm::dot(n.hit->normal, d)) *
+                           c.da);
+}
+
+bool RefineCriteria::specular_in_azimuth(const Node& n, double a_lo, double a_hi, double da) const {
+    if (!n.hit) return false;
+    const Material& m = material_of(s_, n.hit->material);
+    if (!(m.mu > 0) || da <= deg2rad(m.h_deg) / 4) return false;
+    const glm::dvec3 v = normal_direction_sonar(n);
+    const double a_star = std::atan2(v.y, v.x), h = deg2rad(m.h_deg);
+    return a_star > a_lo - 2 * h && a_star < a_hi + 2 * h;
+}
+
+} // namespace sonarsim::adaptive

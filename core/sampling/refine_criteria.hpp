@@ -1,0 +1,78 @@
+// Adaptive sampling: when a pair of neighbouring cells, or one cell alone, must be split. Pure decisions on
+// the cells' fields (hits, levels, footprints) against the scene's tolerance and the base grid's image: no
+// ray is traced here (see core/ARCHITECTURE.md, "Adaptive sampling").
+#pragma once
+#include "core/sampling/adaptive_node.hpp"
+#include "core/shading/physics.hpp"
+
+#include <vector>
+
+namespace sonarsim::adaptive {
+
+/// The ray along the shared edge of two neighbouring cells, computed only when a criterion needs it: the
+/// azimuth, and the elevation as an angle or (evaluated on demand) in radians.
+struct EdgeRay {
+    const Angle& azimuth;
+    double elevation_rad = 0;
+    const Angle* elevation = nullptr; ///< when given, used instead of elevation_rad
+    glm::dvec3 dir(const detail::RayFrame& frame) const {
+        return elevation ? frame.dir(azimuth, *elevation) : frame.dir(azimuth, Angle(elevation_rad));
+    }
+};
+
+class RefineCriteria {
+  public:
+    /// `frame` must outlive the criteria; `multipath`: the nodes carry continuations to compare.
+    RefineCriteria(const SceneDesc& scene, const detail::RayFrame& frame, bool multipath);
+
+    /// Whether the cells of neighbours x (in column cx) and y (in cy) must be split: one misses, a surface
+    /// edge lies between them, their levels step, or (grazing) their echo per metre of range steps; each
+    /// only where the error it can cause is significant against the base image (base_db).
+    bool discontinuous(const Node& x, const Column& cx, const Node& y, const Column& cy,
+                       const EdgeRay& edge) const;
+
+    /// A cell that must split on its own: absorption across its footprint, a specular lobe narrower than
+    /// the cell centred inside it, or a plane horizon inside it. `a`: the column's azimuth.
+    bool needs_split_alone(const Node& n, const Angle& a) const;
+
+    /// A specular lobe whose azimuth falls inside the beam [a_lo, a_hi] and is narrower than its columns.
+    bool specular_in_azimuth(const Node& n, double a_lo, double a_hi, double da) const;
+
+    /// Absorption alone changes the echo by more than the range-spreading threshold across the column's
+    /// azimuth width.
+    bool absorbed_across_azimuth(const Node& n, const Column& c) const;
+
+    const SceneDesc& scene() const { return s_; }
+    const ShadeConstants& constants() const { return k_; }
+    double bin_m() const { return bin_m_; }
+
+    /// The base grid's image: [beam * range_bins + bin], echo [dB, as cell_echo_db] (-inf: none). The
+    /// scale against which a pair's possible error is judged; empty: every flagged pair counts.
+    std::vector<float> base_db;
+
+  private:
+    bool discontinuous_direct(const Node& x, const Column& cx, const Node& y, const Column& cy,
+                              const EdgeRay& edge) const;
+    bool via_discontinuous(const Node& x, const Column& cx, const Node& y, const Column& cy) const;
+    bool surface_edge(const Hit& x, const glm::dvec3& px, const Hit& y, const glm::dvec3& py,
+                      const EdgeRay& edge) const;
+    bool worth_refining(const Node& x, const Column& cx, const Node& y, const Column& cy,
+                        double step_db) const;
+    bool significant(const Node& n, const Column& c, double f) const;
+    bool significant_via(const Node& n, const Column& c, double f) const;
+    bool significant_at(double density_db, double r, double footprint_m, const Node& n, const Column& c,
+                        double f) const;
+    bool absorbed_across(double footprint_m) const;
+    glm::dvec3 normal_direction_sonar(const Node& n) const;
+
+    const SceneDesc& s_;
+    const detail::RayFrame& frame_;
+    bool multipath_;
+    ShadeConstants k_;
+    double jump_db_;       ///< a step in echo density worth a look: 10 x tolerance_db
+    double range_jump_db_; ///< a step in echo per metre of range (or absorption across a cell): 4 x tolerance
+    double bin_m_, gap_m_; ///< range bin width; half of it, the range disagreement that makes an edge
+    double tol_rel_db_;    ///< 10 log10 of the relative error per bin the tolerance allows, / kErrorsPerBin
+};
+
+} // namespace sonarsim::adaptive

@@ -1,0 +1,128 @@
+// Adaptive sampling: tracing a column's cells and refining them in elevation.
+#include "core/sampling/adaptive_sampler.hpp"
+
+#include "core/shading/shade.hpp"
+
+#include <cmath>
+
+namespace sonarsim::adaptive {
+
+Sampler::Sampler(const SceneGeometry& geo, const SceneDesc& scene, const TraceControl& c)
+    : g(geo), s(scene), control(c), frame(scene), multipath(detail::multipath_active(scene)),
+      mp(geo, scene, frame), criteria(scene, frame, multipath), phi(frame.elevation_weight.traced_fov_rad()),
+      elevation_levels(c.preview ? 0 : kElevationLevels), azimuth_levels(c.preview ? 0 : kAzimuthLevels) {}
+
+bool Sampler::reserve(std::uint64_t n) const {
+    if (rays.fetch_add(n, std::memory_order_relaxed) + n <= std::uint64_t(s.sampling.max_rays)) return true;
+    rays.fetch_sub(n, std::memory_order_relaxed);
+    budget_hit.store(true, std::memory_order_relaxed);
+    return false;
+}
+
+Node Sampler::trace_node(const Angle& a, const Angle& e, double de, int group) const {
+    Node n;
+    n.e = e.rad, n.de = de, n.group = group, n.angle = e;
+    const glm::dvec3 d = frame.dir(a, n.angle);
+    n.hit = detail::first_hit(g, s, frame.origin, d, frame.t_max);
+    if (n.hit) {
+        n.p = frame.origin + n.hit->t * d;
+        n.density_db = cell_echo_db(criteria.constants(), material_of(s, n.hit->material), n.hit->t,
+                                    std::abs(glm::dot(n.hit->normal, d)), frame.elevation_weight(e.rad));
+        // On the hit plane r(e) = (n.(p - o)) / (n.d(e)), so dr/de = -r (n.d_e) / (n.d).
+        const glm::dvec3 d_e = frame.R * glm::dvec3(-n.angle.s * a.c, -n.angle.s * a.s, n.angle.c);
+        n.dr_de = std::abs(n.hit->t * glm::dot(n.hit->normal, d_e) / glm::dot(n.hit->normal, d));
+        set_width(n, de, criteria.bin_m());
+        if (multipath) trace_continuation(n, a);
+    }
+    return n;
+}
+
+void Sampler::trace_continuation(Node& n, const Angle& a) const {
+    n.via = mp.continuation(*n.hit, a, n.angle);
+    if (!n.via.hit) return;
+    const Hit& v = *n.via.hit;
+    const double c = n.via.cos_at_hit;
+    n.via_density_db =
+        cell_echo_db(criteria.constants(), material_of(s, v.material), v.t, c, frame.elevation_weight(n.e));
+    n.via_dr_de = v.t * std::min(1.0 / kLn10Over10, std::sqrt(std::max(0.0, 1 - c * c)) / std::max(c, 1e-9));
+}
+
+Column Sampler::trace_column(double a_rad, double da, int M0, int beam, int j0, int j1) const {
+    Column col;
+    col.a = a_rad, col.da = da, col.beam = beam, col.j0 = j0, col.j1 = j1;
+    const Angle a(a_rad);
+    const double de0 = phi / M0;
+    col.nodes.reserve(size_t(j1 - j0));
+    for (int j = j0; j < j1; ++j) {
+        if (((j - j0) & 63) == 0 && control.cancelled()) return col;
+        // Base triples share a group; the cells of an incomplete last triple get one each (never merged).
+        const int group = j < M0 - M0 % 3 ? j / 3 : (M0 + 2) / 3 + j - (M0 - M0 % 3);
+        col.nodes.push_back(trace_node(a, Angle(phi / 2 - (j + 0.5) * de0), de0, group));
+        col.nodes.back().j = j;
+    }
+    col.rays = std::uint64_t(j1 - j0);
+    if (azimuth_levels > 0) col.base = col.nodes;
+    return col;
+}
+
+size_t Sampler::mark_for_split(Column& col, const Angle& a, double de_min) const {
+    size_t marked = 0;
+    auto mark = [&](Node& n) {
+        if (n.de > de_min && !n.refine) n.refine = true, ++marked;
+    };
+    // Pairs of unchanged neighbours were compared before and found smooth: compare only fresh pairs.
+    for (size_t n = 0; n + 1 < col.nodes.size(); ++n) {
+        const Node &x = col.nodes[n], &y = col.nodes[n + 1];
+        if ((x.fresh || y.fresh) && criteria.discontinuous(x, col, y, col, EdgeRay{a, x.e - x.de / 2}))
+            mark(col.nodes[n]), mark(col.nodes[n + 1]);
+    }
+    for (auto& n : col.nodes) n.fresh = false;
+    for (auto& n : col.nodes)
+        if (!n.refine && !n.alone_checked) {
+            n.alone_checked = true;
+            if (criteria.needs_split_alone(n, a)) mark(n);
+        }
+    return marked;
+}
+
+void Sampler::split_marked(Column& col, const Angle& a, size_t marked, int& next_group) const {
+    std::vector<Node> next;
+    next.reserve(col.nodes.size() + 2 * marked);
+    for (auto& n : col.nodes) {
+        if (!n.refine) {
+            next.push_back(n);
+            continue;
+        }
+        const double de = n.de / 3;
+        const int grp = next_group++;
+        const Angle h(de), up(n.e + de, n.angle, h, +1), down(n.e - de, n.angle, h, -1);
+        next.push_back(trace_node(a, up, de, grp));
+        next.back().j = n.j;
+        Node mid = n;
+        mid.group = grp, mid.refine = false, mid.alone_checked = false;
+        if (mid.hit)
+            set_width(mid, de, criteria.bin_m());
+        else
+            mid.de = de, mid.fresh = true;
+        next.push_back(mid);
+        next.push_back(trace_node(a, down, de, grp));
+        next.back().j = n.j;
+        col.rays += 2;
+    }
+    col.nodes.swap(next);
+}
+
+void Sampler::refine_column(Column& col, int M0) const {
+    const Angle a(col.a);
+    const double de0 = phi / M0, de_min = de0 / std::pow(3.0, kElevationLevels) * 1.0001;
+    int next_group = M0 + 3; // above every base group id (j / 3, then one per cell of a partial triple)
+    for (int level = 0; level < elevation_levels; ++level) {
+        if (control.cancelled()) return;
+        const size_t marked = mark_for_split(col, a, de_min);
+        if (marked == 0) break;
+        if (!reserve(2 * marked)) break; // budget spent: this column stays at its current level
+        split_marked(col, a, marked, next_group);
+    }
+}
+
+} // namespace sonarsim::adaptive

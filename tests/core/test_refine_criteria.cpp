@@ -1,0 +1,202 @@
+// The adaptive sampler's refinement criteria on hand-made cells: which neighbour pairs (and single cells)
+// it splits. Each node is built from a plane it hits, as the tracer would build it (trace_node), so the
+// test asserts the decision alone, without tracing a scene.
+#include "core/sampling/refine_criteria.hpp"
+
+#include "core/base/pose.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
+
+using namespace sonarsim;
+using namespace sonarsim::adaptive;
+
+namespace {
+
+/// A sonar at the origin looking along +x (z up); range window [0.5, 10) m in 512 bins (1.86 cm); two
+/// objects (materials 1 and 2) and the seafloor, for material_of().
+SceneDesc criteria_scene() {
+    SceneDesc s;
+    s.sonar.pose.position_m = {0, 0, 0};
+    s.sonar.pose.orientation_deg = {0, 0, 0};
+    s.sonar.range_min_m = 0.5, s.sonar.range_max_m = 10, s.sonar.range_bins = 512;
+    s.sampling.tolerance_db = 0.1;
+    ObjectDesc box;
+    box.box_m = Vec3d{1, 1, 1};
+    s.objects = {box, box};
+    return s;
+}
+
+/// The cell of width de (elevation) around the ray (a, e) that meets the plane through `on` with normal
+/// `normal`, on material `material`, triangle `prim`, with echo density `density_db`.
+Node plane_node(const detail::RayFrame& f, const RefineCriteria& c, double a_rad, double e_rad, double de,
+                const glm::dvec3& on, const glm::dvec3& normal, unsigned material, unsigned prim,
+                double density_db) {
+    const Angle a(a_rad);
+    Node n;
+    n.e = e_rad, n.de = de, n.angle = Angle(e_rad);
+    const glm::dvec3 d = f.dir(a, n.angle);
+    const glm::dvec3 nn = glm::normalize(normal);
+    const double t = detail::plane_range(f.origin, on, nn, d);
+    REQUIRE(t > 0);
+    n.hit = Hit{t, nn, material, prim};
+    n.p = f.origin + t * d;
+    n.density_db = density_db;
+    const glm::dvec3 d_e = f.R * glm::dvec3(-n.angle.s * a.c, -n.angle.s * a.s, n.angle.c);
+    n.dr_de = std::abs(t * glm::dot(nn, d_e) / glm::dot(nn, d));
+    set_width(n, de, c.bin_m());
+    return n;
+}
+
+/// A cell whose ray meets nothing.
+Node miss_node(double e_rad, double de) {
+    Node n;
+    n.e = e_rad, n.de = de, n.angle = Angle(e_rad);
+    return n;
+}
+
+Column column(double da) {
+    Column c;
+    c.a = 0, c.da = da, c.beam = 0;
+    return c;
+}
+
+/// Whether the elevation neighbours x (above) and y in column c must split, as refine_column asks.
+bool split_pair(const RefineCriteria& crit, const Node& x, const Node& y, const Column& c) {
+    const Angle a(c.a);
+    return crit.discontinuous(x, c, y, c, EdgeRay{a, x.e - x.de / 2});
+}
+
+const double kDe = deg2rad(1.0); // 1 deg cells
+
+} // namespace
+
+TEST_CASE("criteria: a silhouette pair on one object is flagged, a smooth facet edge is not",
+          "[sampling][criteria]") {
+    const SceneDesc s = criteria_scene();
+    const detail::RayFrame f(s);
+    const RefineCriteria crit(s, f, false);
+    const Column c = column(kDe);
+    const double e_x = kDe / 2, e_y = -kDe / 2;
+
+    SECTION("silhouette: the upper cell sees a near face, the lower one a face of the same object behind") {
+        const Node x = plane_node(f, crit, 0, e_x, kDe, {3, 0, 0}, {-1, 0, 0}, 1, 4, 40);
+        const Node y = plane_node(f, crit, 0, e_y, kDe, {5, 0, 0}, {-1, 0.2, 0}, 1, 9, 40);
+        CHECK(split_pair(crit, x, y, c));
+    }
+    SECTION("smooth: adjacent facets of a finely tessellated sphere, tangent planes at the hits") {
+        // Sphere of radius 3 m centred 6 m ahead: the hits are 5 cm apart, their normals 1 deg apart; the
+        // tangent planes meet the edge ray within microns of each other.
+        const glm::dvec3 centre{6, 0, 0};
+        auto on_sphere = [&](double e) {
+            const glm::dvec3 d = f.dir(Angle(0), Angle(e));
+            const double b = glm::dot(d, centre), t = b - std::sqrt(b * b - glm::dot(centre, centre) + 9.0);
+            return t * d;
+        };
+        const glm::dvec3 px = on_sphere(e_x), py = on_sphere(e_y);
+        const Node x = plane_node(f, crit, 0, e_x, kDe, px, px - centre, 1, 100, 40.0);
+        const Node y = plane_node(f, crit, 0, e_y, kDe, py, py - centre, 1, 101, 40.02);
+        REQUIRE(glm::dot(x.hit->normal, y.hit->normal) < std::cos(0.1 * kDe)); // the planes do differ
+        CHECK_FALSE(split_pair(crit, x, y, c));
+        // The same pair with a 30 deg crease between the facets moves the edge's range by 1.5 cm (most of a
+        // bin): a surface edge.
+        const glm::dvec3 creased = glm::dvec3(-std::cos(0.52), 0, -std::sin(0.52));
+        const Node z = plane_node(f, crit, 0, e_y, kDe, py, creased, 1, 101, 40.02);
+        CHECK(split_pair(crit, x, z, c));
+    }
+}
+
+TEST_CASE("criteria: a grazing pair on one plane is flagged, a steep one is not", "[sampling][criteria]") {
+    const SceneDesc s = criteria_scene();
+    const detail::RayFrame f(s);
+    const RefineCriteria crit(s, f, false);
+    const double de = deg2rad(1.0);
+    const Column c = column(de);
+    const glm::dvec3 floor_point{0, 0, -0.5}, up{0, 0, 1};
+    auto floor_node = [&](double e_deg) {
+        return plane_node(f, crit, 0, deg2rad(e_deg), de, floor_point, up, kFloorMaterial, 0,
+                          40); // one level: only the range spreading differs
+    };
+    SECTION("grazing: footprints of metres, whose echo per metre of range differs by dB") {
+        const Node x = floor_node(-3.5), y = floor_node(-4.5);
+        REQUIRE(x.footprint_m > crit.bin_m());
+        REQUIRE(std::abs(x.per_metre_db - y.per_metre_db) > 4 * s.sampling.tolerance_db);
+        CHECK(split_pair(crit, x, y, c));
+    }
+    SECTION("steep: footprints within a bin") {
+        const Node x = floor_node(-60), y = floor_node(-61);
+        REQUIRE(y.footprint_m < crit.bin_m());
+        CHECK_FALSE(split_pair(crit, x, y, c));
+    }
+}
+
+TEST_CASE("criteria: a miss next to a hit is flagged, two misses are not", "[sampling][criteria]") {
+    const SceneDesc s = criteria_scene();
+    const detail::RayFrame f(s);
+    const RefineCriteria crit(s, f, false);
+    const Column c = column(kDe);
+    const Node hit = plane_node(f, crit, 0, kDe / 2, kDe, {3, 0, 0}, {-1, 0, 0}, 1, 0, 40);
+    const Node miss = miss_node(-kDe / 2, kDe), miss_above = miss_node(kDe / 2, kDe);
+    CHECK(split_pair(crit, hit, miss, c));
+    CHECK(split_pair(crit, miss_above, plane_node(f, crit, 0, -kDe / 2, kDe, {3, 0, 0}, {-1, 0, 0}, 1, 0, 40),
+                     c));
+    CHECK_FALSE(split_pair(crit, miss_above, miss, c));
+}
+
+TEST_CASE("criteria: different materials are flagged, one material on one plane is not",
+          "[sampling][criteria]") {
+    const SceneDesc s = criteria_scene();
+    const detail::RayFrame f(s);
+    const RefineCriteria crit(s, f, false);
+    const Column c = column(kDe);
+    // One wall 3 m ahead, the same level on both sides: only the material tells them apart.
+    const Node x = plane_node(f, crit, 0, kDe / 2, kDe, {3, 0, 0}, {-1, 0, 0.3}, 1, 0, 40);
+    const Node y1 = plane_node(f, crit, 0, -kDe / 2, kDe, {3, 0, 0}, {-1, 0, 0.3}, 1, 0, 40);
+    const Node y2 = plane_node(f, crit, 0, -kDe / 2, kDe, {3, 0, 0}, {-1, 0, 0.3}, 2, 0, 40);
+    CHECK_FALSE(split_pair(crit, x, y1, c));
+    CHECK(split_pair(crit, x, y2, c));
+    // A step in level on one material is a discontinuity too (10 x tolerance_db: 1 dB).
+    const Node y3 = plane_node(f, crit, 0, -kDe / 2, kDe, {3, 0, 0}, {-1, 0, 0.3}, 1, 0, 41.5);
+    CHECK(split_pair(crit, x, y3, c));
+}
+
+TEST_CASE("criteria: an edge is split only where its error is significant against the base image",
+          "[sampling][criteria]") {
+    const SceneDesc s = criteria_scene();
+    const detail::RayFrame f(s);
+    RefineCriteria crit(s, f, false);
+    const Column c = column(kDe);
+    const Node x = plane_node(f, crit, 0, kDe / 2, kDe, {3, 0, 0}, {-1, 0, 0}, 1, 0, 40);
+    const Node y = plane_node(f, crit, 0, -kDe / 2, kDe, {3, 0, 0}, {-1, 0, 0}, 2, 0, 40);
+    const int bin = int(std::floor((x.hit->t - s.sonar.range_min_m) / crit.bin_m()));
+    // Half a cell of 1 deg x 1 deg at 40 dB/sr echoes about 2 dB; the base image's bin decides.
+    crit.base_db.assign(size_t(s.sonar.range_bins), -std::numeric_limits<float>::infinity());
+    CHECK(split_pair(crit, x, y, c));  // nothing else in the bin: the edge is all of it
+    crit.base_db[size_t(bin)] = 40.0f; // 38 dB brighter: the edge's error is negligible there
+    CHECK_FALSE(split_pair(crit, x, y, c));
+    crit.base_db[size_t(bin)] = -10.0f; // comparable: significant again
+    CHECK(split_pair(crit, x, y, c));
+}
+
+TEST_CASE("criteria: a cell with a plane horizon or a specular lobe inside splits on its own",
+          "[sampling][criteria]") {
+    SceneDesc s = criteria_scene();
+    s.objects[0].material.mu = 1, s.objects[0].material.h_deg = 0.5;
+    s.sonar.frequency_khz = 1; // no absorption worth splitting for: only the horizon and the lobe
+    const detail::RayFrame f(s);
+    const RefineCriteria crit(s, f, false);
+    const double de = deg2rad(2.0);
+    // A floor 0.2 m below seen at -0.5 deg in a 2 deg cell: the cell's upper edge (+0.5 deg) never meets it.
+    const Node horizon =
+        plane_node(f, crit, 0, deg2rad(-0.5), de, {0, 0, -0.2}, {0, 0, 1}, kFloorMaterial, 0, 40);
+    CHECK(crit.needs_split_alone(horizon, Angle(0)));
+    const Node below =
+        plane_node(f, crit, 0, deg2rad(-20), de, {0, 0, -0.2}, {0, 0, 1}, kFloorMaterial, 0, 40);
+    CHECK_FALSE(crit.needs_split_alone(below, Angle(0)));
+    // A specular wall (lobe 0.5 deg) seen at normal incidence inside a 2 deg cell; a lobe far outside: no.
+    const Node specular = plane_node(f, crit, 0, deg2rad(0.3), de, {3, 0, 0}, {-1, 0, 0}, 1, 0, 40);
+    CHECK(crit.needs_split_alone(specular, Angle(0)));
+    const Node tilted = plane_node(f, crit, 0, deg2rad(0.3), de, {3, 0, 0}, {-1, 0, 0.5}, 1, 0, 40);
+    CHECK_FALSE(crit.needs_split_alone(tilted, Angle(0)));
+}
