@@ -2,6 +2,7 @@
 // of any row recomputes exactly the row's effective stage, re-using the earlier ones.
 #include "core/base/errors.hpp"
 #include "core/pipeline/simulator.hpp"
+#include "core/scene/sampling_scheme.hpp"
 #include "core/scene/scene_io.hpp"
 
 #include <catch2/catch.hpp>
@@ -19,7 +20,8 @@ namespace {
 SceneDesc small_scene(SamplingScheme scheme) {
     SceneDesc s = default_scene();
     s.sonar.beams = 32, s.sonar.range_bins = 128;
-    s.sampling.elevation_rays = 40, s.sampling.scheme = scheme;
+    s.sampling.elevation_rays = 40;
+    set_scheme(s.sampling, scheme);
     s.water.surface_height_m = 3.0;
     s.objects[0].name = "prism";
     return s;

@@ -84,7 +84,7 @@ TEST_CASE("a material edit re-traces under the adaptive scheme and re-shades oth
          {SamplingScheme::Adaptive, SamplingScheme::Uniform, SamplingScheme::Spread}) {
         const Stage expected = scheme == SamplingScheme::Adaptive ? Stage::Trace : Stage::Shade;
         SceneDesc before = default_scene();
-        before.sampling.scheme = scheme;
+        set_scheme(before.sampling, scheme);
         SceneDesc after = before;
         CHECK(apply_setting(after, "seafloor.material.nu_db", -30.0, "test") == expected);
         CHECK(changed_stage(before, after) == expected);
