@@ -62,8 +62,7 @@ int run_render(const RenderOptions& o) {
     sim.request({o.ground_truth, false});
     const auto f = sim.render();
     if (o.ground_truth)
-        for (auto& file : ground_truth_files(o.out, *f->truth_ptr))
-            extra.push_back(std::move(file));
+        for (auto& file : ground_truth_files(o.out, *f->truth_ptr)) extra.push_back(std::move(file));
     write_render_files(o.out, scene, *f, std::move(extra));
     if (o.ground_truth) std::cout << "wrote " << o.out << "_gt_*.npy (ground truth per range bin and beam)\n";
     if (!o.view3d.empty()) std::cout << "wrote " << o.view3d << " (3D view)\n";
