@@ -85,7 +85,7 @@ void register_view(CLI::App& app, std::function<int()>& run) {
         ->expected(4);
     cmd->add_option("--script", o->script,
                     "Replay timed mouse and key events (and actions) from FILE through the window's event "
-                    "callbacks; runs until the script's last frame (see ui/script.hpp for the format)");
+                    "callbacks; runs until the script's last frame (see ui/model/script.hpp for the format)");
     cmd->add_option(
         "--state", o->state,
         "After the last frame, write the camera, pose, objects, selection, snapshot count and undo "
