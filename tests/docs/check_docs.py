@@ -3,9 +3,9 @@
 
   check_docs.py SONARSIM REPO parameters [--update]   docs/parameters.md == header + `sonarsim params`
   check_docs.py SONARSIM REPO devices                 docs/devices.md holds `sonarsim devices --markdown`
-  check_docs.py SONARSIM REPO links                   every relative link and image in README.md, docs/*.md
-                                                      and core/ARCHITECTURE.md names an existing file; no doc
-                                                      points at ../shared/reference (not in a clone)
+  check_docs.py SONARSIM REPO links                   every relative link and image in README.md, docs/*.md,
+                                                      core/ARCHITECTURE.md and the other READMEs names an
+                                                      existing file; none points at ../shared/reference
 Exit status 0 when current, 1 with a message (and the command that fixes it) otherwise.
 """
 import difflib
@@ -76,7 +76,9 @@ LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)\)")
 
 
 def check_links(repo):
-    files = [repo / "README.md", repo / "core" / "ARCHITECTURE.md", *sorted((repo / "docs").glob("*.md"))]
+    files = [repo / "README.md", *sorted((repo / "docs").glob("*.md")),
+             *[repo / p for p in ("core/ARCHITECTURE.md", "bench/README.md", "tests/fuzz/README.md",
+                                  "assets/meshes/SOURCES.md") if (repo / p).exists()]]
     bad = []
     for f in files:
         text = f.read_text(encoding="utf-8")
