@@ -72,6 +72,13 @@ def check_devices(sonarsim, repo):
     return 1
 
 
+def anchors(md):
+    """GitHub's anchors of a Markdown file's headings: lower case, punctuation dropped, spaces to hyphens."""
+    text = re.sub(r"```.*?```", "", md.read_text(encoding="utf-8"), flags=re.S)
+    return {re.sub(r"[^\w\- ]", "", h.strip().lower()).replace(" ", "-")
+            for h in re.findall(r"^#+ (.*)$", text, flags=re.M)}
+
+
 LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)\)")
 
 
@@ -88,11 +95,16 @@ def check_links(repo):
             if "shared/reference" in line:
                 bad.append(f"{f.relative_to(repo)}:{n}: points at ../shared/reference, which a clone does not have")
             for target in LINK.findall(line):
-                if re.match(r"[a-z]+:", target) or target.startswith("#"):
+                if re.match(r"[a-z]+:", target):
                     continue
-                p = (f.parent / target.split("#")[0]).resolve()
+                if target.startswith("#"):
+                    target = f.name + target
+                path, _, anchor = target.partition("#")
+                p = (f.parent / path).resolve()
                 if not p.exists():
                     bad.append(f"{f.relative_to(repo)}:{n}: link to {target}: no such file")
+                elif anchor and p.suffix == ".md" and anchor not in anchors(p):
+                    bad.append(f"{f.relative_to(repo)}:{n}: link to {target}: no heading with that anchor")
                 elif repo.resolve() not in p.parents and p != repo.resolve():
                     bad.append(f"{f.relative_to(repo)}:{n}: link to {target} leaves the repository")
     for b in bad:
