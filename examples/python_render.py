@@ -5,7 +5,7 @@
 
 Writes DIR/level_db.npy (L_EN in dB, range bins x beams) and DIR/elevation_deg.npy (the ground truth's
 elevation per pixel), and prints the image's size, its echoing fraction and its strongest echo. Works from any
-directory once `pip install .` has installed the module (see README, "Python").
+directory once `pip install .` has installed the module (see docs/datasets.md, "Python").
 """
 import argparse
 import json
