@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 seconds="${1:-60}"
 dir="${SONARSIM_FUZZ_BUILD_DIR:-build-fuzz}"
 jobs="${SONARSIM_JOBS:-$(nproc)}"
-targets=(scene mesh)
+targets=(scene mesh aris)
 
 CC=clang CXX=clang++ cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSONARSIM_FUZZ=ON \
     -DSONARSIM_BUILD_VIEWER=OFF >/dev/null

@@ -22,6 +22,7 @@ void register_params(CLI::App& app, std::function<int()>& run);
 void register_devices(CLI::App& app, std::function<int()>& run);
 void register_study(CLI::App& app, std::function<int()>& run);
 void register_view(CLI::App& app, std::function<int()>& run);
+void register_compare(CLI::App& app, std::function<int()>& run);
 /// `sonarsim` with no arguments: the viewer on the built-in scene.
 int run_default_view();
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stb/stb_easy_font.h>
 
 namespace sonarsim::app {
@@ -57,7 +58,91 @@ std::string decade_label(int p) {
     return "1e" + std::to_string(p);
 }
 
+/// A round tick step giving about `n` ticks over [lo, hi].
+double tick_step(double lo, double hi, int n) {
+    const double raw = (hi - lo) / n, p = std::pow(10, std::floor(std::log10(raw)));
+    for (double m : {1.0, 2.0, 5.0})
+        if (m * p >= raw) return m * p;
+    return 10 * p;
+}
+
+std::string tick_label(double v, double step) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf,
+                  step >= 1     ? "%.0f"
+                  : step >= 0.1 ? "%.1f"
+                                : "%.2f",
+                  std::abs(v) < 1e-12 ? 0.0 : v);
+    return buf;
+}
+
 } // namespace
+
+Image8 linear_plot(const std::vector<Series>& series, const std::string& title, const std::string& xl,
+                   const std::string& yl, int W, int H) {
+    double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
+    for (auto& s : series)
+        for (auto& [x, y] : s.points)
+            if (std::isfinite(x) && std::isfinite(y))
+                xmin = std::min(xmin, x), xmax = std::max(xmax, x), ymin = std::min(ymin, y),
+                ymax = std::max(ymax, y);
+    if (!(xmin < INFINITY)) xmin = 0, xmax = 1, ymin = 0, ymax = 1;
+    if (!(xmax > xmin)) xmax = xmin + 1;
+    if (!(ymax > ymin)) ymin -= 0.5, ymax += 0.5;
+    const double sx = tick_step(xmin, xmax, 8), sy = tick_step(ymin, ymax, 6);
+    const double x0 = std::floor(xmin / sx) * sx, x1 = std::ceil(xmax / sx) * sx;
+    const double y0 = std::floor(ymin / sy) * sy, y1 = std::ceil(ymax / sy) * sy;
+    const int L = 110, R = W - 230, T = 56, B = H - 70;
+    auto X = [&](double x) { return L + (x - x0) / (x1 - x0) * (R - L); };
+    auto Y = [&](double y) { return B - (y - y0) / (y1 - y0) * (B - T); };
+    Canvas c(W, H);
+    const std::array<std::uint8_t, 3> black{0, 0, 0}, grid{225, 225, 225};
+    for (double x = x0; x <= x1 + 1e-9 * sx; x += sx) {
+        c.line(X(x), T, X(x), B, grid);
+        const std::string s = tick_label(x, sx);
+        c.text(int(X(x)) - Canvas::text_width(s) / 2, B + 10, s, black);
+    }
+    for (double y = y0; y <= y1 + 1e-9 * sy; y += sy) {
+        c.line(L, Y(y), R, Y(y), grid);
+        const std::string s = tick_label(y, sy);
+        c.text(L - 10 - Canvas::text_width(s), int(Y(y)) - 6, s, black);
+    }
+    c.line(L, B, R, B, black), c.line(L, T, L, B, black), c.line(R, T, R, B, black),
+        c.line(L, T, R, T, black);
+    c.text(L, 8, title, black);
+    c.text((L + R) / 2 - Canvas::text_width(xl) / 2, H - 35, xl, black);
+    c.text(10, T - 22, yl, black);
+    int ly = T + 10;
+    for (auto& s : series) {
+        for (size_t k = 0; k + 1 < s.points.size(); ++k) {
+            const auto &p = s.points[k], &q = s.points[k + 1];
+            if (std::isfinite(p.second) && std::isfinite(q.second))
+                c.line(X(p.first), Y(p.second), X(q.first), Y(q.second), s.rgb, 2);
+        }
+        c.rect(R + 15, ly + 2, R + 35, ly + 10, s.rgb);
+        c.text(R + 42, ly, s.name, black);
+        ly += 24;
+    }
+    return c.img;
+}
+
+Image8 stack_vertically(const std::vector<Image8>& images) {
+    Image8 out;
+    for (const Image8& i : images) {
+        out.width = std::max(out.width, i.width), out.channels = 3;
+        out.height += i.height;
+    }
+    out.pixels.assign(size_t(out.width) * size_t(out.height) * 3, 255);
+    int y0 = 0;
+    for (const Image8& i : images) {
+        for (int y = 0; y < i.height; ++y)
+            std::copy(i.pixels.begin() + std::ptrdiff_t(size_t(y) * size_t(i.width) * 3),
+                      i.pixels.begin() + std::ptrdiff_t(size_t(y + 1) * size_t(i.width) * 3),
+                      out.pixels.begin() + std::ptrdiff_t(size_t(y0 + y) * size_t(out.width) * 3));
+        y0 += i.height;
+    }
+    return out;
+}
 
 Image8 loglog_plot(const std::vector<Series>& series, const std::string& title, const std::string& xl,
                    const std::string& yl, int W, int H) {

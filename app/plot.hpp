@@ -1,4 +1,5 @@
-// A small log-log line plot rasterised to an RGB image (for `sonarsim study`); no GL, no dependencies.
+// Small line plots rasterised to RGB images (log-log for `sonarsim study`, linear for `sonarsim compare`); no
+// GL, no dependencies.
 #pragma once
 #include "core/display/image.hpp"
 
@@ -16,5 +17,12 @@ struct Series {
 
 Image8 loglog_plot(const std::vector<Series>& series, const std::string& title, const std::string& x_label,
                    const std::string& y_label, int width = 900, int height = 600);
+
+/// The same with linear axes (any finite x, y; ticks at round steps).
+Image8 linear_plot(const std::vector<Series>& series, const std::string& title, const std::string& x_label,
+                   const std::string& y_label, int width = 900, int height = 600);
+
+/// Images of the same width stacked top to bottom.
+Image8 stack_vertically(const std::vector<Image8>& images);
 
 } // namespace sonarsim::app

@@ -1,5 +1,6 @@
 // The `sonarsim` Python module (pybind11): a Simulator, its frames as NumPy arrays that share the frame's
 // memory, one-off renders, and the dataset functions the Dask example distributes.
+#include "core/analysis/compare_report.hpp"
 #include "core/dataset/batch.hpp"
 #include "core/shading/ground_truth.hpp"
 #include "core/base/errors.hpp"
@@ -35,6 +36,19 @@ SceneDesc scene_from(const py::object& scene) {
     if (py::isinstance<py::dict>(scene))
         return parse_scene(to_json(scene).dump(), "<dict>", std::filesystem::current_path().string());
     throw InputError("scene", "", "expected None, a scene file path or a dict of scene file keys");
+}
+
+/// An image for compare(): a path (.aris frame or .npy), or a 2-D array of levels [dB] (range bins x beams).
+PolarImage compare_input(const py::object& x, std::size_t frame, const char* name) {
+    if (py::isinstance<py::str>(x) || py::hasattr(x, "__fspath__"))
+        return load_compare_image(py::str(x).cast<std::string>(), frame);
+    const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(x);
+    if (!a || a.ndim() != 2)
+        throw InputError(name, "", "expected a file path (.aris, .npy) or a 2-D array of levels in dB");
+    PolarImage img;
+    img.bins = int(a.shape(0)), img.beams = int(a.shape(1));
+    img.level_db.assign(a.data(), a.data() + a.size());
+    return img;
 }
 
 Pose pose_from(const py::object& pose) {
@@ -203,6 +217,28 @@ PYBIND11_MODULE(sonarsim, m) {
         },
         py::arg("out"), py::arg("frames"), py::arg("resume") = false, py::arg("ground_truth") = false,
         "render these frames of a prepared dataset (one Simulator for all); returns how many were rendered");
+    m.def(
+        "compare",
+        [](const py::object& a, const py::object& b, std::size_t frame_a, std::size_t frame_b) {
+            const PolarImage ia = compare_input(a, frame_a, "a"), ib = compare_input(b, frame_b, "b");
+            nlohmann::json r;
+            {
+                py::gil_scoped_release release;
+                r = compare_images_report(ia, ib);
+            }
+            return to_python(r);
+        },
+        py::arg("a"), py::arg("b"), py::arg("frame_a") = 0, py::arg("frame_b") = 0,
+        "realism statistics of two images, as `sonarsim compare` writes them: each of a and b a path (.aris "
+        "recording, with frame_a/frame_b, or an .npy level image) or a 2-D array of levels [dB] (range bins "
+        "x "
+        "beams). Returns {'a': ..., 'b': ..., 'pair': ...}: floor fraction, mean level, range profile, "
+        "speckle "
+        "contrast (intensity, amplitude), dB quantiles around the local mean, grain (correlation at lags "
+        "along "
+        "range and across beams), histogram; the pair's profile rms difference, histogram distance and, on "
+        "the "
+        "same grid, correlation and highlight/shadow overlaps");
     m.def("write_index", py::overload_cast<const std::string&>(&write_index), py::arg("out"),
           "rebuild out/index.csv; returns the frames listed");
 }

@@ -116,3 +116,21 @@ def test_render_releases_the_gil():
     t.join()
     assert seconds > 0.05
     assert len(ticks) > 0.2 * seconds / 0.001  # the other thread ran throughout the render
+
+
+def test_compare_closed_forms_and_files(scratch):
+    """compare() on exponential speckle (contrast 1, amplitude contrast sqrt(4/pi - 1)) and on an image against
+    itself with a gain; and from a rendered .npy file as `sonarsim compare` reads it."""
+    rng = np.random.default_rng(1)
+    speckle = (10 * np.log10(rng.exponential(size=(300, 200))) + 60).astype(np.float32)
+    r = sonarsim.compare(speckle, speckle + 10)
+    assert abs(r["a"]["contrast_intensity"] - 1) < 0.03
+    assert abs(r["a"]["contrast_amplitude"] - np.sqrt(4 / np.pi - 1)) < 0.015
+    assert r["pair"]["aligned"] and abs(r["pair"]["correlation"] - 1) < 1e-6
+    assert r["pair"]["histogram_distance"] < 1e-6
+    frame = sonarsim.render(None, set=SMALL)
+    np.save(scratch / "a.npy", np.asarray(frame.level_db))
+    r = sonarsim.compare(str(scratch / "a.npy"), np.asarray(frame.level_db))
+    assert r["a"]["floor_fraction"] == r["b"]["floor_fraction"] > 0
+    with pytest.raises(ValueError, match="unknown image file"):
+        sonarsim.compare(str(scratch / "a.txt"), speckle)

@@ -3,7 +3,9 @@
 // only ever see InputError; any other exception, a crash, a sanitizer report, a leak, a hang or a broken
 // invariant (checked with abort()) is a finding.
 #pragma once
+#include "core/analysis/compare.hpp"
 #include "core/base/errors.hpp"
+#include "core/io/aris_read.hpp"
 #include "core/geometry/mesh.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/scene_io.hpp"
@@ -104,6 +106,30 @@ inline void mesh_input(const std::uint8_t* data, std::size_t size) {
         for (const auto& t : m.triangles)
             if (t.x >= m.vertices.size() || t.y >= m.vertices.size() || t.z >= m.vertices.size())
                 std::abort();
+    } catch (const InputError& e) {
+        check_message(e);
+    }
+}
+
+/// ARIS recording bytes: the frame count, then up to three frames; each accepted frame must have the size its
+/// header says and levels in (0, 80] dB or -inf; frame 0's statistics must be computable.
+inline void aris_input(const std::uint8_t* data, std::size_t size) {
+    const std::vector<std::uint8_t> bytes(data, data + size);
+    try {
+        const std::size_t n = aris_frame_count(bytes, "fuzz.aris");
+        if (n == 0) std::abort();
+        for (std::size_t k = 0; k < std::min<std::size_t>(n, 3); ++k) {
+            const ArisFrame f = parse_aris_frame(bytes, k, "fuzz.aris");
+            if (f.level_db.bins != f.info.samples || f.level_db.beams != f.info.beams ||
+                f.level_db.level_db.size() != std::size_t(f.info.samples) * std::size_t(f.info.beams))
+                std::abort();
+            for (float v : f.level_db.level_db)
+                if (!(std::isinf(v) && v < 0) && !(v > 0 && v <= 80)) std::abort();
+            if (k == 0) {
+                const ImageStats st = image_stats(f.level_db);
+                if (!(st.floor_fraction >= 0 && st.floor_fraction <= 1)) std::abort();
+            }
+        }
     } catch (const InputError& e) {
         check_message(e);
     }

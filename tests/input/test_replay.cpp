@@ -45,3 +45,13 @@ TEST_CASE("fuzz seeds and regressions: mesh loading", "[input][fuzz]") {
         sonarsim::fuzz::mesh_input(b.data(), b.size());
     }
 }
+
+TEST_CASE("fuzz seeds and regressions: ARIS reader", "[input][fuzz]") {
+    const auto files = inputs("aris");
+    REQUIRE(files.size() >= 4);
+    for (const auto& f : files) {
+        INFO(f.string());
+        const auto b = bytes(f);
+        sonarsim::fuzz::aris_input(b.data(), b.size());
+    }
+}
