@@ -270,7 +270,7 @@ std::vector<ParamSpec> build_scene_params() {
     t.push_back(
         steers(number("water.surface_roughness_m", "m", 0, 1, false, false, Stage::Shade,
                       "Multipath: rms height sigma of the surface; coherent reflection (energy) R^2 = "
-                      "exp(-2 (2 k sigma cos theta)^2)",
+                      "exp(-(2 k sigma cos theta)^2) (Kirchhoff/Eckart; theta from the normal)",
                       [](S s) -> double& { return s.water.surface_roughness_m; })));
     t.push_back(integer("sampling.elevation_rays", 1, 1000000, Stage::Trace, "Elevation rays M per beam",
                         [](S s) -> int& { return s.sampling.elevation_rays; }));
