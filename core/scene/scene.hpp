@@ -122,6 +122,9 @@ struct ObjectDesc {
     Vec3d position_m{0, 0, 0};  ///< box centre / mesh origin [m]
     Vec3d orientation_deg{0, 0, 0};
     Vec3d scale{1, 1, 1};
+    /// Shading normals interpolated from corner normals that average the faces within this angle of each
+    /// other (shading_normals.hpp); 0: face normals [deg]
+    double crease_angle_deg = 60.0;
     Material material;
     std::string name; ///< a label (not written to the metadata)
 };
