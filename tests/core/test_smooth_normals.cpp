@@ -128,7 +128,7 @@ TEST_CASE("a coarse and a fine sphere echo alike with smooth normals, not with f
     CHECK(faceted_db - smooth_db > 0.3); // and smooth normals take away most of what normals can
 }
 
-TEST_CASE("smooth normals on a sphere follow the true normal; face normals are off by the facet",
+TEST_CASE("smooth normals on a sphere follow the true normal, face normals are off by the facet",
           "[smooth]") {
     const std::string coarse = write_obj(icosphere(2), "icosphere_320.obj");
     SceneDesc smooth = sphere_scene(coarse, 60), faceted = sphere_scene(coarse, 0);
