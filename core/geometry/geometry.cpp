@@ -2,6 +2,7 @@
 
 #include "core/base/errors.hpp"
 #include "core/geometry/mesh_cache.hpp"
+#include "core/geometry/shading_normals.hpp"
 
 #include <embree3/rtcore.h>
 #include <glm/gtc/matrix_inverse.hpp>
@@ -194,6 +195,7 @@ struct SceneGeometry::Impl {
         std::string mesh_resolved;  ///< shape: mesh file ...
         std::optional<Vec3d> box_m; ///< ... or box size
         std::shared_ptr<const Blas> blas;
+        std::shared_ptr<const ShadingNormals> normals; ///< null or not smooth(): face normals
         RTCGeometry instance = nullptr;
         Placement placement;
     };
@@ -234,6 +236,7 @@ SceneGeometry::SceneGeometry(const SceneDesc& s) : impl_(std::make_unique<Impl>(
             ob.blas = blas_registry().get({mesh.get(), {0, 0, 0}}, [&] { return mesh; });
         }
         ob.placement = place(o, *ob.blas, s.source_file, key);
+        ob.normals = shared_corner_normals(ob.blas->mesh, o.crease_angle_deg);
         g.objects.push_back(std::move(ob));
     }
     if (g.objects.empty()) return;
@@ -282,9 +285,18 @@ bool SceneGeometry::update_transforms(const SceneDesc& s) {
     for (size_t i = 0; i < g.objects.size(); ++i)
         placements.push_back(
             place(s.objects[i], *g.objects[i].blas, s.source_file, "objects[" + std::to_string(i) + "]"));
+    std::vector<std::shared_ptr<const ShadingNormals>> normals;
+    for (size_t i = 0; i < g.objects.size(); ++i) {
+        const std::shared_ptr<const ShadingNormals>& had = g.objects[i].normals;
+        const double crease_deg = s.objects[i].crease_angle_deg;
+        normals.push_back(had && had->crease_angle_deg == crease_deg
+                              ? had
+                              : shared_corner_normals(g.objects[i].blas->mesh, crease_deg));
+    }
     if (g.objects.empty()) return true;
     embree_error_text().clear();
     for (size_t i = 0; i < g.objects.size(); ++i) {
+        g.objects[i].normals = std::move(normals[i]);
         g.objects[i].placement = placements[i];
         set_instance_transform(g.objects[i].instance, placements[i].transform);
     }
@@ -312,14 +324,23 @@ std::optional<Hit> SceneGeometry::intersect(const glm::dvec3& o, const glm::dvec
     rtcIntersect1(g.top, &ctx, &rh);
     const unsigned object = rh.hit.instID[0];
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || object >= g.objects.size()) return std::nullopt;
-    // Embree reports the normal in the mesh's own coordinates; normals map with the inverse transpose.
-    const glm::dvec3 n =
-        g.objects[object].placement.normal * glm::dvec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
-    const double len = glm::length(n);
+    // Embree reports the normal in the mesh's own coordinates; normals map with the inverse transpose. A
+    // smooth object's normal is interpolated from its corner normals (same side as the face's: each corner's
+    // is within the crease angle, below 180 deg, of it).
+    const Impl::Object& ob = g.objects[object];
+    const glm::dvec3 face = ob.placement.normal * glm::dvec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+    const double len = glm::length(face);
     if (!(len > 0) || !std::isfinite(len)) return std::nullopt; // degenerate triangle: no surface to echo
     Hit h;
     h.t = rh.ray.tfar;
-    h.normal = n / len;
+    h.face_normal = face / len;
+    h.normal = h.face_normal;
+    if (ob.normals && ob.normals->smooth()) {
+        const glm::dvec3 n =
+            ob.placement.normal * glm::dvec3(ob.normals->at(rh.hit.primID, rh.hit.u, rh.hit.v));
+        const double n_len = glm::length(n);
+        if (n_len > 0 && std::isfinite(n_len)) h.normal = n / n_len;
+    }
     h.material = object + 1;
     h.prim = rh.hit.primID;
     return h;
@@ -360,7 +381,7 @@ std::optional<Hit> intersect_floor(const Seafloor& f, const glm::dvec3& o, const
     if (!(t > 0) || t > t_max) return std::nullopt;
     Hit h;
     h.t = t;
-    h.normal = {0, 0, 1};
+    h.normal = h.face_normal = {0, 0, 1};
     h.material = kFloorMaterial;
     return h;
 }
@@ -372,7 +393,7 @@ std::optional<Hit> intersect_surface(double height_m, const glm::dvec3& o, const
     if (!(t > 0) || t > t_max) return std::nullopt;
     Hit h;
     h.t = t;
-    h.normal = {0, 0, -1};
+    h.normal = h.face_normal = {0, 0, -1};
     h.material = kSurfaceMaterial;
     return h;
 }

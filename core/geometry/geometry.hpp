@@ -21,10 +21,15 @@ constexpr unsigned kFloorMaterial = 0;
 constexpr unsigned kSurfaceMaterial = 0xFFFFFFFEu;
 
 struct Hit {
-    double t = 0;          ///< range along the unit ray [m]
-    glm::dvec3 normal{0};  ///< unit geometric normal in world space (either side)
+    double t = 0; ///< range along the unit ray [m]
+    /// unit normal in world space (either side): the face's, or on a smooth object (crease_angle_deg) the
+    /// shading normal interpolated from its corner normals
+    glm::dvec3 normal{0};
     unsigned material = 0; ///< kFloorMaterial or object index + 1
     unsigned prim = 0;     ///< triangle index within its object (floor: 0)
+    /// unit normal of the face hit, in world space (either side): the plane the hit point lies on (the
+    /// adaptive sampler's continuity test); equals `normal` unless the object is smooth
+    glm::dvec3 face_normal{0};
 };
 
 /// Objects as Embree instances. Each distinct mesh (one mesh cache entry; boxes by size) has one bottom-level
@@ -45,8 +50,9 @@ class SceneGeometry {
     /// True when `scene` has the same shapes: as many objects, each with the same mesh file (resolved path)
     /// or box size. Then only poses differ, and update_transforms() can take them.
     bool same_shapes(const SceneDesc& scene) const;
-    /// Places the objects as in `scene` (position, orientation, scale): new instance transforms and a
-    /// re-commit of the top-level scene; no file is read and no mesh BVH rebuilt. Returns false, changing
+    /// Places the objects as in `scene` (position, orientation, scale, crease angle): new instance
+    /// transforms, a re-commit of the top-level scene and, for a new crease angle, the mesh's shared corner
+    /// normals for it (shading_normals.hpp); no file is read and no mesh BVH rebuilt. Returns false, changing
     /// nothing, when the shapes differ (same_shapes()). Throws InputError, changing nothing, when an object
     /// would leave single precision.
     bool update_transforms(const SceneDesc& scene);

@@ -54,17 +54,19 @@ bool RefineCriteria::via_discontinuous(const Node& x, const Column& cx, const No
 }
 
 /// True when a surface edge lies between the hits of x and y: another material, or, on one object, hits
-/// on different triangles whose tangent planes disagree by more than half a range bin about where the
-/// ray along the cells' shared edge meets the surface (a silhouette, an occlusion, a crease that moves
-/// echo between bins). A finely tessellated smooth surface passes: its planes agree to second order in
-/// the spacing, so the number of rays does not grow with the number of triangles.
+/// on different triangles whose planes disagree by more than half a range bin about where the ray along
+/// the cells' shared edge meets the surface (a silhouette, an occlusion, a crease that moves echo between
+/// bins). The planes are the faces the hits lie on (Hit::face_normal): this is a test of where the
+/// surface is; how smoothly it echoes (shading normals) is judged by the density tests. A finely
+/// tessellated smooth surface passes: its planes agree to second order in the spacing, so the number of
+/// rays does not grow with the number of triangles.
 bool RefineCriteria::surface_edge(const Hit& x, const glm::dvec3& px, const Hit& y, const glm::dvec3& py,
                                   const EdgeRay& edge) const {
     if (x.material != y.material) return true;
     if (x.material == kFloorMaterial || x.material == kSurfaceMaterial || x.prim == y.prim) return false;
     const glm::dvec3 d_edge = edge.dir(frame_);
-    const double rx = detail::plane_range(frame_.origin, px, x.normal, d_edge);
-    const double ry = detail::plane_range(frame_.origin, py, y.normal, d_edge);
+    const double rx = detail::plane_range(frame_.origin, px, x.face_normal, d_edge);
+    const double ry = detail::plane_range(frame_.origin, py, y.face_normal, d_edge);
     return rx < 0 || ry < 0 || std::abs(rx - ry) > gap_m_;
 }
 
@@ -104,7 +106,7 @@ bool RefineCriteria::significant_at(double density_db, double r, double footprin
     return error_db > tol_rel_db_ + bin_db;
 }
 
-/// Direction of normal incidence on the node's plane, in the sonar frame.
+/// Direction of normal incidence on the node's surface (its shading normal), in the sonar frame.
 glm::dvec3 RefineCriteria::normal_direction_sonar(const Node& n) const {
     const glm::dvec3 v = glm::dot(n.hit->normal, n.p - frame_.origin) > 0 ? n.hit->normal : -n.hit->normal;
     return glm::transpose(frame_.R) * v;
@@ -120,7 +122,7 @@ bool RefineCriteria::needs_split_alone(const Node& n, const Angle& a) const {
         if (std::abs(e_star - n.e) < n.de / 2 + 2 * deg2rad(m.h_deg)) return true;
     }
     for (double edge : {n.e - n.de / 2, n.e + n.de / 2})
-        if (detail::plane_range(frame_.origin, n.p, n.hit->normal, frame_.dir(a, Angle(edge))) < 0)
+        if (detail::plane_range(frame_.origin, n.p, n.hit->face_normal, frame_.dir(a, Angle(edge))) < 0)
             return true;
     return false;
 }
@@ -138,8 +140,8 @@ bool RefineCriteria::absorbed_across_azimuth(const Node& n, const Column& c) con
     const Angle a(c.a);
     const glm::dvec3 d = frame_.dir(a, n.angle);
     const glm::dvec3 d_a = frame_.R * glm::dvec3(-n.angle.c * a.s, n.angle.c * a.c, 0);
-    return absorbed_across(std::abs(n.hit->t * glm::dot(n.hit->normal, d_a) / glm::dot(n.hit->normal, d)) *
-                           c.da);
+    const glm::dvec3& nf = n.hit->face_normal; // the footprint's plane, as in make_cell
+    return absorbed_across(std::abs(n.hit->t * glm::dot(nf, d_a) / glm::dot(nf, d)) * c.da);
 }
 
 bool RefineCriteria::specular_in_azimuth(const Node& n, double a_lo, double a_hi, double da) const {

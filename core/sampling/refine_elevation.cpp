@@ -28,9 +28,11 @@ Node Sampler::trace_node(const Angle& a, const Angle& e, double de, int group) c
         n.p = frame.origin + n.hit->t * d;
         n.density_db = cell_echo_db(criteria.constants(), material_of(s, n.hit->material), n.hit->t,
                                     std::abs(glm::dot(n.hit->normal, d)), frame.elevation_weight(e.rad));
-        // On the hit plane r(e) = (n.(p - o)) / (n.d(e)), so dr/de = -r (n.d_e) / (n.d).
+        // On the face's plane (where the footprint lies, as in make_cell) r(e) = (n.(p - o)) / (n.d(e)), so
+        // dr/de = -r (n.d_e) / (n.d).
         const glm::dvec3 d_e = frame.R * glm::dvec3(-n.angle.s * a.c, -n.angle.s * a.s, n.angle.c);
-        n.dr_de = std::abs(n.hit->t * glm::dot(n.hit->normal, d_e) / glm::dot(n.hit->normal, d));
+        const glm::dvec3& nf = n.hit->face_normal;
+        n.dr_de = std::abs(n.hit->t * glm::dot(nf, d_e) / glm::dot(nf, d));
         set_width(n, de, criteria.bin_m());
         if (multipath) trace_continuation(n, a);
     }

@@ -46,10 +46,13 @@ Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, 
     c.solid_angle_sr = float(e.c * (e_hi.rad - e_lo.rad) * (a_hi.rad - a_lo.rad) * f.elevation_weight(e.rad));
     c.azimuth_rad = float(a.rad), c.azimuth_width_rad = float(a_hi.rad - a_lo.rad);
     c.elevation_rad = float(e.rad), c.elevation_width_rad = float(e_hi.rad - e_lo.rad);
-    const double re0 = plane_range(f.origin, p, h.normal, f.dir(a, e_lo));
-    const double re1 = plane_range(f.origin, p, h.normal, f.dir(a, e_hi));
-    const double ra0 = plane_range(f.origin, p, h.normal, f.dir(a_lo, e));
-    const double ra1 = plane_range(f.origin, p, h.normal, f.dir(a_hi, e));
+    // The footprint lies on the face the ray hit, where the neighbouring rays land too: a smooth object's
+    // shading normal changes how strongly it echoes (the incidence above), not where it is.
+    const glm::dvec3& n = h.face_normal;
+    const double re0 = plane_range(f.origin, p, n, f.dir(a, e_lo));
+    const double re1 = plane_range(f.origin, p, n, f.dir(a, e_hi));
+    const double ra0 = plane_range(f.origin, p, n, f.dir(a_lo, e));
+    const double ra1 = plane_range(f.origin, p, n, f.dir(a_hi, e));
     // An edge that does not meet the plane (beyond its horizon): mirror the other edge about r.
     auto edge = [r](double x, double other) { return float(x > 0 ? x : (other > 0 ? 2 * r - other : r)); };
     c.range_e_lo_m = edge(re0, re1), c.range_e_hi_m = edge(re1, re0);

@@ -39,8 +39,9 @@ double plane_range(const glm::dvec3& o, const glm::dvec3& p, const glm::dvec3& n
 std::optional<Hit> first_hit(const SceneGeometry& g, const SceneDesc& s, const glm::dvec3& o,
                              const glm::dvec3& d, double t_max);
 
-/// The cell [a_lo, a_hi] x [e_lo, e_hi] around the ray (a, e) that hit `h`: range, incidence, solid angle
-/// (weighted by the elevation pattern) and the range footprint on the hit plane at the cell's edges.
+/// The cell [a_lo, a_hi] x [e_lo, e_hi] around the ray (a, e) that hit `h`: range, incidence (h.normal: the
+/// shading normal), solid angle (weighted by the elevation pattern) and the range footprint at the cell's
+/// edges on the plane of the face hit (h.face_normal).
 Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, const Angle& a_lo,
                const Angle& a_hi, const Angle& e_lo, const Angle& e_hi);
 

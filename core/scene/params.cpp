@@ -270,7 +270,7 @@ std::vector<ParamSpec> build_scene_params() {
     t.push_back(
         steers(number("water.surface_roughness_m", "m", 0, 1, false, false, Stage::Shade,
                       "Multipath: rms height sigma of the surface; coherent reflection (energy) R^2 = "
-                      "exp(-2 (2 k sigma cos theta)^2)",
+                      "exp(-(2 k sigma cos theta)^2) (Kirchhoff/Eckart; theta from the normal)",
                       [](S s) -> double& { return s.water.surface_roughness_m; })));
     t.push_back(integer("sampling.elevation_rays", 1, 1000000, Stage::Trace, "Elevation rays M per beam",
                         [](S s) -> int& { return s.sampling.elevation_rays; }));
@@ -424,6 +424,16 @@ std::vector<ObjectSpec> build_object_params() {
         return json(Vec3d{x, x, x});
     };
     t.push_back(scale);
+    ObjectSpec crease = part<ObjectDesc>(
+        "crease_angle_deg", "deg", ParamType::Number, 0, 180, false, Stage::Geometry,
+        "Smooth shading: the normal at a hit is interpolated from corner normals that average "
+        "the faces meeting there within this angle of each other; faces at a larger angle keep "
+        "their edge (a box's 90 deg). 0: face normals");
+    crease.get = [](const ObjectDesc& o) { return json(o.crease_angle_deg); };
+    crease.put = [](ObjectDesc& o, const json& v, const std::string&) {
+        o.crease_angle_deg = v.get<double>();
+    };
+    t.push_back(crease);
     ObjectSpec name = part<ObjectDesc>("name", "", ParamType::String, 0, 0, false, Stage::None, "A label");
     name.get = [](const ObjectDesc& o) { return json(o.name); };
     name.put = [](ObjectDesc& o, const json& v, const std::string&) { o.name = v.get<std::string>(); };

@@ -100,7 +100,8 @@ template <class Part> struct PartSpec : ValueSpec {
 using ObjectSpec = PartSpec<ObjectDesc>;
 using SeafloorSpec = PartSpec<Seafloor>;
 
-/// Object keys (mesh, box, position, orientation_deg, scale, name): stage Geometry (name: None).
+/// Object keys (mesh, box, position, orientation_deg, scale, crease_angle_deg, name): stage Geometry (name:
+/// None).
 const std::vector<ObjectSpec>& object_params();
 /// Seafloor keys (height_m).
 const std::vector<SeafloorSpec>& seafloor_params();

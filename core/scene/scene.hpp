@@ -48,7 +48,7 @@ struct WaterParams {
     /// The water surface: the plane z = surface_height_m [m], a pressure-release mirror (R = -1) that also
     /// backscatters (surface_material). Absent: no surface.
     std::optional<double> surface_height_m;
-    double surface_roughness_m = 0.0; ///< rms height sigma: coherent |R|^2 = exp(-2 (2 k sigma cos theta)^2)
+    double surface_roughness_m = 0.0; ///< rms height sigma: coherent |R|^2 = exp(-(2 k sigma cos theta)^2)
     Material surface_material{-50.0, 2.0, 0.0, 5.0};
 };
 
@@ -122,6 +122,9 @@ struct ObjectDesc {
     Vec3d position_m{0, 0, 0};  ///< box centre / mesh origin [m]
     Vec3d orientation_deg{0, 0, 0};
     Vec3d scale{1, 1, 1};
+    /// Shading normals interpolated from corner normals that average the faces within this angle of each
+    /// other (shading_normals.hpp); 0: face normals [deg]
+    double crease_angle_deg = 60.0;
     Material material;
     std::string name; ///< a label (not written to the metadata)
 };

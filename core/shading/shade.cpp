@@ -33,8 +33,10 @@ double cell_fraction_in(const Cell& c, EchoBinning binning, double r0, double r1
 
 double reflection_gain_db(const ShadeConstants& k, const SceneDesc& s, unsigned m, double cos_inc) {
     if (m != kSurfaceMaterial) return -material_of(s, m).reflection_db;
-    const double g = 2 * k.wavenumber_rad_per_m * s.water.surface_roughness_m * cos_inc; // Rayleigh parameter
-    return -2 * g * g / kLn10Over10; // 10 log10 exp(-2 g^2)
+    // Kirchhoff (Eckart): the coherent amplitude is exp(-2 k^2 sigma^2 cos^2), so |R|^2 = exp(-g^2) with g
+    // the Rayleigh parameter 2 k sigma cos.
+    const double g = 2 * k.wavenumber_rad_per_m * s.water.surface_roughness_m * cos_inc;
+    return -g * g / kLn10Over10; // 10 log10 exp(-g^2)
 }
 
 double ghost_echo_db(const ShadeConstants& k, const SceneDesc& s, const GhostCell& g) {

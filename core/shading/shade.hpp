@@ -17,7 +17,8 @@ const Material& material_of(const SceneDesc& scene, unsigned m);
 double cell_fraction_in(const Cell& cell, EchoBinning binning, double r0, double r1);
 
 /// One reflection's 10 log10 |R|^2 [dB] on mirror `material` at incidence cos_incidence: the water surface's
-/// coherent reflection -2 (2 k sigma cos)^2 10 log10 e (pressure release, |R0| = 1), or -reflection_db.
+/// coherent reflection 10 log10 exp(-(2 k sigma cos)^2) (Kirchhoff/Eckart: amplitude exp(-2 k^2 sigma^2
+/// cos^2); pressure release, |R0| = 1), or -reflection_db.
 double reflection_gain_db(const ShadeConstants& k, const SceneDesc& scene, unsigned material,
                           double cos_incidence);
 

@@ -88,7 +88,7 @@ TEST_CASE("ghosts of a plate under the surface at the image-source ranges and le
         const double cos_d = 4.0 / r, cos_i = 4.0 / L;                   // incidence on the plate
         // |R|^2 at the mirror point: the ray from S' to P meets the surface at incidence cos = 1.8 / L.
         const double k = 2 * kPi * s.sonar.frequency_khz * 1e3 / c, g = 2 * k * roughness_m * (1.8 / L);
-        const double R_db = 10 * std::log10(std::exp(-2 * g * g));
+        const double R_db = 10 * std::log10(std::exp(-g * g));
         const double SL = s.sonar.source_level_db;
         const double direct_db =
             SL - 40 * std::log10(r) - 2 * alpha * r + nu + 20 * std::log10(cos_d) + 10 * std::log10(A);

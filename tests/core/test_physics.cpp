@@ -1,4 +1,6 @@
 #include "core/shading/physics.hpp"
+#include "core/shading/shade.hpp"
+#include "core/geometry/geometry.hpp"
 #include "core/base/pose.hpp"
 #include "core/scene/scene_io.hpp"
 
@@ -82,4 +84,30 @@ TEST_CASE("one cell's echo level is L_S - 2 TL + L_BS + 10 log10(r^2 dOmega / co
     CHECK(d.source_level_db == 230.0);
     CHECK(d.noise_level_db == 10.0);
     CHECK(d.alpha_db_per_m == Approx(3.0443).margin(5e-4));
+}
+
+TEST_CASE(
+    "the water surface's coherent reflection loss is the Kirchhoff (Eckart) |R|^2 = exp(-(2 k sigma cos)^2)",
+    "[physics][multipath]") {
+    SceneDesc s;
+    s.water.surface_height_m = 2.0;
+    const ShadeConstants k = shade_constants(s);
+    const double c = sound_speed_m_s(s.water.temperature_c, s.water.depth_m);
+    REQUIRE(k.wavenumber_rad_per_m == Approx(2 * kPi * s.sonar.frequency_khz * 1e3 / c).epsilon(1e-12));
+    // Choose sigma so that the Rayleigh parameter 2 k sigma cos is 1 at normal incidence: the amplitude
+    // exp(-2 k^2 sigma^2 cos^2) = exp(-1/2), so |R|^2 = 1/e, -4.343 dB (not 1/e^2, -8.686 dB).
+    s.water.surface_roughness_m = 1 / (2 * k.wavenumber_rad_per_m);
+    CHECK(reflection_gain_db(k, s, kSurfaceMaterial, 1.0) ==
+          Approx(-10 * std::log10(std::exp(1.0))).epsilon(1e-12));
+    for (double cos_inc : {0.0, 0.25, 0.5, 0.9}) {
+        const double amplitude =
+            std::exp(-2 * std::pow(k.wavenumber_rad_per_m * s.water.surface_roughness_m * cos_inc, 2));
+        CHECK(reflection_gain_db(k, s, kSurfaceMaterial, cos_inc) ==
+              Approx(20 * std::log10(amplitude)).margin(1e-12));
+    }
+    s.water.surface_roughness_m = 0; // a smooth pressure-release surface loses nothing
+    CHECK(reflection_gain_db(k, s, kSurfaceMaterial, 0.7) == 0.0);
+    // Other mirrors lose their reflection_db, whatever the roughness.
+    s.seafloor->material.reflection_db = 6;
+    CHECK(reflection_gain_db(k, s, kFloorMaterial, 0.7) == -6.0);
 }

@@ -40,7 +40,7 @@ Node plane_node(const detail::RayFrame& f, const RefineCriteria& c, double a_rad
     const glm::dvec3 nn = glm::normalize(normal);
     const double t = detail::plane_range(f.origin, on, nn, d);
     REQUIRE(t > 0);
-    n.hit = Hit{t, nn, material, prim};
+    n.hit = Hit{t, nn, material, prim, nn};
     n.p = f.origin + t * d;
     n.density_db = density_db;
     const glm::dvec3 d_e = f.R * glm::dvec3(-n.angle.s * a.c, -n.angle.s * a.s, n.angle.c);

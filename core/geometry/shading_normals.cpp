@@ -1,0 +1,137 @@
+#include "core/geometry/shading_normals.hpp"
+
+#include "core/base/pose.hpp"
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <numeric>
+#include <tuple>
+#include <utility>
+
+namespace sonarsim {
+namespace {
+
+/// Each vertex's representative among the vertices at exactly its position (the lowest index), so that
+/// meshes with split vertices (STL: three per triangle) smooth across their shared edges.
+std::vector<unsigned> welded_vertices(const TriMesh& m) {
+    std::vector<unsigned> order(m.vertices.size());
+    std::iota(order.begin(), order.end(), 0u);
+    const auto& v = m.vertices;
+    tbb::parallel_sort(order.begin(), order.end(), [&](unsigned a, unsigned b) {
+        return std::tie(v[a].x, v[a].y, v[a].z, a) < std::tie(v[b].x, v[b].y, v[b].z, b);
+    });
+    std::vector<unsigned> rep(v.size());
+    for (size_t i = 0; i < order.size(); ++i)
+        rep[order[i]] = (i > 0 && v[order[i]] == v[order[i - 1]]) ? rep[order[i - 1]] : order[i];
+    return rep;
+}
+
+} // namespace
+
+ShadingNormals corner_normals(const TriMesh& m, double crease_angle_deg) {
+    ShadingNormals out;
+    out.crease_angle_deg = crease_angle_deg;
+    if (!(crease_angle_deg > 0) || m.triangles.empty()) return out;
+    const size_t T = m.triangles.size();
+    const double cos_crease = std::cos(deg2rad(std::min(crease_angle_deg, 180.0)));
+
+    // Unit face normals (zero for a degenerate face) and each corner's angle.
+    std::vector<glm::dvec3> face(T);
+    std::vector<double> angle(3 * T, 0.0);
+    tbb::parallel_for(size_t(0), T, [&](size_t t) {
+        const glm::uvec3 tri = m.triangles[t];
+        const glm::dvec3 p[3] = {m.vertices[tri.x], m.vertices[tri.y], m.vertices[tri.z]};
+        const glm::dvec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
+        const double len = glm::length(n);
+        if (!(len > 0)) return; // degenerate: takes no part
+        face[t] = n / len;
+        for (int k = 0; k < 3; ++k) {
+            const glm::dvec3 a = p[(k + 1) % 3] - p[k], b = p[(k + 2) % 3] - p[k];
+            angle[3 * t + size_t(k)] = std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
+        }
+    });
+
+    // The corners around each (welded) vertex, as compressed rows.
+    const std::vector<unsigned> rep = welded_vertices(m);
+    std::vector<size_t> start(m.vertices.size() + 1, 0);
+    for (const glm::uvec3& tri : m.triangles)
+        for (int k = 0; k < 3; ++k) ++start[rep[tri[k]] + 1];
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    std::vector<size_t> fill(start.begin(), start.end() - 1);
+    std::vector<unsigned> corners_at(3 * T); // corner index 3 t + k
+    for (size_t t = 0; t < T; ++t)
+        for (int k = 0; k < 3; ++k) corners_at[fill[rep[m.triangles[t][k]]]++] = unsigned(3 * t + size_t(k));
+
+    out.corner.assign(3 * T, glm::vec3(0));
+    std::vector<char> bent(T, 0); // a corner normal differs from its face normal
+    tbb::parallel_for(size_t(0), T, [&](size_t t) {
+        const glm::dvec3 nf = face[t];
+        if (nf == glm::dvec3(0)) return;
+        for (int k = 0; k < 3; ++k) {
+            const unsigned v = rep[m.triangles[t][k]];
+            glm::dvec3 sum(0);
+            for (size_t i = start[v]; i < start[v + 1]; ++i) {
+                const unsigned c = corners_at[i];
+                const glm::dvec3& ng = face[c / 3];
+                if (glm::dot(nf, ng) >= cos_crease) sum += angle[c] * ng;
+            }
+            const double len = glm::length(sum);
+            const glm::dvec3 n = len > 0 ? sum / len : nf;
+            out.corner[3 * t + size_t(k)] = glm::vec3(n);
+            if (1 - glm::dot(n, nf) > 1e-12) bent[t] = 1;
+        }
+    });
+    // Nothing bent (a box, or a crease angle below every dihedral angle): the face normals, exactly as Embree
+    // reports them, and no memory.
+    if (std::find(bent.begin(), bent.end(), 1) == bent.end()) out.corner = {};
+    return out;
+}
+
+namespace {
+
+/// The corner normals in use, one per (mesh, crease angle): computed by the first to ask, shared while
+/// anything holds them (they keep their mesh alive, so a mesh's address names one mesh).
+class NormalsRegistry {
+  public:
+    std::shared_ptr<const ShadingNormals> get(const std::shared_ptr<const TriMesh>& mesh, double crease_deg) {
+        std::shared_ptr<Slot> slot;
+        {
+            const std::lock_guard<std::mutex> lock(mutex_);
+            for (auto it = slots_.begin(); it != slots_.end();) // forget normals nothing uses any more
+                it = it->second.use_count() == 1 && it->second->normals.expired() ? slots_.erase(it)
+                                                                                  : std::next(it);
+            std::shared_ptr<Slot>& s = slots_[{mesh.get(), crease_deg}];
+            if (!s) s = std::make_shared<Slot>();
+            slot = s;
+        }
+        const std::lock_guard<std::mutex> lock(slot->mutex); // one computation per key; others wait for it
+        if (std::shared_ptr<const ShadingNormals> n = slot->normals.lock()) return n;
+        auto n = std::make_shared<ShadingNormals>(corner_normals(*mesh, crease_deg));
+        n->mesh = mesh;
+        slot->normals = n;
+        return n;
+    }
+
+  private:
+    struct Slot {
+        std::mutex mutex;
+        std::weak_ptr<const ShadingNormals> normals;
+    };
+    std::mutex mutex_;
+    std::map<std::pair<const TriMesh*, double>, std::shared_ptr<Slot>> slots_;
+};
+
+} // namespace
+
+std::shared_ptr<const ShadingNormals> shared_corner_normals(const std::shared_ptr<const TriMesh>& mesh,
+                                                            double crease_angle_deg) {
+    if (!mesh || !(crease_angle_deg > 0)) return nullptr;
+    static NormalsRegistry registry;
+    return registry.get(mesh, crease_angle_deg);
+}
+
+} // namespace sonarsim
