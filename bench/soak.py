@@ -140,6 +140,8 @@ def main():
     ap.add_argument("--out", default=str(ROOT / "build" / "bench" / "soak"))
     ap.add_argument("--viewer-cycles", type=int, default=6)
     ap.add_argument("--batch-frames", type=int, default=1000)
+    ap.add_argument("--batch-scene", default=str(ROOT / "assets" / "scenes" / "shipwreck.json"),
+                    help="scene of the batch soak (its circle: radius 17 m, 6 m up, around the origin)")
     ap.add_argument("--max-growth", type=float, default=0.05)
     ap.add_argument("--no-viewer", action="store_true")
     ap.add_argument("--no-batch", action="store_true")
@@ -170,7 +172,7 @@ def main():
 
     if not a.no_batch:
         n = a.batch_frames
-        cmd = [exe, "batch", "--scene", str(ROOT / "assets" / "scenes" / "shipwreck.json"), "--circle",
+        cmd = [exe, "batch", "--scene", a.batch_scene, "--circle",
                f"0,0,0,17,6,{n}", "--ground-truth", "--out", str(out / "batch")]
         samples, secs = sample(cmd, "sonarsim", label="batch soak")
         tenth = secs / 10
