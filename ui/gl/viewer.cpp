@@ -69,7 +69,7 @@ Viewer::Viewer(const ViewerOptions& o) : opt_(o), orbiter_(o.scene), session_(o.
     sonar_ = std::make_unique<SonarPanel>();
     update_scale();
     layout_ = viewer_layout(o.width, o.height, font_scale_);
-    controller_.camera = default_camera(o.scene, double(layout_.view3d.w) / layout_.view3d.h);
+    reset_camera();
     if (o.frames > 0) last_frame_ = o.frames - 1;
     if (!script_.empty() && o.frames <= 0) last_frame_ = script_.back().frame + 1;
 }

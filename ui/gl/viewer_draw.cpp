@@ -6,6 +6,7 @@
 
 #include "ui/gl/gl_util.hpp"
 #include "ui/gl/offscreen.hpp"
+#include "ui/model/framing.hpp"
 #include "ui/model/snapshot.hpp"
 #include "ui/model/sonar_geometry.hpp"
 
@@ -43,8 +44,13 @@ void Viewer::draw_view_text(const Rect& v) {
     // Lines that do not fit the view's width are left out rather than run into the sonar panel.
     ImDrawList* dl = ImGui::GetBackgroundDrawList();
     const float line = ImGui::GetTextLineHeightWithSpacing(), pad = 0.5f * line;
+    // Each line on a dark translucent backdrop, so that it reads over sand, terrain or open water alike.
     auto put = [&](float y, ImU32 col, const char* text) {
-        if (ImGui::CalcTextSize(text).x > v.w - 2 * pad || y < v.y || y + line > v.y + v.h) return;
+        const ImVec2 sz = ImGui::CalcTextSize(text);
+        if (sz.x > v.w - 2 * pad || y < v.y || y + line > v.y + v.h) return;
+        const float m = 0.25f * pad;
+        dl->AddRectFilled(ImVec2(v.x + pad - 2 * m, y - m), ImVec2(v.x + pad + sz.x + 2 * m, y + line - m),
+                          IM_COL32(8, 12, 18, 170), 2 * m);
         dl->AddText(ImVec2(v.x + pad, y), col, text);
     };
     char buf[256];
@@ -67,9 +73,10 @@ void Viewer::draw_view_text(const Rect& v) {
     }
     const char* hints[] = {"drag the sonar (housing or yellow handle) to move it;",
                            "  Shift: up/down  Ctrl: yaw/pitch  Ctrl+Shift: roll",
-                           "drag an object: move (Shift z, Ctrl turn, Alt scale)",
-                           "left-drag: orbit  right-drag: pan  wheel: zoom"};
-    float y = v.y + v.h - pad * 0.5f - 4 * line;
+                           "click an object to select it, then drag it: move",
+                           "  (Shift z, Ctrl turn, Alt scale); terrain: Shift/Ctrl only",
+                           "left-drag: orbit  right-drag: pan  wheel: zoom  F: frame"};
+    float y = v.y + v.h - pad * 0.5f - 5 * line;
     for (const char* h : hints) put(y, IM_COL32(200, 200, 200, 200), h), y += line;
 }
 
@@ -77,7 +84,9 @@ void Viewer::reset_camera() {
     int w = 0, h = 0;
     glfwGetWindowSize(window_, &w, &h);
     const Rect v = viewer_layout(w, h, font_scale_).view3d;
-    controller_.camera = default_camera(session_.scene(), double(v.w) / std::max(1.0f, v.h));
+    controller_.camera =
+        default_camera(session_.scene(), object_bounds(session_.scene(), session_.local_meshes()),
+                       double(v.w) / std::max(1.0f, v.h));
 }
 
 void Viewer::update_title() {
