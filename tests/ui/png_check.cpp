@@ -4,6 +4,8 @@
 //       a snapshot's scene after a drag: then the sonar must have moved and the fan must match the moved
 //       scene better than the Fig. 9 one) has it.
 //   ui_png_check view3d FILE.png : the headless 3D view is not blank and shows the floor and the prism.
+//   ui_png_check hover FILE.png yes|no : an annotated snapshot shows the hovered cell's yellow outline, or
+//   not.
 #include "ui/model/layout.hpp"
 
 #include "core/display/image.hpp"
@@ -137,11 +139,26 @@ int check_view3d(const Png& p) {
     return 0;
 }
 
+int check_hover(const Png& p, bool want) {
+    int yellow = 0; // the hover colour of the sonar panel (255, 224, 25)
+    for (int y = 0; y < p.h; ++y)
+        for (int x = 0; x < p.w; ++x) {
+            const unsigned char* c = p.at(x, y);
+            if (c[0] > 230 && c[1] > 195 && c[1] < 245 && c[2] < 80) ++yellow;
+        }
+    std::printf("hover-yellow pixels: %d\n", yellow);
+    if (want && yellow < 20) return fail("no hover marker where the pointer was over the image");
+    if (!want && yellow > 4) return fail("a hover marker although the pointer was not over the image");
+    return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
     if (argc < 3 || argc > 4) {
-        std::fprintf(stderr, "usage: ui_png_check window FILE.png [SCENE.json] | view3d FILE.png\n");
+        std::fprintf(
+            stderr,
+            "usage: ui_png_check window FILE.png [SCENE.json] | view3d FILE.png | hover FILE.png yes|no\n");
         return 2;
     }
     Png p;
@@ -149,6 +166,8 @@ int main(int argc, char** argv) {
     std::printf("%s: %d x %d\n", argv[2], p.w, p.h);
     if (std::strcmp(argv[1], "window") == 0) return check_window(p, argc == 4 ? argv[3] : nullptr);
     if (std::strcmp(argv[1], "view3d") == 0) return check_view3d(p);
+    if (std::strcmp(argv[1], "hover") == 0 && argc == 4)
+        return check_hover(p, std::strcmp(argv[3], "yes") == 0);
     std::fprintf(stderr, "unknown mode %s\n", argv[1]);
     return 2;
 }

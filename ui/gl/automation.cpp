@@ -70,7 +70,7 @@ void Viewer::script_actions(int index, int fb_w, int fb_h) {
         if (c == "screenshot") write_screenshot(st.args[0], fb_w, fb_h);
         if (c == "state") write_state(st.args[0]);
         if (c == "layout") write_layout(st.args[0], win_w, win_h);
-        if (c == "snapshot") take_snapshot(st.args[0]);
+        if (c == "snapshot") take_snapshot(st.args[0], false, annotated_now(fb_w, fb_h, win_w, win_h));
         if (c == "quit") quit_ = true;
         if (c == "open") open_files({st.args[0]});
         if (c == "trajectory_save") save_trajectory(trajectory_.track, st.args[0]);

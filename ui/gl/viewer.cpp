@@ -217,7 +217,7 @@ void Viewer::frame(int index) {
     if (last && !opt_.layout.empty()) write_layout(opt_.layout, win_w, win_h);
     if (last && !opt_.state.empty()) write_state(opt_.state);
     if (last && !opt_.snapshot.empty()) {
-        take_snapshot(opt_.snapshot);
+        take_snapshot(opt_.snapshot, false, annotated_now(fb_w, fb_h, win_w, win_h));
         if (!session_.error().empty()) throw std::runtime_error(session_.error());
     }
     glfwSwapBuffers(window_);
