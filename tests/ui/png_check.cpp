@@ -1,12 +1,13 @@
 // Checks the PNGs of the GL tests.
 //   ui_png_check window FILE.png [SCENE.json] : the viewer's window is not blank, and its fan (placed by
-//       ui/layout.hpp) shows the echo where core's own sector image of the Fig. 9 scene (or of SCENE.json,
-//       a snapshot's scene after a drag: then the sonar must have moved and the fan must match the moved
-//       scene better than the Fig. 9 one) has it.
+//       ui/model/panel_layout.hpp) shows the echo where core's own sector image of the Fig. 9 scene (or of
+//       SCENE.json, a snapshot's scene after a drag: then the sonar must have moved and the fan must match
+//       the moved scene better than the Fig. 9 one) has it.
 //   ui_png_check view3d FILE.png : the headless 3D view is not blank and shows the floor and the prism.
 //   ui_png_check hover FILE.png yes|no : an annotated snapshot shows the hovered cell's yellow outline, or
 //   not.
 #include "ui/model/layout.hpp"
+#include "ui/model/panel_layout.hpp"
 
 #include "core/display/image.hpp"
 #include "core/scene/scene_io.hpp"
@@ -65,8 +66,9 @@ bool not_blank(const Png& p, size_t min_colours, std::string& why) {
 double fan_correlation(const Png& p, const sonarsim::SceneDesc& s, int& bright, std::string& why) {
     sonarsim::Simulator sim(s);
     const sonarsim::Image8& ref = sim.render()->sector();
-    const auto L = sonarsim::ui::viewer_layout(p.w, p.h);
-    const auto S = sonarsim::ui::sonar_panel_layout(L.sonar, double(ref.width) / ref.height);
+    const auto L = sonarsim::ui::viewer_layout(p.w, p.h, 1.0f, sonarsim::ui::fan_aspect(s.sonar));
+    const auto S = sonarsim::ui::sonar_panel_layout(
+        L.sonar, {s.sonar, s.display.lo_db, s.display.hi_db, sonarsim::ui::colorbar_title(s), false}, {});
     const sonarsim::SectorLayout fan(s.sonar, ref.height);
     // Compare the screenshot's fan with the reference, pixel by pixel (nearest), inside the fan only.
     double n = 0, sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;

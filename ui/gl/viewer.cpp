@@ -6,6 +6,7 @@
 
 #include "ui/model/display_mesh.hpp"
 #include "ui/model/layout.hpp"
+#include "ui/model/panel_layout.hpp"
 
 #include <algorithm>
 #include <backends/imgui_impl_glfw.h>
@@ -68,7 +69,7 @@ Viewer::Viewer(const ViewerOptions& o) : opt_(o), orbiter_(o.scene), session_(o.
     renderer_ = std::make_unique<SceneRenderer>();
     sonar_ = std::make_unique<SonarPanel>();
     update_scale();
-    layout_ = viewer_layout(o.width, o.height, font_scale_);
+    layout_ = viewer_layout(o.width, o.height, font_scale_, fan_aspect(o.scene.sonar));
     reset_camera();
     if (o.frames > 0) last_frame_ = o.frames - 1;
     if (!script_.empty() && o.frames <= 0) last_frame_ = script_.back().frame + 1;
@@ -181,7 +182,7 @@ void Viewer::frame(int index) {
     const float fb_ratio = win_w > 0 ? std::max(1.0f, float(fb_w) / float(win_w)) : 1.0f;
     content_scale_ = std::max(1.0f, std::max(csx, csy) / fb_ratio);
     update_scale();
-    layout_ = viewer_layout(win_w, win_h, font_scale_);
+    layout_ = viewer_layout(win_w, win_h, font_scale_, fan_aspect(session_.scene().sonar));
 
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();

@@ -7,6 +7,7 @@
 #include "ui/gl/gl_util.hpp"
 #include "ui/gl/offscreen.hpp"
 #include "ui/model/framing.hpp"
+#include "ui/model/panel_layout.hpp"
 #include "ui/model/snapshot.hpp"
 #include "ui/model/sonar_geometry.hpp"
 
@@ -83,7 +84,7 @@ void Viewer::draw_view_text(const Rect& v) {
 void Viewer::reset_camera() {
     int w = 0, h = 0;
     glfwGetWindowSize(window_, &w, &h);
-    const Rect v = viewer_layout(w, h, font_scale_).view3d;
+    const Rect v = viewer_layout(w, h, font_scale_, fan_aspect(session_.scene().sonar)).view3d;
     controller_.camera =
         default_camera(session_.scene(), object_bounds(session_.scene(), session_.local_meshes()),
                        double(v.w) / std::max(1.0f, v.h));
