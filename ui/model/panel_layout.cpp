@@ -181,17 +181,17 @@ SonarPanelLayout sonar_panel_layout(const Rect& p, const PanelContent& c, const 
             std::snprintf(buf, sizeof buf, "%g", v);
             tick_w = std::max(tick_w, t.width(buf));
         }
-    const float bar_x = p.x + p.w - pad - tick_w - 2 * k - kTickLen * k - kBarW * k;
+    const float bar_total = kBarW * k + kTickLen * k + 2 * k + tick_w; // the bar, its ticks and their labels
+    const float bar_x_max = p.x + p.w - pad - bar_total;
     const float title_y = L.readout.y + L.readout.h + 2 * k;
     const float title_w = std::min(t.width(c.colorbar_title), p.w - 2 * pad);
-    L.colorbar_title = {c.colorbar_title, {p.x + p.w - pad - title_w, title_y, title_w, th}};
     const float top =
         title_y + 1.5f * th + kGap * k; // the top tick's label reaches half a line above the bar
 
     // The image: the widest whose labels fit between the panel's left edge and the colour bar, above the
     // A-scan's least height.
     const float ascan_min = std::max(kAscanMinH * k, kAscanMinFrac * p.h);
-    const Rect room{p.x + pad, top, bar_x - 2 * pad - (p.x + pad), p.y + p.h - pad - ascan_min - top};
+    const Rect room{p.x + pad, top, bar_x_max - 2 * pad - (p.x + pad), p.y + p.h - pad - ascan_min - top};
     const SonarParams& s = c.sonar;
     const SectorLayout sector(s, default_sector_height(s));
     FanOnScreen fan;
@@ -210,7 +210,12 @@ SonarPanelLayout sonar_panel_layout(const Rect& p, const PanelContent& c, const 
     }
     const float w = std::floor(lo_w);
     const Labels rel = place_labels(c, sector, 0, 0, w, t, fan);
-    const float x = room.x + (room.w - rel.bounds.w) / 2 - rel.bounds.x, y = room.y - rel.bounds.y;
+    // The image with its labels and the colour bar beside them, centred in the panel as one group.
+    const float group_x = room.x + (room.w - rel.bounds.w) / 2;
+    const float x = group_x - rel.bounds.x, y = room.y - rel.bounds.y;
+    const float bar_x = group_x + rel.bounds.w + 2 * pad;
+    const float title_x = std::max(p.x + pad, bar_x + bar_total - title_w);
+    L.colorbar_title = {c.colorbar_title, {title_x, title_y, title_w, th}};
     const Labels l = place_labels(c, sector, x, y, w, t, L.fan);
     L.image = {x, y, w, w * float(sector.height()) / float(sector.width())};
     if (c.polar) L.fan = {};
