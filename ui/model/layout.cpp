@@ -13,7 +13,7 @@ ViewerLayout viewer_layout(int w, int h, float k, double fan_aspect) {
     const float W = float(w), H = float(h) - kMenuBarHeight * k, y = kMenuBarHeight * k;
     // Large windows give the sonar image more room; small ones keep the 3D view at least a quarter.
     const float cw = std::min(kControlsW * k, W * 0.34f);
-    const float cap = std::min(0.45f * W, W - cw - 0.3f * W);
+    const float cap = std::min(0.45f * W, W - cw - std::max(0.3f * W, 480 * k)); // the 3D view keeps room
     const float sw = std::max(std::min(std::max(kSonarW * k, W * 0.3f), W * 0.4f),
                               std::min(sonar_panel_width_wanted(h, fan_aspect, k), cap));
     ViewerLayout L;

@@ -19,7 +19,7 @@ struct ViewerLayout {
 };
 /// `scale`: the UI scale (monitor content scale x the user's setting); panels widen with it. `fan_w_over_h`:
 /// the aspect of the sonar's fan; a wide fan widens the sonar panel (up to 45% of the window, keeping the 3D
-/// view at least 30%) so that the fan can fill it.
+/// view at least 30% and 480 px) so that the fan can fill it.
 ViewerLayout viewer_layout(int width_px, int height_px, float scale = 1.0f, double fan_w_over_h = 1.0);
 
 /// The largest rectangle of aspect w/h inside `box`, centred horizontally, at the top.
