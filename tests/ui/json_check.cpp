@@ -3,6 +3,7 @@
 //       and arrays of numbers within TOL, default 1e-9)
 //   ui_json_check ne FILE_A PTR_A FILE_B PTR_B [TOL] : they differ by more than TOL somewhere
 //   ui_json_check is FILE PTR JSON                    : the value at PTR equals the JSON literal
+//   ui_json_check ge FILE PTR NUMBER                  : the number at PTR is at least NUMBER
 //   ui_json_check ratio A PA A0 PA0 B PB B0 PB0 R TOL : (A - A0) / (B - B0) is R within TOL
 //   ui_json_check layout FILE                         : no overlapping, cut-off or outside text ("problems")
 //   ui_json_check runs FILE WINDOW MIN               : a --layout file has at least MIN text runs drawn by
@@ -63,6 +64,15 @@ int run(int argc, char** argv) {
         std::cout << argv[3] << ": " << a.dump() << "\n";
         if (!close(a, b, 1e-9)) {
             std::cerr << "FAIL: expected " << b.dump() << "\n";
+            return 1;
+        }
+        return 0;
+    }
+    if (cmd == "ge" && argc == 5) {
+        const double a = load(argv[2]).at(json::json_pointer(argv[3])).get<double>(), b = std::stod(argv[4]);
+        std::cout << argv[3] << ": " << a << "\n";
+        if (!(a >= b)) {
+            std::cerr << "FAIL: expected at least " << b << "\n";
             return 1;
         }
         return 0;

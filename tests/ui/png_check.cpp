@@ -1,10 +1,13 @@
 // Checks the PNGs of the GL tests.
 //   ui_png_check window FILE.png [SCENE.json] : the viewer's window is not blank, and its fan (placed by
-//       ui/layout.hpp) shows the echo where core's own sector image of the Fig. 9 scene (or of SCENE.json,
-//       a snapshot's scene after a drag: then the sonar must have moved and the fan must match the moved
-//       scene better than the Fig. 9 one) has it.
+//       ui/model/panel_layout.hpp) shows the echo where core's own sector image of the Fig. 9 scene (or of
+//       SCENE.json, a snapshot's scene after a drag: then the sonar must have moved and the fan must match
+//       the moved scene better than the Fig. 9 one) has it.
 //   ui_png_check view3d FILE.png : the headless 3D view is not blank and shows the floor and the prism.
+//   ui_png_check hover FILE.png yes|no : an annotated snapshot shows the hovered cell's yellow outline, or
+//   not.
 #include "ui/model/layout.hpp"
+#include "ui/model/panel_layout.hpp"
 
 #include "core/display/image.hpp"
 #include "core/scene/scene_io.hpp"
@@ -63,8 +66,9 @@ bool not_blank(const Png& p, size_t min_colours, std::string& why) {
 double fan_correlation(const Png& p, const sonarsim::SceneDesc& s, int& bright, std::string& why) {
     sonarsim::Simulator sim(s);
     const sonarsim::Image8& ref = sim.render()->sector();
-    const auto L = sonarsim::ui::viewer_layout(p.w, p.h);
-    const auto S = sonarsim::ui::sonar_panel_layout(L.sonar, double(ref.width) / ref.height);
+    const auto L = sonarsim::ui::viewer_layout(p.w, p.h, 1.0f, sonarsim::ui::fan_aspect(s.sonar));
+    const auto S = sonarsim::ui::sonar_panel_layout(
+        L.sonar, {s.sonar, s.display.lo_db, s.display.hi_db, sonarsim::ui::colorbar_title(s), false}, {});
     const sonarsim::SectorLayout fan(s.sonar, ref.height);
     // Compare the screenshot's fan with the reference, pixel by pixel (nearest), inside the fan only.
     double n = 0, sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
@@ -137,11 +141,26 @@ int check_view3d(const Png& p) {
     return 0;
 }
 
+int check_hover(const Png& p, bool want) {
+    int yellow = 0; // the hover colour of the sonar panel (255, 224, 25)
+    for (int y = 0; y < p.h; ++y)
+        for (int x = 0; x < p.w; ++x) {
+            const unsigned char* c = p.at(x, y);
+            if (c[0] > 230 && c[1] > 195 && c[1] < 245 && c[2] < 80) ++yellow;
+        }
+    std::printf("hover-yellow pixels: %d\n", yellow);
+    if (want && yellow < 20) return fail("no hover marker where the pointer was over the image");
+    if (!want && yellow > 4) return fail("a hover marker although the pointer was not over the image");
+    return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
     if (argc < 3 || argc > 4) {
-        std::fprintf(stderr, "usage: ui_png_check window FILE.png [SCENE.json] | view3d FILE.png\n");
+        std::fprintf(
+            stderr,
+            "usage: ui_png_check window FILE.png [SCENE.json] | view3d FILE.png | hover FILE.png yes|no\n");
         return 2;
     }
     Png p;
@@ -149,6 +168,8 @@ int main(int argc, char** argv) {
     std::printf("%s: %d x %d\n", argv[2], p.w, p.h);
     if (std::strcmp(argv[1], "window") == 0) return check_window(p, argc == 4 ? argv[3] : nullptr);
     if (std::strcmp(argv[1], "view3d") == 0) return check_view3d(p);
+    if (std::strcmp(argv[1], "hover") == 0 && argc == 4)
+        return check_hover(p, std::strcmp(argv[3], "yes") == 0);
     std::fprintf(stderr, "unknown mode %s\n", argv[1]);
     return 2;
 }

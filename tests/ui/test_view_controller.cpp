@@ -192,3 +192,69 @@ TEST_CASE("the housing and the handle are grabbable and the field of view shell 
     r.c.hover(r.pixel_of(sonar_point(r.scene.sonar, 1.2, 8, 3)), r.ctx());
     CHECK_FALSE(r.c.sonar_hot());
 }
+
+TEST_CASE("a plain drag on an unselected object orbits; a click selects it, then a drag moves it",
+          "[ui][controller]") {
+    Rig r;
+    r.c.selected = -1; // the seafloor
+    const glm::dvec2 p = r.pixel_of({1.5, 1.5, 0.22});
+    const OrbitCamera before = r.c.camera;
+    r.feed(T::Press, p);
+    r.feed(T::Move, p + glm::dvec2(20, 0));
+    r.feed(T::Move, p + glm::dvec2(40, 0));
+    CHECK(r.c.grab() == ViewController::Grab::Orbit);
+    r.feed(T::Release, p + glm::dvec2(40, 0));
+    OrbitCamera expected = before;
+    expected.orbit(40, 0);
+    CHECK(r.c.camera.azimuth_deg == Approx(expected.azimuth_deg));
+    CHECK(r.scene.objects[0].position_m == default_scene().objects[0].position_m);
+    CHECK(r.c.selected == -1); // a drag is not a click
+    CHECK_FALSE(r.c.take_edit_finished());
+
+    r.c.camera = before;
+    r.feed(T::Press, p);
+    r.feed(T::Release, p);
+    CHECK(r.c.selected == 0);
+    r.feed(T::Press, p);
+    r.feed(T::Move, p + glm::dvec2(40, 0));
+    CHECK(r.c.grab() == ViewController::Grab::Object);
+    r.feed(T::Release, p + glm::dvec2(40, 0));
+    CHECK(r.scene.objects[0].position_m != default_scene().objects[0].position_m);
+    CHECK(same_camera(r.c.camera, before));
+}
+
+TEST_CASE("terrain is never picked up by a plain drag, even when selected", "[ui][controller]") {
+    // A 400 x 400 m slab under a sonar that reaches 5 m: terrain.
+    SceneDesc s = default_scene();
+    s.seafloor.reset();
+    s.objects[0].box_m = Vec3d{400, 400, 2};
+    s.objects[0].position_m = {0, 0, -1};
+    Rig r;
+    r.scene = s;
+    SceneGeometry geometry(s);
+    r.c.selected = 0;
+    const glm::dvec2 p = r.pixel_of({1.5, 1.5, 0.0});
+    InputEvent e;
+    auto feed = [&](T t, glm::dvec2 at, int m = 0) {
+        e.type = t, e.pos = at, e.button = button::Left, e.mods = m;
+        if (auto next = r.c.handle(e, {r.scene, geometry, r.view, false})) {
+            r.scene = *next;
+            geometry.update_transforms(r.scene);
+        }
+    };
+    const OrbitCamera before = r.c.camera;
+    feed(T::Press, p);
+    feed(T::Move, p + glm::dvec2(0, 30));
+    CHECK(r.c.grab() == ViewController::Grab::Orbit);
+    feed(T::Release, p + glm::dvec2(0, 30));
+    CHECK(r.scene.objects[0].position_m == s.objects[0].position_m);
+    CHECK_FALSE(same_camera(r.c.camera, before));
+    CHECK(r.c.selected == 0);
+    // With Shift held it moves (up and down): a deliberate edit.
+    r.c.camera = before;
+    feed(T::Press, p, mods::Shift);
+    feed(T::Move, p + glm::dvec2(0, -30), mods::Shift);
+    CHECK(r.c.grab() == ViewController::Grab::Object);
+    feed(T::Release, p + glm::dvec2(0, -30), mods::Shift);
+    CHECK(r.scene.objects[0].position_m[2] > s.objects[0].position_m[2] + 0.05);
+}

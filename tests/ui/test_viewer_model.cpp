@@ -1,5 +1,6 @@
 // GL-free parts of the viewer: undo stack, script parsing, trajectories, text layout checks, measurements,
-// the Open dialog's scene filter, the bindings table and the no-echo colour.
+// the Open dialog's scene filter, the bindings table, the no-echo colour and how scenes and objects are
+// named.
 #include "support.hpp"
 
 #include "ui/model/bindings.hpp"
@@ -8,6 +9,7 @@
 #include "ui/model/input_events.hpp"
 #include "ui/model/measure.hpp"
 #include "ui/model/scene_files.hpp"
+#include "ui/model/scene_labels.hpp"
 #include "ui/model/script.hpp"
 #include "ui/model/text_layout.hpp"
 #include "ui/model/trajectory.hpp"
@@ -277,4 +279,30 @@ TEST_CASE("the hover readout names a path direct or ghost and its scatterer", "[
     CHECK(echo_path_text(p) == "ghost: 1 reflection (scatterer: object 2)");
     p.bounces = 2, p.object_id = -2;
     CHECK(echo_path_text(p) == "ghost: 2 reflections (scatterer: water surface)");
+}
+
+TEST_CASE("only the paper's Fig. 9 scene is the Fig. 9 scene", "[ui][labels]") {
+    const std::string dir = std::string(SONARSIM_SOURCE_DIR) + "/assets/scenes/";
+    CHECK(is_paper_fig9_scene(default_scene()));
+    CHECK(is_paper_fig9_scene(load_scene(dir + "fig9.json")));
+    CHECK(is_paper_fig9_scene(load_scene(dir + "fig9_pose2.json")));
+    for (const char* other : {"monterey.json", "shipwreck.json", "tank.json", "floor.json"}) {
+        CAPTURE(other);
+        CHECK_FALSE(is_paper_fig9_scene(load_scene(dir + other)));
+    }
+    SceneDesc bigger = default_scene();
+    bigger.objects[0].box_m = Vec3d{0.1, 0.12, 0.22};
+    CHECK_FALSE(is_paper_fig9_scene(bigger));
+}
+
+TEST_CASE("the object combo names objects by the scene's name, else by their shape", "[ui][labels]") {
+    const std::string dir = std::string(SONARSIM_SOURCE_DIR) + "/assets/scenes/";
+    const SceneDesc wreck = load_scene(dir + "shipwreck.json");
+    CHECK(object_label(wreck, 0).rfind("object 0: sunken ship (DAVE", 0) == 0);
+    CHECK(object_label(wreck, 0).find(".ply") == std::string::npos);
+    CHECK(object_tooltip(wreck, 0).find("../meshes/shipwreck_sunken_ship_dave.ply") != std::string::npos);
+    CHECK(object_label(default_scene(), 0) == "object 0: box 0.07 x 0.12 x 0.22 m");
+    SceneDesc unnamed = wreck;
+    unnamed.objects[0].name.clear();
+    CHECK(object_label(unnamed, 0) == "object 0: shipwreck_sunken_ship_dave.ply");
 }

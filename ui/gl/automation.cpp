@@ -70,8 +70,9 @@ void Viewer::script_actions(int index, int fb_w, int fb_h) {
         if (c == "screenshot") write_screenshot(st.args[0], fb_w, fb_h);
         if (c == "state") write_state(st.args[0]);
         if (c == "layout") write_layout(st.args[0], win_w, win_h);
-        if (c == "snapshot") take_snapshot(st.args[0]);
+        if (c == "snapshot") take_snapshot(st.args[0], false, annotated_now(fb_w, fb_h, win_w, win_h));
         if (c == "quit") quit_ = true;
+        if (c == "ground_truth") session_.set_ground_truth(st.args[0] == "on");
         if (c == "open") open_files({st.args[0]});
         if (c == "trajectory_save") save_trajectory(trajectory_.track, st.args[0]);
         if (c == "trajectory_load") {
@@ -204,8 +205,23 @@ void Viewer::write_layout(const std::string& path, int win_w, int win_h) const {
                             {"cut_x", r.cut_x},
                             {"glyphs", r.glyphs}});
     }
-    const std::string problems = layout_problems(runs, float(win_w), float(win_h));
-    const json j = {{"width", win_w}, {"height", win_h}, {"runs", out_runs}, {"problems", problems}};
+    // Text must also keep off the sonar image (the fan itself, or the raw polar image) and the colour bar.
+    std::vector<KeepOut> keep_out;
+    json out_keep = json::array();
+    if (sonar_->has_layout()) {
+        const SonarPanelLayout& P = sonar_->layout();
+        keep_out.push_back({"sonar image", P.image, sonar_->polar ? std::nullopt : std::optional(P.fan)});
+        keep_out.push_back({"colour bar", P.colorbar, std::nullopt});
+        for (const KeepOut& k : keep_out)
+            out_keep.push_back(
+                {{"name", k.name}, {"x", k.rect.x}, {"y", k.rect.y}, {"w", k.rect.w}, {"h", k.rect.h}});
+    }
+    const std::string problems = layout_problems(runs, float(win_w), float(win_h), keep_out);
+    const json j = {{"width", win_w},
+                    {"height", win_h},
+                    {"runs", out_runs},
+                    {"keep_out", out_keep},
+                    {"problems", problems}};
     write_files_atomically({{path, to_bytes(j.dump(1) + "\n")}});
     std::cerr << "wrote " << path << ": " << runs.size() << " text runs"
               << (problems.empty() ? ", no overlaps\n" : ", problems:\n" + problems);

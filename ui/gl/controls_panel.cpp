@@ -1,6 +1,7 @@
 #include "ui/gl/controls_panel.hpp"
 
 #include "ui/model/param_ranges.hpp"
+#include "ui/model/scene_labels.hpp"
 
 #include "core/geometry/mesh_formats.hpp"
 #include "core/shading/physics.hpp"
@@ -170,13 +171,15 @@ void pose_section(Session& session) {
             apply_setting(s, "sonar.position", pose.position_m, "pose");
             apply_setting(s, "sonar.orientation_deg", pose.orientation_deg, "pose");
         });
-    if (ImGui::Button("Fig. 9 pose 1")) session.edit([](SceneDesc& s) { s.sonar.pose = Pose{}; });
-    same_line_if_fits("Fig. 9 pose 2");
-    if (ImGui::Button("Fig. 9 pose 2"))
-        session.edit([](SceneDesc& s) {
-            s.sonar.pose.position_m = {0.84, 2.42, 0.90};
-            s.sonar.pose.orientation_deg = {6.88, 28.07, -41.25};
-        });
+    if (is_paper_fig9_scene(session.scene())) { // the paper's poses mean nothing in other scenes
+        if (ImGui::Button("Fig. 9 pose 1")) session.edit([](SceneDesc& s) { s.sonar.pose = Pose{}; });
+        same_line_if_fits("Fig. 9 pose 2");
+        if (ImGui::Button("Fig. 9 pose 2"))
+            session.edit([](SceneDesc& s) {
+                s.sonar.pose.position_m = {0.84, 2.42, 0.90};
+                s.sonar.pose.orientation_deg = {6.88, 28.07, -41.25};
+            });
+    }
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
     ImGui::TextWrapped("In 3D, drag the sonar's housing or its yellow handle to move it; Shift: up/down, "
                        "Ctrl: yaw/pitch, Ctrl+Shift: roll.");
@@ -193,16 +196,19 @@ void material_section(Session& session, ControlsUi& ui) {
     auto name = [&](int i) {
         if (i == kWaterSurface) return std::string("water surface");
         if (i < 0) return std::string("seafloor");
-        const ObjectDesc& o = s.objects[size_t(i)];
-        return "object " + std::to_string(i) + (o.box_m ? " (box)" : " (" + o.mesh + ")");
+        return object_label(s, size_t(i));
     };
     if (ImGui::BeginCombo(field_label("surface", "surface").c_str(), name(ui.selected).c_str())) {
         if (s.seafloor && ImGui::Selectable("seafloor", ui.selected == -1)) ui.selected = -1;
         if (water && ImGui::Selectable("water surface", ui.selected == kWaterSurface))
             ui.selected = kWaterSurface;
-        for (int i = 0; i < n; ++i)
+        for (int i = 0; i < n; ++i) {
             if (ImGui::Selectable(name(i).c_str(), ui.selected == i)) ui.selected = i;
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", object_tooltip(s, size_t(i)).c_str());
+        }
         ImGui::EndCombo();
+    } else if (ImGui::IsItemHovered() && ui.selected >= 0) {
+        ImGui::SetTooltip("%s", object_tooltip(s, size_t(ui.selected)).c_str());
     }
     if (ui.selected == -1 && !s.seafloor) return;
     const bool surface = ui.selected == kWaterSurface;
@@ -320,10 +326,12 @@ void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, Tra
     g_labels_above = label_w > 0.5f * avail;
     ImGui::PushItemWidth(g_labels_above ? -1.0f : -label_w);
     stats_section(session, ui);
-    if (ImGui::Button("Reset to paper values")) session.reset_to_paper();
-    if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("Every parameter and material back to Tables I-II (the pose is kept)");
-    same_line_if_fits("Snapshot (S)");
+    if (is_paper_fig9_scene(session.scene())) {
+        if (ImGui::Button("Reset to paper values")) session.reset_to_paper();
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("Every parameter and material back to Tables I-II (the pose is kept)");
+        same_line_if_fits("Snapshot (S)");
+    }
     if (ImGui::Button("Snapshot (S)")) ui.want_snapshot = true;
 
     if (ImGui::CollapsingHeader("Pose", ImGuiTreeNodeFlags_DefaultOpen)) pose_section(session);

@@ -3,6 +3,8 @@
 
 #include "ui/gl/glfw_input.hpp"
 
+#include <algorithm>
+
 #include <imgui.h>
 
 namespace sonarsim::ui {
@@ -65,6 +67,7 @@ void GlfwInput::on_button(GLFWwindow* w, int b, int action, int m) {
     InputEvent e;
     e.type = action == GLFW_PRESS ? InputEvent::Type::Press : InputEvent::Type::Release;
     e.button = b;
+    e.time_s = glfwGetTime();
     e.pos = in->mouse_.pos;
     e.mods = mods_of(m);
     in->push(e);
@@ -144,7 +147,15 @@ void GlfwInput::feed_imgui() {
     ImGuiIO& io = ImGui::GetIO();
     io.MousePos = ImVec2(float(mouse_.pos.x), float(mouse_.pos.y));
     for (int b = 0; b < 3; ++b) io.MouseDown[b] = mouse_.held_for_frame(b);
+    double_clicked_ = mouse_.double_clicked_since_frame;
+    keys_pressed_.clear();
+    for (const InputEvent& e : events_) // this frame's (handle_events takes them after the panels)
+        if (e.type == InputEvent::Type::Key && e.key_down && !e.repeat) keys_pressed_.push_back(e.key);
     mouse_.next_frame();
+}
+
+bool GlfwInput::key_pressed(int key) const {
+    return std::find(keys_pressed_.begin(), keys_pressed_.end(), key) != keys_pressed_.end();
 }
 
 std::vector<InputEvent> GlfwInput::take_events() {

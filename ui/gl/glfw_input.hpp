@@ -27,6 +27,11 @@ class GlfwInput {
     /// The events since the last call, in order.
     std::vector<InputEvent> take_events();
     const MouseState& mouse() const { return mouse_; }
+    /// A left double click happened since the frame before this one (kDoubleClickS, kDoubleClickPx).
+    bool double_clicked() const { return double_clicked_; }
+    /// `key` went down (not a repeat) since the frame before this one: from the event stream, so a tap
+    /// shorter than a frame counts.
+    bool key_pressed(int key) const;
     std::vector<std::string> take_dropped();
 
   private:
@@ -40,6 +45,8 @@ class GlfwInput {
 
     GLFWwindow* window_;
     MouseState mouse_;
+    bool double_clicked_ = false;
+    std::vector<int> keys_pressed_; ///< this frame's key presses
     std::vector<InputEvent> events_;
     std::vector<std::string> dropped_;
     // ImGui's callbacks, forwarded to.

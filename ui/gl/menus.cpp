@@ -123,9 +123,13 @@ void Viewer::dialogs() {
     if (ui_.want_reset_camera) reset_camera();
     ui_.want_open = ui_.want_add_mesh = ui_.want_save = ui_.want_reset_camera = false;
     std::string path;
-    if (open_dialog_.draw(path)) open_files({path});
-    if (mesh_dialog_.draw(path)) session_.add_mesh(path);
-    if (save_dialog_.draw(path)) session_.save_scene(path);
+    DialogInput dialog_input;
+    dialog_input.double_clicked = input_->double_clicked();
+    dialog_input.enter = input_->key_pressed(key::Enter) || input_->key_pressed(key::KeypadEnter);
+    dialog_input.up = input_->key_pressed(key::Up), dialog_input.down = input_->key_pressed(key::Down);
+    if (open_dialog_.draw(path, dialog_input)) open_files({path});
+    if (mesh_dialog_.draw(path, dialog_input)) session_.add_mesh(path);
+    if (save_dialog_.draw(path, dialog_input)) session_.save_scene(path);
 }
 
 } // namespace sonarsim::ui

@@ -1,5 +1,6 @@
 #include "ui/gl/offscreen.hpp"
 
+#include "ui/model/framing.hpp"
 #include "ui/model/sonar_geometry.hpp"
 
 #include "core/io/output.hpp"
@@ -93,8 +94,9 @@ std::vector<std::uint8_t> view3d_png_headless(const SceneDesc& scene, int w, int
     HeadlessGLContext context;
     SceneRenderer renderer;
     renderer.set_meshes(meshes);
-    return encode_png(
-        render_view_image(renderer, scene, default_camera(scene, double(w) / h), w, h, ViewOverlay{}));
+    return encode_png(render_view_image(renderer, scene,
+                                        default_camera(scene, object_bounds(scene, meshes), double(w) / h), w,
+                                        h, ViewOverlay{}));
 }
 
 void write_view3d_png(const SceneDesc& scene, const std::string& path, int w, int h) {

@@ -1,5 +1,6 @@
 #include "ui/gl/scene_renderer.hpp"
 
+#include "ui/model/framing.hpp"
 #include "ui/model/sonar_geometry.hpp"
 
 #include "core/base/pose.hpp"
@@ -61,6 +62,7 @@ const glm::vec4 kWater{0.075f, 0.11f, 0.16f, 1.0f};
 const glm::vec4 kSand{0.50f, 0.46f, 0.38f, 1.0f};
 const glm::vec4 kGridMinor{0.40f, 0.37f, 0.31f, 1.0f};
 const glm::vec4 kGridMajor{0.26f, 0.24f, 0.21f, 1.0f};
+const glm::vec4 kTerrain{0.62f, 0.56f, 0.45f, 1.0f};
 const glm::vec4 kBody{0.30f, 0.32f, 0.36f, 1.0f};
 const glm::vec3 kShell{0.25f, 0.85f, 1.0f};
 const glm::vec4 kFootprint{0.75f, 1.0f, 1.0f, 1.0f};
@@ -75,6 +77,15 @@ const glm::vec4 kPathOut{1.0f, 0.5f, 0.05f, 1.0f};
 const glm::vec4 kPathBack{1.0f, 0.93f, 0.55f, 1.0f};
 const glm::vec4 kMirrorPoint{1.0f, 1.0f, 1.0f, 1.0f};
 const glm::vec4 kScatterer{1.0f, 0.22f, 0.1f, 1.0f};
+
+/// The world bounds of a local box placed by `model`.
+Box3 placed_bounds_of(const Box3& local, const glm::dmat4& model) {
+    TriMesh corners;
+    for (int k = 0; k < 8; ++k)
+        corners.vertices.emplace_back(k & 1 ? local.hi.x : local.lo.x, k & 2 ? local.hi.y : local.lo.y,
+                                      k & 4 ? local.hi.z : local.lo.z);
+    return placed_bounds(corners, model);
+}
 
 glm::vec4 object_color(size_t i) {
     static const glm::vec4 palette[] = {{0.95f, 0.55f, 0.15f, 1},
@@ -148,8 +159,9 @@ void SceneRenderer::draw_with_hidden(const gl::VertexBuffer& vb, GLenum mode, fl
 void SceneRenderer::set_meshes(const std::vector<std::shared_ptr<const TriMesh>>& meshes) {
     std::vector<gl::Vertex> vertices;
     std::map<const TriMesh*, std::pair<size_t, size_t>> uploaded; // each distinct mesh once
-    mesh_first_.clear(), mesh_count_.clear();
+    mesh_first_.clear(), mesh_count_.clear(), mesh_bounds_.clear();
     for (const auto& m : meshes) {
+        mesh_bounds_.push_back(placed_bounds(*m, glm::dmat4(1.0)));
         auto it = uploaded.find(m.get());
         if (it == uploaded.end()) {
             const size_t first = vertices.size();
@@ -221,12 +233,15 @@ void SceneRenderer::draw(const SceneDesc& scene, const OrbitCamera& cam, int x, 
         glLineWidth(1.0f);
     }
 
-    // Objects (the selected one brightened) and the sonar housing.
+    // Objects (terrain in earth tones; the selected one lightened, short of saturating so that its shading
+    // still shows) and the sonar housing.
     for (size_t i = 0; i < mesh_first_.size() && i < scene.objects.size(); ++i) {
-        const float k = int(i) == ov.selected_object ? 1.3f : 1.0f;
-        const glm::vec4 c = object_color(i);
-        glUniform4f(u_tint_, k * c.r, k * c.g, k * c.b, 1);
-        set_model(surfaces_, object_transform(scene.objects[i]));
+        const glm::dmat4 model = object_transform(scene.objects[i]);
+        const bool terrain = is_terrain(placed_bounds_of(mesh_bounds_[i], model), s);
+        glm::vec4 c = terrain ? kTerrain : object_color(i);
+        if (int(i) == ov.selected_object) c += (glm::vec4(1) - c) * (terrain ? 0.12f : 0.3f);
+        glUniform4f(u_tint_, c.r, c.g, c.b, 1);
+        set_model(surfaces_, model);
         meshes_.draw_range(GL_TRIANGLES, GLint(mesh_first_[i]), GLsizei(mesh_count_[i]));
     }
     set_model(surfaces_, glm::dmat4(1.0));
@@ -337,47 +352,6 @@ void SceneRenderer::draw_echo_path(const ViewOverlay& ov) {
     glLineWidth(1.5f);
     draw_with_hidden(overlay_lines_, GL_LINE_STRIP, 0.4f);
     glLineWidth(1.0f);
-}
-
-OrbitCamera default_camera(const SceneDesc& scene, double aspect) {
-    const SonarParams& s = scene.sonar;
-    // What must be in view: the sonar and the floor patch it sees (or the near half of its field of view).
-    std::vector<glm::dvec3> pts;
-    for (const glm::vec3& v : sonar_body(s).vertices) pts.emplace_back(v);
-    const size_t n_body = pts.size();
-    if (scene.seafloor)
-        for (const glm::vec3& p : floor_footprint(s, scene.seafloor->height_m, 8)) pts.emplace_back(p);
-    if (pts.size() == n_body)
-        for (double a : {-1.0, 1.0})
-            for (double e : {-1.0, 1.0})
-                pts.push_back(sonar_point(s, 0.5 * s.range_max_m, a * s.azimuth_fov_deg / 2,
-                                          e * s.elevation_fov_deg / 2));
-    glm::dvec3 lo = pts[0], hi = pts[0];
-    for (auto& p : pts) lo = glm::min(lo, p), hi = glm::max(hi, p);
-    const glm::dvec3 bore = rotation_matrix(s.pose.orientation_deg) * glm::dvec3(1, 0, 0);
-    OrbitCamera cam;
-    cam.target = 0.5 * (lo + hi);
-    cam.azimuth_deg = std::atan2(bore.y, bore.x) * 180.0 / kPi + 180.0 + 35.0; // behind, off to starboard
-    cam.elevation_deg = 35.0;
-    // The nearest distance at which every point projects inside the central 86% of the viewport.
-    const int h = 600, w = std::max(1, int(h * aspect));
-    auto fits = [&](double d) {
-        cam.distance_m = d;
-        for (auto& p : pts) {
-            glm::dvec2 px;
-            if (!cam.project(p, w, h, px) || px.x < 0.07 * w || px.x > 0.93 * w || px.y < 0.07 * h ||
-                px.y > 0.93 * h)
-                return false;
-        }
-        return true;
-    };
-    double near_m = 0.2, far_m = 200.0;
-    for (int i = 0; i < 40; ++i) {
-        const double mid = std::sqrt(near_m * far_m);
-        (fits(mid) ? far_m : near_m) = mid;
-    }
-    cam.distance_m = far_m;
-    return cam;
 }
 
 } // namespace sonarsim::ui

@@ -4,6 +4,7 @@
 // echoed into it and its strongest echo path, a hovered surface point).
 #pragma once
 #include "ui/model/camera.hpp"
+#include "ui/model/framing.hpp"
 #include "ui/gl/gl_util.hpp"
 
 #include "core/geometry/mesh.hpp"
@@ -68,12 +69,9 @@ class SceneRenderer {
     Program surfaces_, points_;
     GLint u_tint_ = -1;                           // tint uniform of the program in use
     std::vector<size_t> mesh_first_, mesh_count_; // triangle vertex ranges per object
+    std::vector<Box3> mesh_bounds_;               // local bounds per object (terrain is drawn apart)
     gl::VertexBuffer meshes_, floor_, grid_, footprint_, body_, shell_faces_, shell_lines_, overlay_lines_,
         overlay_points_, water_, water_grid_;
 };
-
-/// A camera behind and above the sonar that frames the sonar and where its field of view meets the floor
-/// (or the near half of the field of view), for a viewport of aspect w/h.
-OrbitCamera default_camera(const SceneDesc& scene, double aspect = 4.0 / 3.0);
 
 } // namespace sonarsim::ui

@@ -50,7 +50,6 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
     ImGui::Begin("Sonar image", nullptr, flags);
     const RenderResult* shown = session.shown();
     draw_header(session, session);
-    const float info_y = ImGui::GetCursorScreenPos().y;
 
     if (!shown) {
         ImGui::TextDisabled("rendering the first image...");
@@ -64,19 +63,30 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
                               : no_echo_.paint(f.sector(), f.polar(), s, shown->scene.display.colormap));
         uploaded_count_ = session.shown_count(), uploaded_polar_ = polar;
     }
-    const double aspect = double(f.sector().width) / f.sector().height;
-    const SonarPanelLayout L = sonar_panel_layout(area, aspect, scale);
-    const float lh = ImGui::GetTextLineHeight();
-    annotated_ = {L.image.x - 36 * scale, L.image.y - lh - 8,
-                  L.colorbar.x + L.colorbar.w + 48 * scale - (L.image.x - 36 * scale),
-                  L.image.h + 2 * lh + 12};
+    PanelContent content{s, f.display.lo_db, f.display.hi_db, colorbar_title(shown->scene), polar};
+    layout_ =
+        sonar_panel_layout(area, content, {ImGui::CalcTextSize("0").x, ImGui::GetTextLineHeight()}, scale);
+    has_layout_ = true;
+    const SonarPanelLayout& L = layout_;
+    { // What an annotated snapshot holds: the image, its labels, the colour bar with its ticks and title.
+        Rect a = L.image;
+        auto add = [&](const Rect& r) {
+            const float x0 = std::min(a.x, r.x), y0 = std::min(a.y, r.y);
+            a = {x0, y0, std::max(a.x + a.w, r.x + r.w) - x0, std::max(a.y + a.h, r.y + r.h) - y0};
+        };
+        for (const auto* list : {&L.bearings, &L.ranges, &L.colorbar_ticks})
+            for (const PanelLabel& l : *list) add(l.box);
+        add(L.colorbar), add(L.colorbar_title.box);
+        const float m = 4 * scale;
+        annotated_ = {a.x - m, a.y - m, a.w + 2 * m, a.h + 2 * m};
+    }
     ImDrawList* dl = ImGui::GetWindowDrawList();
     ImGui::SetCursorScreenPos(ImVec2(L.image.x, L.image.y));
     ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(texture_.id())),
                  ImVec2(L.image.w, L.image.h));
     if (f.preview()) // a drag's coarse image: the full-quality one follows when the input rests
-        text_at(dl, ImVec2(L.image.x + 4, L.image.y + L.image.h - 2), IM_COL32(255, 200, 80, 255),
-                "preview (base grid only)", 0.0f, 1.0f);
+        text_at(dl, ImVec2(L.readout.x + L.readout.w, L.readout.y + L.readout.h), IM_COL32(255, 200, 80, 255),
+                "preview (base grid only)", 1.0f, 1.0f);
 
     // Hover: the place under the mouse.
     const ImVec2 mouse = ImGui::GetIO().MousePos;
@@ -104,7 +114,7 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
 
     // The pixel of the hovered 3D surface point.
     if (measuring_ && !last_measure_.empty()) {
-        ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, info_y));
+        ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, L.readout.y));
         ImGui::PushTextWrapPos(area.w - 8 * scale); // window-local
         ImGui::TextColored(ImVec4(0.3f, 1, 0.65f, 1), "%s", last_measure_.c_str());
         ImGui::PopTextWrapPos();
@@ -132,7 +142,7 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
                       p.in_view                                             ? ""
                       : std::abs(p.elevation_deg) > s.elevation_fov_deg / 2 ? " (el out of beam)"
                                                                             : " (out of view)");
-        ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, info_y));
+        ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, L.readout.y));
         ImGui::PushTextWrapPos(area.w - 8 * scale); // window-local
         ImGui::TextColored(ImVec4(1, 0.5f, 0.5f, 1), "%s", buf);
         ImGui::PopTextWrapPos();
@@ -148,31 +158,32 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
         std::string text = buf;
         const std::string path = echo_path_text(path_.path()); // drawn in 3D
         if (!path.empty()) text += "\n" + path;
-        if (const GroundTruth* gt = shown->ground_truth.get()) { // File > Ground truth
+        if (const GroundTruth* gt = shown->ground_truth.get()) { // File > Ground truth: two lines
             const size_t at = size_t(hovered_->bin) * size_t(gt->beams) + size_t(hovered_->beam);
             if (gt->object_id[at] != -1) {
-                std::snprintf(
-                    buf, sizeof buf,
-                    "\nbehind it: el %+.2f deg (%+.2f ... %+.2f), %s, incidence %.1f deg, %d surface%s",
-                    gt->elevation_deg[at], gt->elevation_min_deg[at], gt->elevation_max_deg[at],
-                    echo_source_name(gt->object_id[at]).c_str(), gt->incidence_deg[at], gt->surfaces[at],
-                    gt->surfaces[at] == 1 ? "" : "s");
+                std::snprintf(buf, sizeof buf, "\nbehind it: %s, el %+.2f deg (%+.2f ... %+.2f)",
+                              echo_source_name(gt->object_id[at]).c_str(), gt->elevation_deg[at],
+                              gt->elevation_min_deg[at], gt->elevation_max_deg[at]);
+                text += buf;
+                std::snprintf(buf, sizeof buf, "\n  incidence %.1f deg, %d surface%s", gt->incidence_deg[at],
+                              gt->surfaces[at], gt->surfaces[at] == 1 ? "" : "s");
                 text += buf;
             }
         }
-        ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, info_y));
+        ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, L.readout.y));
         ImGui::PushTextWrapPos(area.w - 8 * scale); // window-local
         ImGui::TextColored(ImVec4(1, 0.9f, 0.3f, 1), "%s", text.c_str());
         ImGui::PopTextWrapPos();
     } else {
-        ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, info_y));
+        ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, L.readout.y));
         ImGui::PushTextWrapPos(area.w - 8 * scale); // window-local
         ImGui::TextDisabled(measuring_ ? "measuring: drag on the image (Esc ends)"
                                        : "hover the image: its elevation arc shows in 3D");
         ImGui::PopTextWrapPos();
     }
     draw_measure(L.image, *shown);
-    draw_colorbar(L.colorbar, f.display); // the range shown (display.auto: from the image)
+    draw_labels();
+    draw_colorbar(f.display); // the range shown (display.auto: from the image)
     draw_ascan(L.ascan, *shown);
     ImGui::End();
 }
@@ -182,39 +193,21 @@ void SonarPanel::draw_fan_overlay(const Rect& r, const RenderResult& shown) {
     const Frame& f = *shown.frame;
     const SectorLayout L(s, f.sector().height);
     ImDrawList* dl = ImGui::GetWindowDrawList();
-    dl->PushClipRect(ImVec2(r.x - 60, r.y - 2 * ImGui::GetTextLineHeight()),
-                     ImVec2(r.x + r.w + 60, r.y + r.h + 4), true);
     auto to_screen = [&](double range, double az) {
         double px, py;
         L.polar_to_pixel(range, az, px, py);
         return ImVec2(r.x + float(px / f.sector().width) * r.w, r.y + float(py / f.sector().height) * r.h);
     };
     const double half = s.azimuth_fov_deg / 2;
-    // Range rings.
-    const double rstep = nice_step(s.range_max_m - s.range_min_m, 5);
-    char buf[32];
-    for (double rr = std::ceil(s.range_min_m / rstep - 1e-9) * rstep; rr <= s.range_max_m + 1e-9;
-         rr += rstep) {
-        if (rr <= 0) continue;
+    // Range rings and bearing lines at the labelled values (labels: draw_labels, outside the fan).
+    for (double rr : layout_.range_m) {
         const int n = 40;
         ImVec2 pts[n + 1];
         for (int k = 0; k <= n; ++k) pts[k] = to_screen(rr, half - 2 * half * k / n);
         dl->AddPolyline(pts, n + 1, kGridColor, 0, 1.0f);
-        if (rr > s.range_max_m - 0.5 * rstep) continue; // the outer edge: its corner holds a bearing label
-        std::snprintf(buf, sizeof buf, "%g m", rr);
-        text_at(dl, ImVec2(pts[0].x + 4, pts[0].y), kLabelColor, buf, 0.0f, 1.0f); // inside, at the port edge
     }
-    // Bearing lines (port = positive azimuth on the left).
-    const double astep = nice_step(s.azimuth_fov_deg, 4);
-    float free_x = -1e9f; // labels left to right (port first); one that would overlap the last is left out
-    for (double a = std::floor(half / astep) * astep; a >= -half - 1e-9; a -= astep) {
+    for (double a : layout_.bearing_deg)
         dl->AddLine(to_screen(s.range_min_m, a), to_screen(s.range_max_m, a), kGridColor, 1.0f);
-        std::snprintf(buf, sizeof buf, "%+g deg", std::abs(a) < 1e-9 ? 0.0 : a);
-        const ImVec2 p = to_screen(s.range_max_m, a), sz = ImGui::CalcTextSize(buf);
-        if (p.x - sz.x / 2 < free_x) continue;
-        text_at(dl, ImVec2(p.x, p.y - 2), kLabelColor, buf, 0.5f, 1.0f);
-        free_x = p.x + sz.x / 2 + 4;
-    }
     if (hovered_) {
         // The hovered cell's outline: its range bin x beam.
         const double dr = (s.range_max_m - s.range_min_m) / s.range_bins, da = s.azimuth_fov_deg / s.beams;
@@ -224,7 +217,12 @@ void SonarPanel::draw_fan_overlay(const Rect& r, const RenderResult& shown) {
         dl->AddPolyline(q, 4, kHoverColor, ImDrawFlags_Closed, 1.5f);
         dl->AddCircle(to_screen(hovered_->range_m, hovered_->azimuth_deg), 6, kHoverColor, 12, 1.5f);
     }
-    dl->PopClipRect();
+}
+
+void SonarPanel::draw_labels() {
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    for (const auto* list : {&layout_.bearings, &layout_.ranges})
+        for (const PanelLabel& l : *list) dl->AddText(ImVec2(l.box.x, l.box.y), kLabelColor, l.text.c_str());
 }
 
 void SonarPanel::draw_polar_overlay(const Rect& r, const RenderResult& shown) {
@@ -236,25 +234,12 @@ void SonarPanel::draw_polar_overlay(const Rect& r, const RenderResult& shown) {
     auto x_of = [&](double az) {
         return r.x + float((s.azimuth_fov_deg / 2 - az) / s.azimuth_fov_deg) * r.w;
     };
-    char buf[32];
-    const double rstep = nice_step(s.range_max_m - s.range_min_m, 5);
-    for (double rr = std::ceil(s.range_min_m / rstep - 1e-9) * rstep; rr <= s.range_max_m + 1e-9;
-         rr += rstep) {
+    for (double rr : layout_.range_m)
         dl->AddLine(ImVec2(r.x, y_of(rr)), ImVec2(r.x + r.w, y_of(rr)), kGridColor);
-        std::snprintf(buf, sizeof buf, "%g m", rr);
-        text_at(dl, ImVec2(r.x - 3, y_of(rr)), kLabelColor, buf, 1.0f, 0.5f);
-    }
-    const double half = s.azimuth_fov_deg / 2, astep = nice_step(s.azimuth_fov_deg, 4);
-    float free_x = -1e9f;
-    for (double a = std::floor(half / astep) * astep; a >= -half - 1e-9; a -= astep) {
+    for (double a : layout_.bearing_deg)
         dl->AddLine(ImVec2(x_of(a), r.y), ImVec2(x_of(a), r.y + r.h), kGridColor);
-        std::snprintf(buf, sizeof buf, "%+g deg", std::abs(a) < 1e-9 ? 0.0 : a);
-        const float w = ImGui::CalcTextSize(buf).x;
-        if (x_of(a) - w / 2 < free_x) continue;
-        text_at(dl, ImVec2(x_of(a), r.y - 2), kLabelColor, buf, 0.5f, 1.0f);
-        free_x = x_of(a) + w / 2 + 4;
-    }
     if (hovered_) {
+        const double half = s.azimuth_fov_deg / 2;
         const double dr = (s.range_max_m - s.range_min_m) / s.range_bins, da = s.azimuth_fov_deg / s.beams;
         const double r0 = s.range_min_m + hovered_->bin * dr, a0 = half - hovered_->beam * da;
         dl->AddRect(ImVec2(x_of(a0) - 1, y_of(r0 + dr) - 1), ImVec2(x_of(a0 - da) + 1, y_of(r0) + 1),

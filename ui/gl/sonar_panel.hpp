@@ -6,6 +6,7 @@
 #include "ui/gl/gl_util.hpp"
 #include "ui/model/image_views.hpp"
 #include "ui/model/layout.hpp"
+#include "ui/model/panel_layout.hpp"
 #include "ui/model/session.hpp"
 #include "ui/model/sonar_geometry.hpp"
 
@@ -34,11 +35,16 @@ class SonarPanel {
     bool measuring() const { return measuring_; }
     /// What an annotated snapshot captures: the image with its labels and the colour bar [window px].
     const Rect& annotated_rect() const { return annotated_; }
+    /// Where this frame placed the image, its labels and the colour bar (for the layout check).
+    const SonarPanelLayout& layout() const { return layout_; }
+    /// False until an image was drawn (layout() is then empty).
+    bool has_layout() const { return has_layout_; }
 
   private:
     void draw_fan_overlay(const Rect& r, const RenderResult& shown);
     void draw_polar_overlay(const Rect& r, const RenderResult& shown);
-    void draw_colorbar(const Rect& r, const DisplayParams& d);
+    void draw_labels();
+    void draw_colorbar(const DisplayParams& d);
     void draw_ascan(const Rect& r, const RenderResult& shown);
     void draw_header(const Session& session, Session& edit);
     /// The place at screen point q, or nullopt off the image.
@@ -57,6 +63,8 @@ class SonarPanel {
     bool measuring_ = false;
     std::optional<ImagePlace> measure_a_, measure_b_;
     Rect annotated_;
+    SonarPanelLayout layout_;
+    bool has_layout_ = false;
     std::string last_measure_; ///< the measurement's numbers, shown under the image
     float scale_ = 1;
 };

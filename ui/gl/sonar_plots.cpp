@@ -65,7 +65,8 @@ void SonarPanel::draw_measure(const Rect& r, const RenderResult& shown) {
     last_measure_ = buf;
 }
 
-void SonarPanel::draw_colorbar(const Rect& r, const DisplayParams& d) {
+void SonarPanel::draw_colorbar(const DisplayParams& d) {
+    const Rect& r = layout_.colorbar;
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const int n = 48;
     for (int k = 0; k < n; ++k) {
@@ -77,19 +78,16 @@ void SonarPanel::draw_colorbar(const Rect& r, const DisplayParams& d) {
                                     IM_COL32(c1[0], c1[1], c1[2], 255), IM_COL32(c1[0], c1[1], c1[2], 255));
     }
     dl->AddRect(ImVec2(r.x, r.y), ImVec2(r.x + r.w, r.y + r.h), IM_COL32(200, 200, 200, 120));
-    const double span = d.hi_db - d.lo_db;
-    char buf[32];
-    if (std::abs(span) > 1e-9) {
-        const double step = nice_step(std::abs(span), 6);
-        const double lo = std::min(d.lo_db, d.hi_db), hi = std::max(d.lo_db, d.hi_db);
-        for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + 1e-9; v += step) {
-            const float y = r.y + float((d.hi_db - v) / span) * r.h;
-            dl->AddLine(ImVec2(r.x + r.w, y), ImVec2(r.x + r.w + 4, y), kLabelColor);
-            std::snprintf(buf, sizeof buf, "%g", v);
-            text_at(dl, ImVec2(r.x + r.w + 6, y), kLabelColor, buf, 0.0f, 0.5f);
-        }
+    for (const PanelLabel& t : layout_.colorbar_ticks) {
+        const float y = t.box.y + t.box.h / 2;
+        dl->AddLine(ImVec2(r.x + r.w, y), ImVec2(t.box.x - 2, y), kLabelColor);
+        dl->AddText(ImVec2(t.box.x, t.box.y), kLabelColor, t.text.c_str());
     }
-    text_at(dl, ImVec2(r.x + r.w / 2, r.y - 2), kLabelColor, "L_EN dB", 0.5f, 1.0f);
+    const PanelLabel& title = layout_.colorbar_title;
+    dl->PushClipRect(ImVec2(title.box.x, title.box.y),
+                     ImVec2(title.box.x + title.box.w, title.box.y + title.box.h), true);
+    dl->AddText(ImVec2(title.box.x, title.box.y), kLabelColor, title.text.c_str());
+    dl->PopClipRect();
 }
 
 void SonarPanel::draw_ascan(const Rect& r, const RenderResult& shown) {
@@ -109,7 +107,9 @@ void SonarPanel::draw_ascan(const Rect& r, const RenderResult& shown) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const double a = s.azimuth_fov_deg / 2 - (ascan_beam_ + 0.5) * s.azimuth_fov_deg / s.beams;
     char buf[96];
-    std::snprintf(buf, sizeof buf, "A-scan: beam %d (az %+.2f deg): L_EN [dB] vs range [m]", ascan_beam_, a);
+    const char* level = shown.scene.sensor.model == SensorModel::Ideal ? "L_EN" : "device level";
+    std::snprintf(buf, sizeof buf, "A-scan: beam %d (az %+.2f deg): %s [dB] vs range [m]", ascan_beam_, a,
+                  level);
     if (ImGui::CalcTextSize(buf).x > r.w)
         std::snprintf(buf, sizeof buf, "A-scan beam %d (%+.1f deg) dB vs m", ascan_beam_, a);
     text_at(dl, ImVec2(r.x, r.y), kLabelColor, buf);

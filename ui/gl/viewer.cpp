@@ -6,6 +6,7 @@
 
 #include "ui/model/display_mesh.hpp"
 #include "ui/model/layout.hpp"
+#include "ui/model/panel_layout.hpp"
 
 #include <algorithm>
 #include <backends/imgui_impl_glfw.h>
@@ -68,8 +69,8 @@ Viewer::Viewer(const ViewerOptions& o) : opt_(o), orbiter_(o.scene), session_(o.
     renderer_ = std::make_unique<SceneRenderer>();
     sonar_ = std::make_unique<SonarPanel>();
     update_scale();
-    layout_ = viewer_layout(o.width, o.height, font_scale_);
-    controller_.camera = default_camera(o.scene, double(layout_.view3d.w) / layout_.view3d.h);
+    layout_ = viewer_layout(o.width, o.height, font_scale_, fan_aspect(o.scene.sonar));
+    reset_camera();
     if (o.frames > 0) last_frame_ = o.frames - 1;
     if (!script_.empty() && o.frames <= 0) last_frame_ = script_.back().frame + 1;
 }
@@ -181,7 +182,7 @@ void Viewer::frame(int index) {
     const float fb_ratio = win_w > 0 ? std::max(1.0f, float(fb_w) / float(win_w)) : 1.0f;
     content_scale_ = std::max(1.0f, std::max(csx, csy) / fb_ratio);
     update_scale();
-    layout_ = viewer_layout(win_w, win_h, font_scale_);
+    layout_ = viewer_layout(win_w, win_h, font_scale_, fan_aspect(session_.scene().sonar));
 
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
@@ -217,7 +218,7 @@ void Viewer::frame(int index) {
     if (last && !opt_.layout.empty()) write_layout(opt_.layout, win_w, win_h);
     if (last && !opt_.state.empty()) write_state(opt_.state);
     if (last && !opt_.snapshot.empty()) {
-        take_snapshot(opt_.snapshot);
+        take_snapshot(opt_.snapshot, false, annotated_now(fb_w, fb_h, win_w, win_h));
         if (!session_.error().empty()) throw std::runtime_error(session_.error());
     }
     glfwSwapBuffers(window_);

@@ -60,7 +60,8 @@ class Viewer {
     // viewer_draw.cpp
     ViewOverlay overlay() const;
     void draw_view_text(const Rect& view);
-    void take_snapshot(const std::string& prefix, bool as_shown = false);
+    void take_snapshot(const std::string& prefix, bool as_shown = false, const Bytes& annotated = {});
+    Bytes annotated_now(int fb_w, int fb_h, int win_w, int win_h) const;
     void take_pending_snapshots(bool full_on_screen, int fb_w, int fb_h, int win_w, int win_h);
     void reset_camera();
     void update_title();
@@ -105,7 +106,6 @@ class Viewer {
     int last_bounces_ = 1; ///< the last non-zero sampling.bounces: what the multipath toggle turns on
     int snapshots_taken_ = 0;
     int pending_snapshots_ = 0; ///< asked for (S taps, menu): taken once a full-quality image is on screen
-    Bytes annotated_png_;       ///< the sonar panel as drawn this frame, for annotated snapshots
 
     // Timing.
     FrameStats stats_;

@@ -6,6 +6,8 @@
 
 #include "ui/gl/gl_util.hpp"
 #include "ui/gl/offscreen.hpp"
+#include "ui/model/framing.hpp"
+#include "ui/model/panel_layout.hpp"
 #include "ui/model/snapshot.hpp"
 #include "ui/model/sonar_geometry.hpp"
 
@@ -43,8 +45,13 @@ void Viewer::draw_view_text(const Rect& v) {
     // Lines that do not fit the view's width are left out rather than run into the sonar panel.
     ImDrawList* dl = ImGui::GetBackgroundDrawList();
     const float line = ImGui::GetTextLineHeightWithSpacing(), pad = 0.5f * line;
+    // Each line on a dark translucent backdrop, so that it reads over sand, terrain or open water alike.
     auto put = [&](float y, ImU32 col, const char* text) {
-        if (ImGui::CalcTextSize(text).x > v.w - 2 * pad || y < v.y || y + line > v.y + v.h) return;
+        const ImVec2 sz = ImGui::CalcTextSize(text);
+        if (sz.x > v.w - 2 * pad || y < v.y || y + line > v.y + v.h) return;
+        const float m = 0.25f * pad;
+        dl->AddRectFilled(ImVec2(v.x + pad - 2 * m, y - m), ImVec2(v.x + pad + sz.x + 2 * m, y + line - m),
+                          IM_COL32(8, 12, 18, 170), 2 * m);
         dl->AddText(ImVec2(v.x + pad, y), col, text);
     };
     char buf[256];
@@ -65,19 +72,21 @@ void Viewer::draw_view_text(const Rect& v) {
                       trajectory_.track.size());
         put(v.y + pad * 0.5f + 2 * line, IM_COL32(255, 90, 90, 255), buf);
     }
-    const char* hints[] = {"drag the sonar (housing or yellow handle) to move it;",
-                           "  Shift: up/down  Ctrl: yaw/pitch  Ctrl+Shift: roll",
-                           "drag an object: move (Shift z, Ctrl turn, Alt scale)",
-                           "left-drag: orbit  right-drag: pan  wheel: zoom"};
-    float y = v.y + v.h - pad * 0.5f - 4 * line;
+    const char* hints[] = {
+        "drag the sonar (housing or handle): move it", "  Shift: up/down  Ctrl: yaw/pitch  Ctrl+Shift: roll",
+        "click an object to select it, then drag it", "  Shift: up/down  Ctrl: turn  Alt: scale",
+        "left-drag: orbit  right: pan  wheel: zoom  F: frame"};
+    float y = v.y + v.h - pad * 0.5f - 5 * line;
     for (const char* h : hints) put(y, IM_COL32(200, 200, 200, 200), h), y += line;
 }
 
 void Viewer::reset_camera() {
     int w = 0, h = 0;
     glfwGetWindowSize(window_, &w, &h);
-    const Rect v = viewer_layout(w, h, font_scale_).view3d;
-    controller_.camera = default_camera(session_.scene(), double(v.w) / std::max(1.0f, v.h));
+    const Rect v = viewer_layout(w, h, font_scale_, fan_aspect(session_.scene().sonar)).view3d;
+    controller_.camera =
+        default_camera(session_.scene(), object_bounds(session_.scene(), session_.local_meshes()),
+                       double(v.w) / std::max(1.0f, v.h));
 }
 
 void Viewer::update_title() {
@@ -89,9 +98,10 @@ void Viewer::update_title() {
     glfwSetWindowTitle(window_, ("sonarsim - " + name).c_str());
 }
 
-void Viewer::take_snapshot(const std::string& prefix_in, bool as_shown) {
+void Viewer::take_snapshot(const std::string& prefix_in, bool as_shown, const Bytes& annotated) {
     // A snapshot is of a full-quality image, never of a drag's preview: of the edited scene, or (`as_shown`)
-    // of the image on screen with the scene it was made from.
+    // of the image on screen with the scene it was made from. `annotated`: the sonar panel as drawn this
+    // frame (empty: no annotated PNG, never an older frame's, whose hover marker would be stale).
     if (!session_.shown() || session_.shown()->frame->preview() || (!as_shown && session_.busy()))
         session_.wait_full(std::chrono::milliseconds(60000));
     const RenderResult* shown = session_.shown();
@@ -113,14 +123,30 @@ void Viewer::take_snapshot(const std::string& prefix_in, bool as_shown) {
     const std::string prefix = prefix_in.empty() ? default_snapshot_prefix(ui_.snapshot_dir) : prefix_in;
     if (!session_.snapshot(prefix, png)) return;
     ++snapshots_taken_;
-    if (ui_.annotated_snapshot && annotated_png_.size() > 0) {
+    if (ui_.annotated_snapshot && annotated.size() > 0) {
         try {
-            write_files_atomically({{prefix + "_annotated.png", annotated_png_}});
+            write_files_atomically({{prefix + "_annotated.png", annotated}});
         } catch (const std::exception& e) {
             session_.set_error(std::string("annotated snapshot failed: ") + e.what());
         }
     }
     std::cerr << session_.status() << "\n";
+}
+
+Bytes Viewer::annotated_now(int fb_w, int fb_h, int win_w, int win_h) const {
+    // The sonar panel's image, labels and colour bar exactly as drawn this frame, when that frame shows the
+    // full-quality image of the scene being edited (else the snapshot's images would not match it).
+    const RenderResult* shown = session_.shown();
+    if (!ui_.annotated_snapshot || win_w <= 0 || win_h <= 0 || !shown || shown->frame->preview() ||
+        session_.busy())
+        return {};
+    const float sx = float(fb_w) / win_w, sy = float(fb_h) / win_h;
+    const Rect r = sonar_->annotated_rect();
+    const int x0 = std::max(0, int(r.x * sx)), x1 = std::min(fb_w, int((r.x + r.w) * sx));
+    const int y0 = std::max(0, int((win_h - r.y - r.h) * sy)), y1 = std::min(fb_h, int((win_h - r.y) * sy));
+    if (x1 <= x0 || y1 <= y0) return {};
+    glReadBuffer(GL_BACK);
+    return encode_png(gl::read_pixels_rgb(x0, y0, x1 - x0, y1 - y0));
 }
 
 void Viewer::take_pending_snapshots(bool full_on_screen, int fb_w, int fb_h, int win_w, int win_h) {
@@ -129,20 +155,8 @@ void Viewer::take_pending_snapshots(bool full_on_screen, int fb_w, int fb_h, int
         extra_frames_ = 2;
         return;
     }
-    annotated_png_.clear();
-    if (ui_.annotated_snapshot && win_w > 0 && win_h > 0) {
-        // The sonar panel's image, labels and colour bar exactly as drawn this frame.
-        const float sx = float(fb_w) / win_w, sy = float(fb_h) / win_h;
-        const Rect r = sonar_->annotated_rect();
-        const int x0 = std::max(0, int(r.x * sx)), x1 = std::min(fb_w, int((r.x + r.w) * sx));
-        const int y0 = std::max(0, int((win_h - r.y - r.h) * sy)),
-                  y1 = std::min(fb_h, int((win_h - r.y) * sy));
-        if (x1 > x0 && y1 > y0) {
-            glReadBuffer(GL_BACK);
-            annotated_png_ = encode_png(gl::read_pixels_rgb(x0, y0, x1 - x0, y1 - y0));
-        }
-    }
-    for (; pending_snapshots_ > 0; --pending_snapshots_) take_snapshot("", true);
+    const Bytes annotated = annotated_now(fb_w, fb_h, win_w, win_h);
+    for (; pending_snapshots_ > 0; --pending_snapshots_) take_snapshot("", true, annotated);
 }
 
 } // namespace sonarsim::ui

@@ -20,15 +20,16 @@ KeyMatch ctrl(int k, int excluded = 0) {
 const std::vector<Binding>& bindings() {
     using A = KeyAction;
     static const std::vector<Binding> table = {
-        {"3D view", "left-drag (empty space or floor)", "orbit the camera"},
+        {"3D view", "left-drag (anywhere but the sonar or the selected object)", "orbit the camera"},
         {"3D view", "right- or middle-drag", "pan the camera"},
         {"3D view", "wheel", "zoom"},
         {"3D view", "drag the sonar housing or its yellow handle", "move the sonar on the horizontal plane"},
         {"3D view", "Shift+drag sonar", "move the sonar up and down"},
         {"3D view", "Ctrl+drag sonar", "turn the sonar: yaw (left/right), pitch (up/down)"},
         {"3D view", "Ctrl+Shift+drag or Alt+drag sonar", "roll the sonar"},
-        {"3D view", "click an object (or the floor)", "select it for the Object panel"},
-        {"3D view", "drag an object", "move it on the horizontal plane"},
+        {"3D view", "click an object (or the floor)", "select it for the Object panel (and for dragging)"},
+        {"3D view", "drag the selected object",
+         "move it on the horizontal plane (terrain: only with Shift or Ctrl)"},
         {"3D view", "Shift+drag object", "move it up and down"},
         {"3D view", "Ctrl+drag object", "turn it: yaw, pitch"},
         {"3D view", "Ctrl+Shift+drag object", "roll it"},
@@ -55,7 +56,7 @@ const std::vector<Binding>& bindings() {
          "multipath on / off: sampling.bounces 0 or its last non-zero value",
          A::ToggleMultipath,
          {plain(key::B)}},
-        {"Keys", "F", "reset the camera", A::ResetCamera, {plain(key::F)}},
+        {"Keys", "F", "frame the scene from above, behind the sonar", A::ResetCamera, {plain(key::F)}},
         {"Keys", "O", "open a scene", A::OpenScene, {plain(key::O)}},
         {"Keys", "R", "start / stop recording the sonar's trajectory", A::ToggleRecord, {plain(key::R)}},
         {"Keys", "Space", "play / pause the trajectory", A::TogglePlay, {plain(key::Space)}},

@@ -57,7 +57,7 @@ void OrbitCamera::pan(double dx, double dy, int viewport_h) {
 }
 
 void OrbitCamera::zoom(double steps) {
-    distance_m = std::clamp(distance_m * std::pow(0.88, steps), 0.05, 500.0);
+    distance_m = std::clamp(distance_m * std::pow(0.88, steps), 0.05, kMaxCameraDistanceM);
 }
 
 bool ray_plane(const Ray& ray, const glm::dvec3& point, const glm::dvec3& n, double& t) {

@@ -5,6 +5,9 @@
 
 namespace sonarsim::ui {
 
+/// Farthest the camera goes from its target [m] (a kilometre-wide terrain tile fits).
+constexpr double kMaxCameraDistanceM = 5000.0;
+
 struct Ray {
     glm::dvec3 origin;
     glm::dvec3 dir; ///< unit length

@@ -17,20 +17,12 @@ struct ViewerLayout {
     Rect view3d;   ///< middle: the 3D view
     Rect sonar;    ///< right: the sonar image panel
 };
-/// `scale`: the UI scale (monitor content scale x the user's setting); panels widen with it.
-ViewerLayout viewer_layout(int width_px, int height_px, float scale = 1.0f);
+/// `scale`: the UI scale (monitor content scale x the user's setting); panels widen with it. `fan_w_over_h`:
+/// the aspect of the sonar's fan; a wide fan widens the sonar panel (up to 45% of the window, keeping the 3D
+/// view at least 30% and 480 px) so that the fan can fill it.
+ViewerLayout viewer_layout(int width_px, int height_px, float scale = 1.0f, double fan_w_over_h = 1.0);
 
 /// The largest rectangle of aspect w/h inside `box`, centred horizontally, at the top.
 Rect fit_rect(const Rect& box, double w_over_h);
-
-struct SonarPanelLayout {
-    Rect image;    ///< the fan (or raw polar image), aspect-correct
-    Rect colorbar; ///< the dB colour bar beside it
-    Rect ascan;    ///< the A-scan plot below
-};
-/// Layout inside the sonar panel for an image of aspect w/h.
-/// Room is left for the labels: range labels left of the image, bearings above and below, the colour bar's
-/// ticks right of it.
-SonarPanelLayout sonar_panel_layout(const Rect& panel, double image_w_over_h, float scale = 1.0f);
 
 } // namespace sonarsim::ui

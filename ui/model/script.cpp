@@ -53,7 +53,8 @@ size_t arg_count(const std::string& c) {
                                                     {"move_by", 2},
                                                     {"trajectory_save", 1},
                                                     {"trajectory_load", 1},
-                                                    {"trajectory_snapshots", 1}};
+                                                    {"trajectory_snapshots", 1},
+                                                    {"ground_truth", 1}};
     auto it = n.find(c);
     return it == n.end() ? size_t(-1) : it->second;
 }

@@ -9,8 +9,8 @@
 // `screenshot FILE.png`, `state FILE.json`, `layout FILE.json`, `snapshot PREFIX`, `trajectory_save
 // FILE.csv`, `trajectory_load FILE.csv` (as the panel's Load: the sonar goes to the first pose),
 // `trajectory_snapshots PREFIX` (playback with one snapshot per pose: PREFIX.K.*), `open FILE` (a scene or
-// mesh, as if dropped on the window), `quit`. Several steps may share a frame: they all arrive before that
-// frame is drawn (a quick click or tap).
+// mesh, as if dropped on the window), `ground_truth on|off` (as File > Ground truth), `quit`. Several steps
+// may share a frame: they all arrive before that frame is drawn (a quick click or tap).
 #pragma once
 #include "ui/model/input_events.hpp"
 

@@ -61,7 +61,19 @@ std::vector<std::pair<size_t, size_t>> overlapping_runs(const std::vector<TextRu
     return out;
 }
 
-std::string layout_problems(const std::vector<TextRun>& runs, float ww, float wh) {
+bool covers(const TextRun& run, const KeepOut& k, float min_px) {
+    const Rect o = intersect(run.box, k.rect);
+    if (o.w <= min_px || o.h <= min_px) return false;
+    if (!k.fan) return true;
+    const Rect b{run.box.x + min_px, run.box.y + min_px, run.box.w - 2 * min_px, run.box.h - 2 * min_px};
+    for (int i = 0; i <= 8; ++i)
+        for (int j = 0; j <= 3; ++j)
+            if (k.fan->contains(b.x + b.w * float(i) / 8, b.y + b.h * float(j) / 3)) return true;
+    return false;
+}
+
+std::string layout_problems(const std::vector<TextRun>& runs, float ww, float wh,
+                            const std::vector<KeepOut>& keep_out) {
     std::string out;
     char buf[512];
     auto describe = [&](const TextRun& r) {
@@ -72,6 +84,9 @@ std::string layout_problems(const std::vector<TextRun>& runs, float ww, float wh
     for (auto [i, j] : overlapping_runs(runs))
         out += "overlap: " + describe(runs[i]) + " and " + describe(runs[j]) + "\n";
     for (const TextRun& r : runs) {
+        if (!floats_on_top(r.list_name))
+            for (const KeepOut& k : keep_out)
+                if (covers(r, k)) out += "over the " + k.name + ": " + describe(r) + "\n";
         if (r.cut_x) out += "cut off: " + describe(r) + "\n";
         if (r.box.x < 0 || r.box.y < 0 || r.box.x + r.box.w > ww + 0.5f || r.box.y + r.box.h > wh + 0.5f)
             out += "outside the window: " + describe(r) + "\n";

@@ -3,6 +3,9 @@
 // cut off by their clip rectangle. Used by `sonarsim view --layout FILE.json` and tests/ui.
 #pragma once
 #include "ui/model/layout.hpp"
+#include "ui/model/panel_layout.hpp"
+
+#include <optional>
 
 #include <string>
 #include <vector>
@@ -36,7 +39,21 @@ bool floats_on_top(const std::string& list_name);
 std::vector<std::pair<size_t, size_t>> overlapping_runs(const std::vector<TextRun>& runs,
                                                         float min_px = 1.0f);
 
-/// Problems as text, one per line: overlaps, runs cut off sideways, runs outside the window. Empty = good.
-std::string layout_problems(const std::vector<TextRun>& runs, float window_w, float window_h);
+/// A region text must keep off (the sonar image, the colour bar): a rectangle, or (`fan`) the fan's
+/// annular sector inside it.
+struct KeepOut {
+    std::string name;
+    Rect rect;
+    std::optional<FanOnScreen> fan;
+};
+/// True when the run's box covers part of the region (more than `min_px` of the rectangle, or any of a grid
+/// of points over the box, inset by `min_px`, inside the fan).
+bool covers(const TextRun& run, const KeepOut& region, float min_px = 1.0f);
+
+/// Problems as text, one per line: overlaps, runs cut off sideways, runs outside the window, runs over a
+/// keep-out region (floating windows, tooltips and popups, are drawn over everything on purpose). Empty =
+/// good.
+std::string layout_problems(const std::vector<TextRun>& runs, float window_w, float window_h,
+                            const std::vector<KeepOut>& keep_out = {});
 
 } // namespace sonarsim::ui

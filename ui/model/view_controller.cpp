@@ -1,5 +1,6 @@
 #include "ui/model/view_controller.hpp"
 
+#include "ui/model/framing.hpp"
 #include "ui/model/sonar_geometry.hpp"
 
 #include <algorithm>
@@ -82,7 +83,8 @@ void ViewController::press(const InputEvent& e, const ViewContext& ctx, const Ra
         press_hit_.reset();
         return;
     }
-    if (press_hit_ && press_hit_->material != kFloorMaterial) {
+    if (press_hit_ && press_hit_->material != kFloorMaterial &&
+        object_drag_allowed(int(press_hit_->material) - 1, e.mods, ctx)) {
         object_ = int(press_hit_->material) - 1;
         const ObjectDesc& o = s.objects[size_t(object_)];
         grab_ = Grab::Object;
@@ -93,6 +95,18 @@ void ViewController::press(const InputEvent& e, const ViewContext& ctx, const Ra
         return;
     }
     grab_ = Grab::Orbit;
+}
+
+bool ViewController::object_drag_allowed(int object, int m, const ViewContext& ctx) const {
+    // Hands first: a drag orbits unless it starts on the selected object, and terrain (which fills the
+    // view) moves only with a modifier held.
+    if (object != selected || object < 0 || size_t(object) >= ctx.scene.objects.size() ||
+        size_t(object) >= ctx.geometry.object_count())
+        return false;
+    if (m & (mods::Control | mods::Shift | mods::Alt)) return true;
+    const auto& mesh = ctx.geometry.local_mesh(size_t(object));
+    return !mesh ||
+           !is_terrain(placed_bounds(*mesh, ctx.geometry.object_transform(size_t(object))), ctx.scene.sonar);
 }
 
 std::optional<SceneDesc> ViewController::drag(const InputEvent& e, const ViewContext& ctx, const Ray& ray) {

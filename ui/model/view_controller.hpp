@@ -1,8 +1,8 @@
 // The 3D view's input state machine, GL-free: camera orbit / pan / zoom, picking, and the drags that edit the
-// scene (the sonar by its handles, objects by their surfaces). Fed one InputEvent at a time in the order they
-// happened, so a quick click (press and release inside one frame) is a click, and mouse motion made before a
-// press never counts as a drag. Unit-tested with synthetic event sequences
-// (tests/ui/test_view_controller.cpp).
+// scene (the sonar by its handles, the selected object by its surface; a drag elsewhere orbits). Fed one
+// InputEvent at a time in the order they happened, so a quick click (press and release inside one frame) is a
+// click, and mouse motion made before a press never counts as a drag. Unit-tested with synthetic event
+// sequences (tests/ui/test_view_controller.cpp).
 #pragma once
 #include "ui/model/camera.hpp"
 #include "ui/model/input_events.hpp"
@@ -69,6 +69,9 @@ class ViewController {
     void press(const InputEvent& e, const ViewContext& ctx, const Ray& ray);
     std::optional<SceneDesc> drag(const InputEvent& e, const ViewContext& ctx, const Ray& ray);
     void release(const InputEvent& e, const ViewContext& ctx);
+    /// A press on `object` with modifiers `mods` drags it: it is the selected one, and terrain
+    /// (is_terrain) only with a modifier. Otherwise the press orbits, and a click selects.
+    bool object_drag_allowed(int object, int mods, const ViewContext& ctx) const;
 
     Grab grab_ = Grab::None;
     int grab_button_ = 0;

@@ -1,0 +1,106 @@
+// The sonar panel's layout at wide and narrow fields of view: the fan fills the panel, every label lies
+// outside the fan and off the colour bar, inside the panel, and no two overlap; the layout check sees text
+// over the image or the colour bar; the colour bar's title names what is shown.
+#include "ui/model/layout.hpp"
+#include "ui/model/panel_layout.hpp"
+#include "ui/model/text_layout.hpp"
+
+#include "core/scene/scene_io.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace sonarsim;
+using namespace sonarsim::ui;
+
+namespace {
+
+TextRun run_of(const Rect& r) {
+    TextRun t;
+    t.box = r, t.list_name = "Sonar image", t.glyphs = 3;
+    return t;
+}
+
+SonarPanelLayout layout_at(double fov_deg, const Rect& panel, bool polar = false) {
+    SceneDesc s = default_scene();
+    s.sonar.azimuth_fov_deg = fov_deg;
+    s.sonar.range_max_m = 12, s.sonar.range_min_m = 0.5;
+    return sonar_panel_layout(panel, {s.sonar, 70, 125, colorbar_title(s), polar}, TextMetrics{});
+}
+
+} // namespace
+
+TEST_CASE("at 130 and 30 deg the labels keep off the fan, the colour bar and each other", "[ui][panel]") {
+    for (double fov : {130.0, 30.0, 90.0, 180.0, 5.0}) {
+        for (bool polar : {false, true}) {
+            CAPTURE(fov, polar);
+            SceneDesc s = default_scene();
+            s.sonar.azimuth_fov_deg = fov;
+            const ViewerLayout V = viewer_layout(1600, 1000, 1.0f, fan_aspect(s.sonar));
+            const SonarPanelLayout L = layout_at(fov, V.sonar, polar);
+            std::vector<TextRun> runs;
+            for (const auto* list : {&L.bearings, &L.ranges, &L.colorbar_ticks})
+                for (const PanelLabel& l : *list) runs.push_back(run_of(l.box));
+            runs.push_back(run_of(L.colorbar_title.box));
+            CHECK(L.bearings.size() >= (fov >= 30 ? 3u : 2u));
+            CHECK(L.ranges.size() >= 3);
+            const std::vector<KeepOut> keep = {
+                {"sonar image", L.image, polar ? std::nullopt : std::optional(L.fan)},
+                {"colour bar", L.colorbar, std::nullopt}};
+            CHECK(layout_problems(runs, 1600, 1000, keep).empty());
+            for (const TextRun& r : runs) { // inside the panel, above the A-scan
+                CHECK(r.box.x >= V.sonar.x);
+                CHECK(r.box.x + r.box.w <= V.sonar.x + V.sonar.w);
+                CHECK(r.box.y >= L.readout.y + L.readout.h);
+                CHECK(r.box.y + r.box.h <= L.ascan.y);
+            }
+            CHECK(L.ascan.h >= 150);
+        }
+    }
+}
+
+TEST_CASE("the fan fills its panel: as wide as the labels allow, or as tall as the A-scan allows",
+          "[ui][panel]") {
+    SceneDesc s = default_scene();
+    s.sonar.azimuth_fov_deg = 130;
+    const ViewerLayout wide = viewer_layout(1600, 1000, 1.0f, fan_aspect(s.sonar));
+    const SonarPanelLayout L130 = layout_at(130, wide.sonar);
+    CHECK(wide.sonar.w >= 700); // a wide fan widens the panel
+    CHECK(wide.view3d.w >= 0.3f * 1600);
+    CHECK(L130.image.w >= 0.75f * wide.sonar.w);
+    CHECK(L130.image.h >= 300);
+    // Every 20 deg bearing, the extremes (+-60) and +-40 included.
+    for (double a : {-60.0, -40.0, -20.0, 0.0, 20.0, 40.0, 60.0})
+        CHECK(std::count(L130.bearing_deg.begin(), L130.bearing_deg.end(), a) == 1);
+
+    s.sonar.azimuth_fov_deg = 30;
+    const ViewerLayout narrow = viewer_layout(1600, 1000, 1.0f, fan_aspect(s.sonar));
+    const SonarPanelLayout L30 = layout_at(30, narrow.sonar);
+    CHECK(L30.image.h >= 0.6f * narrow.sonar.h);
+    CHECK(L30.ascan.h <= 0.3f * narrow.sonar.h);
+}
+
+TEST_CASE("the layout check sees text over the fan and the colour bar, not in the fan's empty corners",
+          "[ui][panel]") {
+    const SonarPanelLayout L = layout_at(130, {1000, 20, 600, 980});
+    const std::vector<KeepOut> keep = {{"sonar image", L.image, L.fan},
+                                       {"colour bar", L.colorbar, std::nullopt}};
+    const glm::dvec2 mid = L.fan.at(6, 0), corner{L.image.x + 2, L.image.y + L.image.h - 16};
+    REQUIRE_FALSE(L.fan.contains(corner.x + 10, corner.y + 6));
+    CHECK_FALSE(layout_problems({run_of({float(mid.x), float(mid.y), 40, 13})}, 1600, 1000, keep).empty());
+    CHECK(layout_problems({run_of({float(corner.x), float(corner.y), 30, 13})}, 1600, 1000, keep).empty());
+    CHECK_FALSE(
+        layout_problems({run_of({L.colorbar.x - 10, L.colorbar.y + 40, 30, 13})}, 1600, 1000, keep).empty());
+    CHECK(layout_problems({run_of({float(mid.x), float(mid.y), 40, 13})}, 1600, 1000).empty()); // text only
+}
+
+TEST_CASE("the colour bar's title names the ideal level or the device's, with TVG and gain", "[ui][panel]") {
+    SceneDesc s = default_scene();
+    CHECK(colorbar_title(s) == "L_EN dB");
+    s.sensor.model = SensorModel::Device;
+    s.sensor.tvg = Tvg::Log30;
+    s.sensor.gain_db = -12;
+    CHECK(colorbar_title(s) == "device level dB (TVG 30 log r, gain -12 dB)");
+    s.sensor.tvg = Tvg::Off;
+    s.sensor.gain_db = 0;
+    CHECK(colorbar_title(s) == "device level dB (no TVG, gain +0 dB)");
+}
