@@ -4,10 +4,10 @@
 #include "load.hpp"
 #include "status_line.hpp"
 
-#include "core/io/aris.hpp"
-#include "core/dataset/batch.hpp"
-#include "core/io/ros2_sonar.hpp"
 #include "core/base/errors.hpp"
+#include "core/dataset/batch.hpp"
+#include "core/dataset/export.hpp"
+#include "core/io/aris.hpp"
 
 #include <cstdio>
 #include <iostream>
@@ -56,20 +56,24 @@ int run_batch_command(const BatchCliOptions& o) {
         "%zu of %zu frames\n",
         r.rendered, r.skipped, r.elapsed_s, r.elapsed_s > 0 ? double(r.rendered) / r.elapsed_s : 0.0,
         o.out.c_str(), r.indexed, trajectory.size());
-    if (o.aris.empty() && o.mcap.empty()) return 0;
-    SceneDesc stored; // the files describe the dataset as rendered
-    Trajectory poses;
-    load_dataset(o.out, stored, poses);
-    if (!o.aris.empty()) {
-        write_aris(o.aris, stored, poses, dataset_images(o.out, poses.size(), "--aris"), "--aris");
-        std::printf("wrote %s (ARIS recording, %zu frames)\n", o.aris.c_str(), poses.size());
-    }
-    if (!o.mcap.empty()) {
-        const auto type = o.mcap_dtype == "float32" ? SonarDataType::Float32 : SonarDataType::Uint8;
-        write_sonar_mcap(o.mcap, stored, poses, dataset_images(o.out, poses.size(), "--mcap"), type);
-        std::printf("wrote %s (ROS 2 bag in MCAP, %zu ProjectedSonarImage messages)\n", o.mcap.c_str(),
-                    poses.size());
-    }
+    // The export keys of this command line (they are no part of the dataset): one mapping per file.
+    auto pack = [&](const std::string& path, ExportFormat format, const std::string& what) {
+        const ExportReport x = export_dataset(o.out, path, format, scene.exports,
+                                              format == ExportFormat::Aris ? "--aris" : "--mcap");
+        std::string line = "wrote " + path + " (" + what;
+        if (format != ExportFormat::McapFloat32)
+            line += "; " + x.summary() + ") and " + path + ".json";
+        else
+            line += ")";
+        std::cout << line << "\n";
+        if (const std::string w = format == ExportFormat::McapFloat32 ? "" : x.warning(path); !w.empty())
+            std::cerr << "sonarsim: " << w << "\n";
+    };
+    const std::string frames = std::to_string(trajectory.size());
+    if (!o.aris.empty()) pack(o.aris, ExportFormat::Aris, "ARIS recording, " + frames + " frames");
+    if (!o.mcap.empty())
+        pack(o.mcap, o.mcap_dtype == "float32" ? ExportFormat::McapFloat32 : ExportFormat::McapUint8,
+             "ROS 2 bag in MCAP, " + frames + " ProjectedSonarImage messages");
     return 0;
 }
 

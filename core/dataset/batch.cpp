@@ -137,8 +137,16 @@ void prepare_dataset(const std::string& dir, const SceneDesc& base, const Trajec
     const std::string scene_text = scene_to_json(stored).dump(2) + "\n";
     const std::string traj_text = trajectory_to_csv(trajectory);
     const std::string scene_path = dir + "/scene.json", traj_path = dir + "/trajectory.csv";
+    // The export keys choose how a dataset is packed, not what it holds: they may differ between runs.
+    auto same = [](const std::string& path, const std::string& a, const std::string& b) {
+        if (path.size() < 5 || path.compare(path.size() - 5, 5, ".json") != 0) return a == b;
+        json x = json::parse(a, nullptr, false), y = json::parse(b, nullptr, false);
+        if (x.is_object()) x.erase("export");
+        if (y.is_object()) y.erase("export");
+        return x == y;
+    };
     for (auto [path, text] : {std::pair{scene_path, scene_text}, std::pair{traj_path, traj_text}})
-        if (fs::exists(path, ec) && read_text(path) != text)
+        if (fs::exists(path, ec) && !same(path, read_text(path), text))
             throw InputError(dir, "",
                              "holds a dataset of another scene or trajectory (" + path +
                                  " differs); choose another directory");

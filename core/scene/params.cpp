@@ -323,6 +323,17 @@ std::vector<ParamSpec> build_scene_params() {
                        [](S s) -> bool& { return s.display.auto_range; }),
                nullptr, true));
     add_sensor_params(t);
+    t.push_back(boolean("export.auto", Stage::None,
+                        "8-bit exports (.aris, MCAP uint8): byte 255 at the 99.5th percentile of the "
+                        "exported frames' finite levels, byte 0 80 dB below (ARIS's 80 dB over 255 steps), "
+                        "one mapping for all frames; instead of export.lo_db, export.hi_db",
+                        [](S s) -> bool& { return s.exports.auto_range; }));
+    t.push_back(number("export.lo_db", "dB", -1000, 1000, false, false, Stage::None,
+                       "8-bit exports without export.auto: the image level written as byte 0 (and below)",
+                       [](S s) -> double& { return s.exports.lo_db; }));
+    t.push_back(number("export.hi_db", "dB", -1000, 1000, false, false, Stage::None,
+                       "8-bit exports without export.auto: the image level written as byte 255 (and above)",
+                       [](S s) -> double& { return s.exports.hi_db; }));
     return t;
 }
 
@@ -831,6 +842,10 @@ void validate_scene(const SceneDesc& s, const std::string& file) {
     }
     if (!(s.display.lo_db < s.display.hi_db))
         throw InputError(file, "display.lo_db", "lo_db must be below hi_db");
+    if (!s.exports.auto_range && !(s.exports.lo_db < s.exports.hi_db))
+        throw InputError(file, "export.lo_db",
+                         "lo_db (" + fmt(s.exports.lo_db) + ") must be below hi_db (" + fmt(s.exports.hi_db) +
+                             ")");
     for (size_t i = 0; i < s.objects.size(); ++i) {
         const auto& o = s.objects[i];
         for (double c : o.scale)
