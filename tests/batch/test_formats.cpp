@@ -31,6 +31,9 @@ SceneDesc with_gain(SceneDesc s, double gain_db) {
     return s;
 }
 
+/// The mapping these tests read the files with: bytes 0 ... 255 = image levels 0 ... 80 dB.
+const ByteMapping kZeroTo80{0, 80, false};
+
 /// A dataset of 3 frames of the small scene (48 beams, 96 bins) along a line.
 struct Dataset {
     std::string dir;
@@ -85,7 +88,7 @@ std::uint32_t bitwise_crc32(const std::uint8_t* p, size_t n) {
 TEST_CASE("an ARIS file read from its specification gives back the frames", "[aris]") {
     const Dataset& d = dataset();
     const std::string path = d.dir + "/out.aris";
-    write_aris(path, d.scene, d.trajectory, dataset_images(d.dir, 3, "--aris"), "--aris");
+    write_aris(path, d.scene, d.trajectory, dataset_images(d.dir, 3, "--aris"), kZeroTo80, "--aris");
     const auto b = file_bytes(path);
     const size_t beams = at<std::uint32_t>(b, 1024 + 436) == 1 ? 48 : 0; // PingMode 1: 48 beams
     REQUIRE(beams == 48);
@@ -194,7 +197,7 @@ TEST_CASE("an MCAP bag read from its specification gives back the frames", "[mca
     const Dataset& d = dataset();
     for (const auto type : {SonarDataType::Uint8, SonarDataType::Float32}) {
         const std::string path = d.dir + "/out.mcap";
-        write_sonar_mcap(path, d.scene, d.trajectory, dataset_images(d.dir, 3, "--mcap"), type);
+        write_sonar_mcap(path, d.scene, d.trajectory, dataset_images(d.dir, 3, "--mcap"), type, kZeroTo80);
         const auto b = file_bytes(path);
         const auto recs = mcap_records(b);
         REQUIRE(recs.front().op == 0x01);
