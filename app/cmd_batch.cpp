@@ -9,6 +9,8 @@
 #include "core/dataset/export.hpp"
 #include "core/io/aris.hpp"
 
+#include <atomic>
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -37,6 +39,19 @@ std::string progress_text(const BatchProgress& p) {
     return b;
 }
 
+/// Set by the first SIGINT (Ctrl-C) or SIGTERM (a Slurm time limit): the run ends after the frame in flight,
+/// with its index. A second signal ends the process at once.
+std::atomic<bool> g_stop{false};
+std::atomic<int> g_signal{0};
+static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free);
+
+extern "C" void on_stop_signal(int sig) {
+    g_signal.store(sig);
+    g_stop.store(true);
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+}
+
 int run_batch_command(const BatchCliOptions& o) {
     const SceneDesc scene = load_scene_from_options(o.scene);
     const Trajectory trajectory =
@@ -49,13 +64,27 @@ int run_batch_command(const BatchCliOptions& o) {
     options.progress = [&](const BatchProgress& p) { status.show(progress_text(p)); };
     if (!o.aris.empty()) check_aris_beams(scene, o.scene.scene_file.empty() ? "--aris" : o.scene.scene_file);
     prepare_dataset(o.out, scene, trajectory);
+    options.stop = &g_stop;
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
     const BatchSummary r = run_batch(o.out, options);
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
     status.clear();
     std::printf(
         "rendered %zu frames (%zu already complete) in %.1f s (%.2f frames/s) into %s; index.csv lists "
         "%zu of %zu frames\n",
         r.rendered, r.skipped, r.elapsed_s, r.elapsed_s > 0 ? double(r.rendered) / r.elapsed_s : 0.0,
         o.out.c_str(), r.indexed, trajectory.size());
+    if (r.interrupted) {
+        std::fflush(stdout);
+        std::fprintf(stderr,
+                     "sonarsim: interrupted (%s) after the frame in flight; the same command with --resume "
+                     "renders the %zu frames not yet complete%s\n",
+                     g_signal.load() == SIGTERM ? "SIGTERM" : "Ctrl-C", trajectory.size() - r.indexed,
+                     o.aris.empty() && o.mcap.empty() ? "" : " and then writes --aris/--mcap");
+        return 128 + g_signal.load();
+    }
     // The export keys of this command line (they are no part of the dataset): one mapping per file.
     auto pack = [&](const std::string& path, ExportFormat format, const std::string& what) {
         const ExportReport x = export_dataset(o.out, path, format, scene.exports,

@@ -59,10 +59,13 @@ std::string index_row(const std::string& dir, const Trajectory& trajectory, size
     const TrajectoryPoint& p = trajectory[k];
     std::string files;
     std::error_code ec;
+    auto add = [&](const std::string& path) {
+        files += (files.empty() ? "" : ";") + fs::path(path).lexically_relative(dir).string();
+    };
     for (auto& o : render_outputs())
-        if (!o.wanted || fs::is_regular_file(prefix + o.suffix, ec))
-            files +=
-                (files.empty() ? "" : ";") + fs::path(prefix + o.suffix).lexically_relative(dir).string();
+        if (!o.wanted || fs::is_regular_file(prefix + o.suffix, ec)) add(prefix + o.suffix);
+    for (auto& name : ground_truth_names()) // batch --ground-truth
+        if (fs::is_regular_file(prefix + "_gt_" + name + ".npy", ec)) add(prefix + "_gt_" + name + ".npy");
     std::string ms, err_median, err_p95, rays;
     if (meta.is_object()) {
         if (meta.contains("time_ms")) ms = fmt(meta["time_ms"].value("total", 0.0));
@@ -174,6 +177,10 @@ BatchSummary run_batch(const std::string& dir, const BatchOptions& options) {
     BatchProgress progress;
     progress.total = frames.size();
     for (const size_t k : frames) {
+        if (options.stop && options.stop->load()) {
+            progress.interrupted = true;
+            break;
+        }
         if (!(options.resume && frame_complete(dir, k))) {
             const SceneDesc s = frame_scene(base, trajectory, k);
             if (sim)
@@ -195,6 +202,7 @@ BatchSummary run_batch(const std::string& dir, const BatchOptions& options) {
     summary.rendered = progress.rendered;
     summary.skipped = progress.done - progress.rendered;
     summary.elapsed_s = progress.elapsed_s;
+    summary.interrupted = progress.interrupted;
     if (options.index) summary.indexed = write_index(dir, trajectory);
     return summary;
 }
