@@ -1,5 +1,6 @@
 // `sonarsim devices`: the device presets (assets/devices/*.json) with their main figures, as a text table or
-// as Markdown (--markdown, for the README); `sonarsim devices NAME` lists one preset's values with sources.
+// as Markdown (--markdown, the table in docs/devices.md); `sonarsim devices NAME` lists one preset's values
+// with sources.
 #include "commands.hpp"
 
 #include "core/devices/devices.hpp"
@@ -150,7 +151,7 @@ void register_devices(CLI::App& app, std::function<int()>& run) {
         "List the device presets (sonar.device) with their main figures; NAME: one preset's values");
     auto markdown = std::make_shared<bool>(false);
     auto name = std::make_shared<std::string>();
-    cmd->add_flag("--markdown", *markdown, "Print a Markdown table (for the README)");
+    cmd->add_flag("--markdown", *markdown, "Print a Markdown table (as in docs/devices.md)");
     cmd->add_option("name", *name, "A preset: print each of its values with its source");
     cmd->callback([&run, markdown, name] {
         run = [markdown, name] {

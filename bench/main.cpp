@@ -356,6 +356,12 @@ int main(int argc, char** argv) {
     multipath->add_option("--repeats", multipath_repeats, "Repeats")->capture_default_str();
     CLI::App* sensor = app.add_subcommand("sensor", "Time the sensor stage alone (median of repeats)");
     sensor->add_option("--repeats", sensor_repeats, "Repeats")->capture_default_str();
+    int devices_repeats = 5;
+    CLI::App* devices = app.add_subcommand(
+        "devices",
+        "Every device preset at its own window over the terrain and the wreck: warm image against the "
+        "device's frame interval (median)");
+    devices->add_option("--repeats", devices_repeats, "Repeats")->capture_default_str();
     CLI::App* report = app.add_subcommand("report", "Rewrite RESULTS.md and results.csv from a results.json");
     report->add_option("results_json", report_in)->required();
     report->add_option("--out", report_out, "Directory (default: the JSON's)");
@@ -379,6 +385,7 @@ int main(int argc, char** argv) {
         }
         if (*sensor) return run_sensor_bench(sensor_repeats);
         if (*multipath) return run_multipath_bench(o.paths.repo, multipath_repeats);
+        if (*devices) return run_devices_bench(o.paths, devices_repeats);
         if (*terrain) {
             write_terrain_ply(terrain_out, grid);
             std::cout << "wrote " << terrain_out << " (" << terrain_triangles(grid) << " triangles)\n";

@@ -6,6 +6,7 @@
 #include <embree3/rtcore.h>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <map>
 #include <mutex>
@@ -39,12 +40,19 @@ void check_embree() {
 }
 
 /// The process's Embree device: created on first use, never released (every scene of the process uses it).
+/// Embree picks its kernels (SSE, AVX2, AVX-512) by CPU, and hit distances differ in their last bits between
+/// them; SONARSIM_EMBREE_CONFIG passes Embree's device configuration (e.g. "isa=avx2") so that outputs are
+/// identical to the bit across machines (the golden test pins it).
 RTCDevice embree_device() {
     static const RTCDevice device = [] {
-        const RTCDevice d = rtcNewDevice(nullptr);
+        const char* config = std::getenv("SONARSIM_EMBREE_CONFIG");
+        const RTCDevice d = rtcNewDevice(config);
         if (!d)
-            throw std::runtime_error("cannot create an Embree device (error " +
-                                     std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+            throw InputError("environment", "SONARSIM_EMBREE_CONFIG",
+                             "Embree cannot create a device with configuration '" +
+                                 std::string(config ? config : "") + "' (error " +
+                                 std::to_string(int(rtcGetDeviceError(nullptr))) +
+                                 "); allowed: Embree's rtcNewDevice options, e.g. isa=avx2, threads=2");
         rtcSetDeviceErrorFunction(d, embree_error, nullptr);
         return d;
     }();

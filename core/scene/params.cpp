@@ -882,17 +882,23 @@ double sector_image_pixels(const SonarParams& s) {
 }
 
 std::string params_markdown() {
+    // A "|" inside a cell (e.g. "|dB error|") would end the cell: escape it.
+    auto cell = [](const std::string& s) {
+        std::string out;
+        for (char c : s) out += c == '|' ? std::string("\\|") : std::string(1, c);
+        return out;
+    };
     SceneDesc defaults;
     std::ostringstream md;
     md << "| key | unit | default | allowed | what |\n|---|---|---|---|---|\n";
     for (const auto* list : {&scene_params(), &input_params()})
         for (auto& p : *list)
             md << "| `" << p.key << "` | " << p.unit << " | `" << p.get(defaults).dump() << "` | "
-               << allowed_text(p) << " | " << p.help << " |\n";
+               << cell(allowed_text(p)) << " | " << cell(p.help) << " |\n";
     Material m;
     for (auto& p : material_params())
         md << "| `material." << p.key << "` | " << p.unit << " | `" << p.get(m).dump() << "` | "
-           << allowed_text(p) << " | " << p.help << " |\n";
+           << cell(allowed_text(p)) << " | " << cell(p.help) << " |\n";
     return md.str();
 }
 

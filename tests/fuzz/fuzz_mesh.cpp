@@ -1,4 +1,5 @@
-// libFuzzer target: mesh files through load_mesh (OBJ, PLY, STL, OFF; the first byte picks; see README.md).
+// libFuzzer target: mesh files through load_mesh (OBJ, PLY, STL, OFF; the first byte picks).
+// See docs/bad-input.md.
 #include "fuzz_targets.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

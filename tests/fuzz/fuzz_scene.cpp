@@ -1,4 +1,4 @@
-// libFuzzer target: scene files, --set and --pose text (see README.md).
+// libFuzzer target: scene files, --set and --pose text (see docs/bad-input.md).
 #include "fuzz_targets.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

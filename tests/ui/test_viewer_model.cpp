@@ -185,8 +185,8 @@ TEST_CASE("no echo has its own colour in every map and the maps differ", "[ui][c
     CHECK(tops.size() == 4);
 }
 
-TEST_CASE("every binding has an input and an action and README names each input", "[ui][bindings]") {
-    std::ifstream f(std::string(SONARSIM_SOURCE_DIR) + "/README.md");
+TEST_CASE("every binding has an input and an action and docs/viewer.md names each input", "[ui][bindings]") {
+    std::ifstream f(std::string(SONARSIM_SOURCE_DIR) + "/docs/viewer.md");
     const std::string readme((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
     REQUIRE(!readme.empty());
     for (const Binding& b : bindings()) {

@@ -1,6 +1,6 @@
 // Every mouse and key binding of the viewer, in one table: Help -> Controls lists it, the viewer dispatches
-// its key shortcuts by it (key_action; the actions themselves are in ui/gl/viewer_input.cpp), README.md
-// documents it (tests/ui checks that README names each one). GL-free.
+// its key shortcuts by it (key_action; the actions themselves are in ui/gl/viewer_input.cpp), docs/viewer.md
+// documents it (tests/ui checks that it names each one). GL-free.
 #pragma once
 #include <string>
 #include <vector>

@@ -1,0 +1,203 @@
+// `sonarsim_bench devices`: every device preset at its own range window, over the 200 k-triangle terrain and
+// over the wreck. Per row: the warm image (a pose change, every stage rerun: trace, shade, sensor, display;
+// median of repeats), its rays, its error against a dense reference (rel L1 and median |dB| of the ideal
+// image; holes), the *floor* (the same number of rays traced and shaded as a plain beam-ordered grid) and
+// the device's own frame interval, which a live simulation has to beat.
+//
+// Device frame interval: a single-ping sonar cannot image faster than the echo from range_max returns,
+// 2 r_max / c. An ARIS frame is fired as beams / 16 pings [SENSORS.md 1.2, Reorder.cpp], each taking the
+// echo time plus 420 us of overhead, at most 15 fps (FrameRate.cpp, anti-aliasing delay left out). DIDSON:
+// at most 21 fps, its pings per frame not being in our sources, so 2 r_max / c is a lower bound there.
+//
+// Scenes, scaled to each device's window so that it sees something: the terrain (bench/terrain.cpp) scaled
+// uniformly by r_max / 20 m (relief by at most 2), the sonar pitched 15 deg down with the fan's centre
+// meeting the terrain's centre at mid-window; the wreck (assets/scenes/shipwreck.json) seen along the scene's
+// own line of sight from mid-window.
+#include "bench.hpp"
+
+#include "bench/terrain.hpp"
+#include "core/analysis/reference.hpp"
+#include "core/base/pose.hpp"
+#include "core/devices/devices.hpp"
+#include "core/pipeline/simulator.hpp"
+#include "core/scene/params.hpp"
+#include "core/scene/sampling_scheme.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/shading/physics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <vector>
+
+namespace sonarsim::bench {
+namespace {
+
+constexpr double kPitchDeg = 15;     // the terrain case's look-down angle
+constexpr int kReferenceRays = 729;  // reference: spread, this many elevation rays per beam ...
+constexpr int kReferenceColumns = 3; // ... in this many azimuth columns
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+struct Interval {
+    double ms;
+    const char* how;
+};
+
+/// The device's own time per frame (see the file comment).
+Interval device_interval(const std::string& name, const SceneDesc& s) {
+    const double c = sound_speed_m_s(s.water.temperature_c, s.water.depth_m);
+    const double echo_s = 2 * s.sonar.range_max_m / c;
+    if (name.rfind("aris", 0) == 0) {
+        const double pings = std::max(1, s.sonar.beams / 16);
+        return {1e3 * std::max(1.0 / 15, pings * (echo_s + 420e-6)), "pings x (2R/c + 0.42 ms), <= 15 fps"};
+    }
+    if (name.rfind("didson", 0) == 0) return {1e3 * std::max(1.0 / 21, echo_s), ">= 2R/c, <= 21 fps"};
+    return {1e3 * echo_s, "2R/c"};
+}
+
+/// Unit vector the sonar looks along (its x axis in the world).
+glm::dvec3 forward_of(const SceneDesc& s) {
+    return rotation_matrix(s.sonar.pose.orientation_deg) * glm::dvec3(1, 0, 0);
+}
+
+void place(SceneDesc& s, const glm::dvec3& aim, double r) {
+    const glm::dvec3 p = aim - r * forward_of(s);
+    s.sonar.pose.position_m = {p.x, p.y, p.z};
+}
+
+SceneDesc terrain_case(const std::string& mesh, const std::string& device) {
+    SceneDesc s = default_scene();
+    s.seafloor.reset();
+    apply_setting(s, "sonar.device", device, "bench");
+    apply_setting(s, "sensor.model", "device", "bench");
+    const double k = s.sonar.range_max_m / 20, kz = std::min(k, 2.0);
+    ObjectDesc o;
+    o.mesh = o.mesh_resolved = std::filesystem::absolute(mesh).string();
+    o.scale = {k, k, kz};
+    s.objects = {o};
+    s.sonar.pose.orientation_deg = {0, kPitchDeg, 0};
+    const double r_mid = 0.5 * (s.sonar.range_min_m + s.sonar.range_max_m);
+    place(s, {0, 0, kz * terrain_height_m(0, 0)}, r_mid);
+    // Keep the sonar at least a metre above the ground below it.
+    auto& z = s.sonar.pose.position_m[2];
+    z = std::max(z,
+                 kz * terrain_height_m(s.sonar.pose.position_m[0] / k, s.sonar.pose.position_m[1] / k) + 1);
+    return s;
+}
+
+SceneDesc wreck_case(const std::string& repo, const std::string& device) {
+    SceneDesc s = load_scene(repo + "/assets/scenes/shipwreck.json");
+    const glm::dvec3 p0 = to_glm(s.sonar.pose.position_m), f = forward_of(s);
+    const glm::dvec3 aim = p0 + (-p0.y / f.y) * f; // where the scene's line of sight crosses the keel line
+    // The scene sets its own sonar; the preset's values go over them, as a user's `--set sonar.device` does.
+    apply_setting(s, "sonar.device", device, "bench");
+    apply_setting(s, "sensor.model", "device", "bench");
+    place(s, aim, 0.5 * (s.sonar.range_min_m + s.sonar.range_max_m));
+    return s;
+}
+
+struct Row {
+    double warm_ms = 0, floor_ms = 0, interval_ms = 0;
+    std::uint64_t rays = 0;
+    ImageError err;
+    const char* interval_how = "";
+};
+
+/// Median over `repeats` renders of `s`, the yaw nudged each time so that every stage reruns; `last` keeps
+/// the last frame.
+double warm_ms(Simulator& sim, SceneDesc s, int repeats, std::shared_ptr<const Frame>* last) {
+    const double yaw0 = s.sonar.pose.orientation_deg[2];
+    sim.set_scene(s);
+    sim.render(); // the BVH, the resampler and the caches: not part of a warm image
+    std::vector<double> ms;
+    for (int i = 1; i <= repeats; ++i) {
+        s.sonar.pose.orientation_deg[2] = yaw0 + 0.01 * i;
+        sim.set_scene(s);
+        const auto f = sim.render();
+        ms.push_back(f->trace_ms + f->shade_ms + f->sensor_ms + f->image_ms);
+        if (last) *last = f;
+    }
+    return median(ms);
+}
+
+Row measure(SceneDesc s, const std::string& device, int repeats) {
+    Row row;
+    Simulator sim(s);
+    std::shared_ptr<const Frame> f;
+    row.warm_ms = warm_ms(sim, s, repeats, &f);
+    row.rays = f->hits().rays_traced;
+    const Interval iv = device_interval(device, s);
+    row.interval_ms = iv.ms, row.interval_how = iv.how;
+
+    // The reference: the last frame's pose, the ideal sensor, a dense spread grid.
+    SceneDesc ref = s;
+    ref.sonar.pose.orientation_deg[2] = s.sonar.pose.orientation_deg[2] + 0.01 * repeats;
+    set_scheme(ref.sampling, SamplingScheme::Spread);
+    ref.sampling.elevation_rays = kReferenceRays, ref.sampling.azimuth_rays = kReferenceColumns;
+    row.err = compare_images(f->ideal(), Simulator(ref).render()->ideal());
+
+    // The floor: as many rays as the default used, on a plain grid (spread, one column per beam).
+    SceneDesc grid = s;
+    set_scheme(grid.sampling, SamplingScheme::Spread);
+    grid.sampling.azimuth_rays = 1;
+    grid.sampling.elevation_rays = int(std::max<std::uint64_t>(1, row.rays / std::uint64_t(s.sonar.beams)));
+    Simulator floor_sim(grid);
+    std::vector<double> ms;
+    floor_sim.render();
+    const double yaw0 = grid.sonar.pose.orientation_deg[2];
+    for (int i = 1; i <= repeats; ++i) {
+        grid.sonar.pose.orientation_deg[2] = yaw0 + 0.01 * i;
+        floor_sim.set_scene(grid);
+        const auto g = floor_sim.render();
+        ms.push_back(g->trace_ms + g->shade_ms);
+    }
+    row.floor_ms = median(ms);
+    return row;
+}
+
+} // namespace
+
+int run_devices_bench(const Paths& p, int repeats) {
+    const std::string work = p.work.empty() ? "build/bench" : p.work;
+    std::filesystem::create_directories(work);
+    const std::string mesh = work + "/terrain_317.ply";
+    if (!std::filesystem::exists(mesh)) write_terrain_ply(mesh, 317);
+    std::printf("Every device preset at its own window (sensor.model device, default sampling), warm image: "
+                "median of %d; reference: spread %d x %d, ideal sensor\n\n",
+                repeats, kReferenceRays, kReferenceColumns);
+    std::printf(
+        "| device | scene | beams x bins | range m | rays | warm ms | floor ms | warm / floor | rel L1 %% | "
+        "median dB | holes %% | device frame ms | live |\n|---|---|---|---|---:|---:|---:|---:|---:|---:|"
+        "---:|---:|---|\n");
+    std::fflush(stdout);
+    int live = 0, total = 0;
+    for (const DevicePreset& d : device_presets())
+        for (int scene = 0; scene < 2; ++scene) {
+            status_line("devices: " + d.name + (scene ? ", wreck" : ", terrain"));
+            const SceneDesc s = scene ? wreck_case(p.repo, d.name) : terrain_case(mesh, d.name);
+            const Row r = measure(s, d.name, repeats);
+            const double holes =
+                r.err.echoing_ref ? 100.0 * double(r.err.holes) / double(r.err.echoing_ref) : 0;
+            const bool ok = r.warm_ms < r.interval_ms && r.warm_ms <= 50;
+            live += ok, ++total;
+            status_line("");
+            std::printf(
+                "| %s | %s | %d x %d | %g-%g | %llu | %.1f | %.1f | %.1f | %.2f | %.3f | %.2f | %.0f (%s) | "
+                "%s |\n",
+                d.name.c_str(), scene ? "wreck" : "terrain", s.sonar.beams, s.sonar.range_bins,
+                s.sonar.range_min_m, s.sonar.range_max_m, (unsigned long long)r.rays, r.warm_ms, r.floor_ms,
+                r.warm_ms / r.floor_ms, 100 * r.err.rel_l1, r.err.median_abs_db, holes, r.interval_ms,
+                r.interval_how, ok ? "yes" : "no");
+            std::fflush(stdout);
+        }
+    std::printf("\n%d of %d rows live: warm image shorter than the device's frame and at most 50 ms.\n", live,
+                total);
+    return 0;
+}
+
+} // namespace sonarsim::bench
