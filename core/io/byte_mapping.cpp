@@ -81,7 +81,7 @@ ByteMapping choose_byte_mapping(const ExportParams& p, std::size_t frames, const
     while (i < kBins && below + hist[i] < want) below += hist[i++];
     const double edge = kLowestDb + double(i + 1) * kBinDb;
     m.hi_db = std::ceil(edge * 10 - 1e-9) / 10; // rounded up to 0.1 dB
-    m.lo_db = m.hi_db - kAutoExportSpanDb;
+    m.lo_db = std::round((m.hi_db - kAutoExportSpanDb) * 10) / 10; // 31.1, not 31.099999999999994
     return m;
 }
 
@@ -110,12 +110,14 @@ nlohmann::json ExportReport::to_json(const std::string& file) const {
 std::string ExportReport::warning(const std::string& file) const {
     if (total.high_fraction() <= kClipWarningFraction && total.low_fraction() <= kClipWarningFraction)
         return "";
+    const std::string mapping_text = mapping.automatic
+                                         ? "export.auto; export.auto=false with export.lo_db/hi_db widens it"
+                                         : "export.lo_db/hi_db; export.auto=true chooses them from the data";
     return file + ": " + percent(total.high_fraction()) + " of the samples are clipped at 255 and " +
-           percent(total.low_fraction()) + " echo but are written as 0 (bytes 0-255 = " + db(mapping.lo_db) +
-           "-" + db(mapping.hi_db) + " dB" +
-           (mapping.automatic
-                ? ")"
-                : " from export.lo_db/export.hi_db; export.auto=true chooses them from the data)");
+           percent(total.low_fraction()) +
+           " have a level (echo or noise) below byte 1 and are written as 0 " +
+           "(bytes 0-255 = " + db(mapping.lo_db) + "-" + db(mapping.hi_db) + " dB, " + mapping_text +
+           "); per frame in " + file + ".json";
 }
 
 std::string ExportReport::summary() const {
