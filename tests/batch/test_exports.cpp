@@ -56,10 +56,10 @@ float level_of(const PolarImage& img, size_t sample_beam_index) {
 
 /// README's example: the shipwreck at 128 beams, two frames of a circle around it.
 struct Wreck {
-    std::string dir = batch_out("exports_wreck");
+    std::string dir;
     SceneDesc scene;
     std::vector<PolarImage> images;
-    Wreck() {
+    explicit Wreck(const std::string& name) : dir(batch_out(name)) {
         scene = load_scene(SONARSIM_ASSETS "/scenes/shipwreck.json");
         apply_setting(scene, "sonar.beams", 128, "test");
         apply_setting(scene, "sonar.range_bins", 500, "test");
@@ -73,15 +73,16 @@ struct Wreck {
     }
 };
 
-const Wreck& wreck() {
-    static const Wreck w;
+/// One directory per test case: ctest runs them as parallel processes.
+const Wreck& wreck(const std::string& name) {
+    static const Wreck w(name);
     return w;
 }
 
 } // namespace
 
 TEST_CASE("the shipwreck exported with the default mapping fits the byte range", "[exports][aris]") {
-    const Wreck& w = wreck();
+    const Wreck& w = wreck("exports_wreck_auto");
     const std::string path = w.dir + "/wreck.aris";
     const ExportParams defaults; // export.auto
     REQUIRE(defaults.auto_range);
@@ -145,7 +146,7 @@ TEST_CASE("the shipwreck exported with the default mapping fits the byte range",
 }
 
 TEST_CASE("the fixed 0-80 dB mapping saturates the shipwreck, and says so", "[exports][aris]") {
-    const Wreck& w = wreck();
+    const Wreck& w = wreck("exports_wreck_fixed");
     const std::string path = w.dir + "/fixed.aris";
     ExportParams fixed;
     fixed.auto_range = false; // lo_db 0, hi_db 80: the mapping before export.auto
