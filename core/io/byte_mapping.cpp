@@ -80,7 +80,7 @@ ByteMapping choose_byte_mapping(const ExportParams& p, std::size_t frames, const
     std::size_t i = 0;
     while (i < kBins && below + hist[i] < want) below += hist[i++];
     const double edge = kLowestDb + double(i + 1) * kBinDb;
-    m.hi_db = std::ceil(edge * 10 - 1e-9) / 10; // rounded up to 0.1 dB
+    m.hi_db = std::ceil(edge * 10 - 1e-9) / 10;                    // rounded up to 0.1 dB
     m.lo_db = std::round((m.hi_db - kAutoExportSpanDb) * 10) / 10; // 31.1, not 31.099999999999994
     return m;
 }
