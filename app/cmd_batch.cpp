@@ -4,11 +4,13 @@
 #include "load.hpp"
 #include "status_line.hpp"
 
-#include "core/io/aris.hpp"
-#include "core/dataset/batch.hpp"
-#include "core/io/ros2_sonar.hpp"
 #include "core/base/errors.hpp"
+#include "core/dataset/batch.hpp"
+#include "core/dataset/export.hpp"
+#include "core/io/aris.hpp"
 
+#include <atomic>
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -37,6 +39,19 @@ std::string progress_text(const BatchProgress& p) {
     return b;
 }
 
+/// Set by the first SIGINT (Ctrl-C) or SIGTERM (a Slurm time limit): the run ends after the frame in flight,
+/// with its index. A second signal ends the process at once.
+std::atomic<bool> g_stop{false};
+std::atomic<int> g_signal{0};
+static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free);
+
+extern "C" void on_stop_signal(int sig) {
+    g_signal.store(sig);
+    g_stop.store(true);
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+}
+
 int run_batch_command(const BatchCliOptions& o) {
     const SceneDesc scene = load_scene_from_options(o.scene);
     const Trajectory trajectory =
@@ -49,27 +64,45 @@ int run_batch_command(const BatchCliOptions& o) {
     options.progress = [&](const BatchProgress& p) { status.show(progress_text(p)); };
     if (!o.aris.empty()) check_aris_beams(scene, o.scene.scene_file.empty() ? "--aris" : o.scene.scene_file);
     prepare_dataset(o.out, scene, trajectory);
+    options.stop = &g_stop;
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
     const BatchSummary r = run_batch(o.out, options);
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
     status.clear();
     std::printf(
         "rendered %zu frames (%zu already complete) in %.1f s (%.2f frames/s) into %s; index.csv lists "
         "%zu of %zu frames\n",
         r.rendered, r.skipped, r.elapsed_s, r.elapsed_s > 0 ? double(r.rendered) / r.elapsed_s : 0.0,
         o.out.c_str(), r.indexed, trajectory.size());
-    if (o.aris.empty() && o.mcap.empty()) return 0;
-    SceneDesc stored; // the files describe the dataset as rendered
-    Trajectory poses;
-    load_dataset(o.out, stored, poses);
-    if (!o.aris.empty()) {
-        write_aris(o.aris, stored, poses, dataset_images(o.out, poses.size(), "--aris"), "--aris");
-        std::printf("wrote %s (ARIS recording, %zu frames)\n", o.aris.c_str(), poses.size());
+    if (r.interrupted) {
+        std::fflush(stdout);
+        std::fprintf(stderr,
+                     "sonarsim: interrupted (%s) after the frame in flight; the same command with --resume "
+                     "renders the %zu frames not yet complete%s\n",
+                     g_signal.load() == SIGTERM ? "SIGTERM" : "Ctrl-C", trajectory.size() - r.indexed,
+                     o.aris.empty() && o.mcap.empty() ? "" : " and then writes --aris/--mcap");
+        return 128 + g_signal.load();
     }
-    if (!o.mcap.empty()) {
-        const auto type = o.mcap_dtype == "float32" ? SonarDataType::Float32 : SonarDataType::Uint8;
-        write_sonar_mcap(o.mcap, stored, poses, dataset_images(o.out, poses.size(), "--mcap"), type);
-        std::printf("wrote %s (ROS 2 bag in MCAP, %zu ProjectedSonarImage messages)\n", o.mcap.c_str(),
-                    poses.size());
-    }
+    // The export keys of this command line (they are no part of the dataset): one mapping per file.
+    auto pack = [&](const std::string& path, ExportFormat format, const std::string& what) {
+        const ExportReport x = export_dataset(o.out, path, format, scene.exports,
+                                              format == ExportFormat::Aris ? "--aris" : "--mcap");
+        std::string line = "wrote " + path + " (" + what;
+        if (format != ExportFormat::McapFloat32)
+            line += "; " + x.summary() + ") and " + path + ".json";
+        else
+            line += ")";
+        std::cout << line << "\n";
+        if (const std::string w = format == ExportFormat::McapFloat32 ? "" : x.warning(path); !w.empty())
+            std::cerr << "sonarsim: " << w << "\n";
+    };
+    const std::string frames = std::to_string(trajectory.size());
+    if (!o.aris.empty()) pack(o.aris, ExportFormat::Aris, "ARIS recording, " + frames + " frames");
+    if (!o.mcap.empty())
+        pack(o.mcap, o.mcap_dtype == "float32" ? ExportFormat::McapFloat32 : ExportFormat::McapUint8,
+             "ROS 2 bag in MCAP, " + frames + " ProjectedSonarImage messages");
     return 0;
 }
 

@@ -4,6 +4,7 @@
 #include "commands.hpp"
 
 #include "core/devices/devices.hpp"
+#include "core/scene/params.hpp"
 #include "core/base/errors.hpp"
 
 #include <algorithm>
@@ -120,7 +121,12 @@ void print_text(const std::vector<Row>& rows) {
 /// One preset: every value with its confidence and source.
 void print_preset(const DevicePreset& p) {
     std::ostringstream out;
-    out << p.name << ": " << p.title << " (" << p.file << ")\n";
+    out << p.name << ": " << p.title << " (" << p.file << ")\n"
+        << "sonar.device=" << p.name
+        << " sets these values (* only with sensor.model=device). Named in a scene file, the file's own keys "
+           "override them; named by --set (or the viewer's Device menu), they override the file's. Every "
+           "override is listed in the metadata (device_overrides) and, by the command line, said once on "
+           "stderr.\n";
     size_t wk = 0, wv = 0;
     for (auto& v : p.values) {
         wk = std::max(wk, v.key.size());
@@ -128,9 +134,11 @@ void print_preset(const DevicePreset& p) {
     }
     for (auto& v : p.values) {
         const std::string value = v.value.dump();
+        const ParamSpec* spec = find_param(v.key);
+        const bool effect = spec && !spec->ideal_value.is_null();
         out << "  " << v.key << std::string(wk - v.key.size() + 2, ' ') << value
-            << std::string(wv - value.size() + 2, ' ') << (v.sure ? "sure    " : "unsure  ") << v.source
-            << "\n";
+            << std::string(wv - value.size() + 2, ' ') << (effect ? "* " : "  ")
+            << (v.sure ? "sure    " : "unsure  ") << v.source << "\n";
     }
     std::cout << out.str();
 }

@@ -7,6 +7,7 @@
 #include "core/io/output.hpp"
 #include "core/pipeline/simulator.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -33,6 +34,16 @@ std::vector<std::uint8_t> view3d_png(const SceneDesc& scene) {
     (void)scene;
     throw InputError("--view3d", "", "this build has no viewer (SONARSIM_BUILD_VIEWER=OFF)");
 #endif
+}
+
+/// "trace 120 ms (shading included), image 30 ms": each stage that ran, the adaptive tracer's shading in
+/// its trace time.
+std::string stage_times(const Frame& f) {
+    auto ms = [](double t) { return std::to_string(int(std::lround(t))) + " ms"; };
+    std::string text = "trace " + ms(f.trace_ms);
+    text += f.shade_ms > 0 ? ", shade " + ms(f.shade_ms) : " (shading included)";
+    if (f.sensor_applied()) text += ", sensor " + ms(f.sensor_ms);
+    return text + ", image " + ms(f.image_ms);
 }
 
 void check_parent_dir(const std::string& path, const std::string& option) {
@@ -68,8 +79,7 @@ int run_render(const RenderOptions& o) {
     if (!o.view3d.empty()) std::cout << "wrote " << o.view3d << " (3D view)\n";
     std::cout << "wrote " << render_outputs_text(o.out, &scene) << "; image " << f->polar().bins << " x "
               << f->polar().beams << ", sector " << f->sector().width << "x" << f->sector().height << "\n"
-              << "rays " << f->hits().rays_traced << ", trace " << f->trace_ms << " ms, shade " << f->shade_ms
-              << " ms, image " << f->image_ms << " ms\n";
+              << "rays " << f->hits().rays_traced << ", " << stage_times(*f) << "\n";
     return 0;
 }
 

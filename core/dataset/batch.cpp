@@ -59,10 +59,13 @@ std::string index_row(const std::string& dir, const Trajectory& trajectory, size
     const TrajectoryPoint& p = trajectory[k];
     std::string files;
     std::error_code ec;
+    auto add = [&](const std::string& path) {
+        files += (files.empty() ? "" : ";") + fs::path(path).lexically_relative(dir).string();
+    };
     for (auto& o : render_outputs())
-        if (!o.wanted || fs::is_regular_file(prefix + o.suffix, ec))
-            files +=
-                (files.empty() ? "" : ";") + fs::path(prefix + o.suffix).lexically_relative(dir).string();
+        if (!o.wanted || fs::is_regular_file(prefix + o.suffix, ec)) add(prefix + o.suffix);
+    for (auto& name : ground_truth_names()) // batch --ground-truth
+        if (fs::is_regular_file(prefix + "_gt_" + name + ".npy", ec)) add(prefix + "_gt_" + name + ".npy");
     std::string ms, err_median, err_p95, rays;
     if (meta.is_object()) {
         if (meta.contains("time_ms")) ms = fmt(meta["time_ms"].value("total", 0.0));
@@ -137,8 +140,16 @@ void prepare_dataset(const std::string& dir, const SceneDesc& base, const Trajec
     const std::string scene_text = scene_to_json(stored).dump(2) + "\n";
     const std::string traj_text = trajectory_to_csv(trajectory);
     const std::string scene_path = dir + "/scene.json", traj_path = dir + "/trajectory.csv";
+    // The export keys choose how a dataset is packed, not what it holds: they may differ between runs.
+    auto same = [](const std::string& path, const std::string& a, const std::string& b) {
+        if (path.size() < 5 || path.compare(path.size() - 5, 5, ".json") != 0) return a == b;
+        json x = json::parse(a, nullptr, false), y = json::parse(b, nullptr, false);
+        if (x.is_object()) x.erase("export");
+        if (y.is_object()) y.erase("export");
+        return x == y;
+    };
     for (auto [path, text] : {std::pair{scene_path, scene_text}, std::pair{traj_path, traj_text}})
-        if (fs::exists(path, ec) && read_text(path) != text)
+        if (fs::exists(path, ec) && !same(path, read_text(path), text))
             throw InputError(dir, "",
                              "holds a dataset of another scene or trajectory (" + path +
                                  " differs); choose another directory");
@@ -166,6 +177,10 @@ BatchSummary run_batch(const std::string& dir, const BatchOptions& options) {
     BatchProgress progress;
     progress.total = frames.size();
     for (const size_t k : frames) {
+        if (options.stop && options.stop->load()) {
+            progress.interrupted = true;
+            break;
+        }
         if (!(options.resume && frame_complete(dir, k))) {
             const SceneDesc s = frame_scene(base, trajectory, k);
             if (sim)
@@ -187,6 +202,7 @@ BatchSummary run_batch(const std::string& dir, const BatchOptions& options) {
     summary.rendered = progress.rendered;
     summary.skipped = progress.done - progress.rendered;
     summary.elapsed_s = progress.elapsed_s;
+    summary.interrupted = progress.interrupted;
     if (options.index) summary.indexed = write_index(dir, trajectory);
     return summary;
 }

@@ -10,6 +10,7 @@
 #include "core/scene/scene.hpp"
 #include "core/dataset/trajectory.hpp"
 
+#include <atomic>
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -40,10 +41,11 @@ void prepare_dataset(const std::string& dir, const SceneDesc& base, const Trajec
 void load_dataset(const std::string& dir, SceneDesc& base, Trajectory& trajectory);
 
 struct BatchProgress {
-    size_t done = 0;      ///< frames of this run finished (rendered or skipped)
-    size_t total = 0;     ///< frames of this run
-    size_t rendered = 0;  ///< of `done`, rendered (not skipped as complete)
-    double elapsed_s = 0; ///< since the run started
+    size_t done = 0;          ///< frames of this run finished (rendered or skipped)
+    size_t total = 0;         ///< frames of this run
+    size_t rendered = 0;      ///< of `done`, rendered (not skipped as complete)
+    double elapsed_s = 0;     ///< since the run started
+    bool interrupted = false; ///< BatchOptions::stop was set: the frames after `done` were not rendered
 };
 
 struct BatchOptions {
@@ -52,12 +54,16 @@ struct BatchOptions {
     std::function<void(const BatchProgress&)> progress; ///< after each frame
     bool index = true; ///< rebuild index.csv at the end (a distributed run does it once, after all tasks)
     bool ground_truth = false; ///< also write each frame's PREFIX_gt_<name>.npy (ground_truth.hpp)
+    /// Checked before each frame: once true (e.g. set by a SIGINT handler), no further frame is started and
+    /// the run ends as if those were its last frames (the index rebuilt, BatchSummary::interrupted set).
+    const std::atomic<bool>* stop = nullptr;
 };
 
 struct BatchSummary {
     size_t rendered = 0, skipped = 0; ///< frames of this run rendered, and skipped as complete (--resume)
     size_t indexed = 0;               ///< frames listed in index.csv afterwards (all shards' complete frames)
     double elapsed_s = 0;             ///< rendering, without rebuilding the index
+    bool interrupted = false;         ///< stopped by BatchOptions::stop before the last frame
 };
 
 /// Renders the frames of `options` of the prepared dataset in DIR with one Simulator (the geometry is
@@ -69,8 +75,9 @@ BatchSummary run_batch(const std::string& dir, const BatchOptions& options);
 std::function<PolarImage(size_t)> dataset_images(const std::string& dir, size_t frames,
                                                  const std::string& origin);
 
-/// Rebuilds DIR/index.csv from the complete frames: frame, t, pose, files, render time [ms], the sampling
-/// error estimate [dB] and rays. Returns the number of frames listed.
+/// Rebuilds DIR/index.csv from the complete frames: frame, t, pose, files (every file of the frame, ground
+/// truth included), render time [ms], the sampling error estimate [dB] and rays. Returns the number of frames
+/// listed.
 size_t write_index(const std::string& dir, const Trajectory& trajectory);
 /// The same for the dataset in DIR, its trajectory read from DIR.
 size_t write_index(const std::string& dir);

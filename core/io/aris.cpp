@@ -44,7 +44,7 @@ le::Bytes file_header(const SceneDesc& s, const ArisMode& mode, size_t frames) {
 }
 
 le::Bytes frame_header(const SceneDesc& s, const ArisMode& mode, const ArisTiming& tm,
-                       const Trajectory& trajectory, size_t k) {
+                       const ByteMapping& mapping, const Trajectory& trajectory, size_t k) {
     le::Bytes h(kHeaderBytes, 0);
     const TrajectoryPoint& p = trajectory[k];
     const auto time_us = std::uint64_t(std::llround(std::max(0.0, p.t_s) * 1e6));
@@ -54,6 +54,8 @@ le::Bytes frame_header(const SceneDesc& s, const ArisMode& mode, const ArisTimin
     le::put<std::uint64_t>(h, 20, time_us);
     le::put<float>(h, 52, float(tm.window_start_m));
     le::put<float>(h, 56, float(tm.window_length_m));
+    le::put<float>(h, 92, float(mapping.lo_db)); // UserValue1, 2: the image levels of bytes 0 and 255
+    le::put<float>(h, 96, float(mapping.hi_db));
     le::put<float>(h, 224, float(s.water.temperature_c));
     const Vec3d &x = p.pose.position_m, &o = p.pose.orientation_deg;
     le::put<float>(h, 232, float(x[0])); // SonarX, Y, Z [m]
@@ -98,32 +100,35 @@ ArisTiming aris_timing(const SonarParams& sonar, double c_water) {
     return t;
 }
 
-std::uint8_t aris_byte(double level_db) {
-    if (!(level_db > 0)) return 0; // also -inf (nothing echoes) and NaN
-    return std::uint8_t(std::lround(255.0 / 80.0 * std::min(level_db, 80.0)));
-}
-
-void write_aris(const std::string& path, const SceneDesc& s, const Trajectory& trajectory,
-                const FrameImageSource& image, const std::string& origin) {
+ExportReport write_aris(const std::string& path, const SceneDesc& s, const Trajectory& trajectory,
+                        const FrameImageSource& image, const ByteMapping& mapping,
+                        const std::string& origin) {
     const ArisMode& mode = aris_mode(s.sonar.beams, origin);
     const ArisTiming tm = aris_timing(s.sonar, sound_speed_m_s(s.water.temperature_c, s.water.depth_m));
     const int beams = s.sonar.beams, samples = s.sonar.range_bins;
     AtomicFile out(path);
     out.write(file_header(s, mode, trajectory.size()));
     le::Bytes data(size_t(beams) * size_t(samples));
+    ExportReport report;
+    report.mapping = mapping;
     for (size_t k = 0; k < trajectory.size(); ++k) {
         const PolarImage img = image(k);
         if (img.beams != beams || img.bins != samples)
             throw std::runtime_error("frame " + std::to_string(k) + " is not " + std::to_string(samples) +
                                      " x " + std::to_string(beams));
+        ClipCount count;
+        const std::vector<std::uint8_t> bytes = image_bytes(img, mapping, count);
         // Sample-major; ARIS beam 0 is the starboard-most, our column 0 the port-most.
-        for (int r = 0; r < samples; ++r)
-            for (int b = 0; b < beams; ++b)
-                data[size_t(r) * size_t(beams) + size_t(b)] = aris_byte(double(img.at(r, beams - 1 - b)));
-        out.write(frame_header(s, mode, tm, trajectory, k));
+        for (size_t r = 0; r < size_t(samples); ++r)
+            for (size_t b = 0; b < size_t(beams); ++b)
+                data[r * size_t(beams) + b] = bytes[r * size_t(beams) + size_t(beams) - 1 - b];
+        out.write(frame_header(s, mode, tm, mapping, trajectory, k));
         out.write(data);
+        report.frames.push_back(count);
+        report.total += count;
     }
     out.commit();
+    return report;
 }
 
 } // namespace sonarsim

@@ -6,9 +6,9 @@
 #include "core/display/polar_image.hpp"
 #include "core/scene/scene.hpp"
 #include "core/dataset/trajectory.hpp"
+#include "core/io/byte_mapping.hpp"
 
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,22 +24,16 @@ struct ArisTiming {
 };
 ArisTiming aris_timing(const SonarParams& sonar, double water_sound_speed_m_s);
 
-/// The byte of image level `level_db`: 255/80 clamp(L, 0, 80), rounded; 0 where nothing echoes.
-/// The image level is what the frame's .npy holds: the sensor's output, its TVG and gain (sensor.tvg,
-/// sensor.gain_db) included; with the ideal sensor, L_EN. As on the device, the gain decides what 0 to 80 dB
-/// covers.
-std::uint8_t aris_byte(double level_db);
-
 /// Throws InputError(origin, "sonar.beams", ...) unless the scene has 48, 64, 96 or 128 beams.
 void check_aris_beams(const SceneDesc& scene, const std::string& origin);
 
-/// L_EN image of frame k (range bins x beams, row 0 nearest, column 0 port-most), read one at a time.
-using FrameImageSource = std::function<PolarImage(size_t k)>;
-
-/// Writes every frame of `trajectory` as one .aris file (atomically: a temporary, then a rename). Pose and
-/// time go into the frame headers (SonarX/Y/Z, SonarPan/Tilt/Roll = yaw/pitch/roll, FrameTime = t). Throws
+/// Writes every frame of `trajectory` as one .aris file (atomically: a temporary, then a rename), each
+/// sample the byte of its image level (the frame's .npy: the sensor's output, TVG and gain included; with
+/// the ideal sensor, L_EN) under `mapping`, whose levels of bytes 0 and 255 go into every frame header's
+/// UserValue1 and UserValue2 [dB]. Pose and time go into the frame headers (SonarX/Y/Z,
+/// SonarPan/Tilt/Roll = yaw/pitch/roll, FrameTime = t). Returns what the mapping clipped. Throws
 /// InputError(origin, "sonar.beams", ...) unless the scene has 48, 64, 96 or 128 beams.
-void write_aris(const std::string& path, const SceneDesc& scene, const Trajectory& trajectory,
-                const FrameImageSource& image, const std::string& origin);
+ExportReport write_aris(const std::string& path, const SceneDesc& scene, const Trajectory& trajectory,
+                        const FrameImageSource& image, const ByteMapping& mapping, const std::string& origin);
 
 } // namespace sonarsim

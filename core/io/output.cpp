@@ -110,11 +110,16 @@ const std::vector<RenderOutput>& render_outputs() {
     static const std::vector<RenderOutput> table = {
         {".png", "sector image", sector_png},
         {"_polar.png", "polar image, gray", polar_png},
-        {".npy", "the image level dB, float32 (range bins, beams): L_EN through the sensor", level_npy},
+        {".npy", "the image level dB, float32 (range bins, beams): L_EN through the sensor", level_npy,
+         nullptr, "the image level dB, float32 (range bins, beams): L_EN (the ideal sensor)"},
         {".json", "metadata", metadata_json},
         {"_ideal.npy", "L_EN dB before the sensor stage (only when the sensor is not ideal)", ideal_npy,
          sensor_applied}};
     return table;
+}
+
+const char* RenderOutput::what_for(const SceneDesc* scene) const {
+    return scene && what_ideal && sensor_is_ideal(*scene) ? what_ideal : what;
 }
 
 std::vector<std::string> render_output_paths(const std::string& prefix, const SceneDesc& scene) {
@@ -128,7 +133,7 @@ std::string render_outputs_text(const std::string& prefix, const SceneDesc* scen
     std::string text;
     for (auto& o : render_outputs())
         if (!scene || o.written_for(*scene))
-            text += (text.empty() ? "" : ", ") + prefix + o.suffix + " (" + o.what + ")";
+            text += (text.empty() ? "" : ", ") + prefix + o.suffix + " (" + o.what_for(scene) + ")";
     return text;
 }
 

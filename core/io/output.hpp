@@ -59,7 +59,11 @@ struct RenderOutput {
     const char* what;   ///< what it holds, for messages and docs
     Bytes (*encode)(const SceneDesc& scene, const Frame& frame);
     bool (*wanted)(const SceneDesc& scene) = nullptr; ///< written only where it says so (null: always)
+    const char* what_ideal =
+        nullptr; ///< what it holds under the ideal sensor, where that differs (null: what)
     bool written_for(const SceneDesc& scene) const { return !wanted || wanted(scene); }
+    /// What it holds in `scene`'s files (null: in general).
+    const char* what_for(const SceneDesc* scene) const;
 };
 
 /// The one table of the files a frame is written as: by `render`, the viewer's snapshot and `batch`.

@@ -5,6 +5,7 @@
 #include "core/base/pose.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 namespace sonarsim {
 namespace {
@@ -64,7 +65,8 @@ const std::string& projected_sonar_image_schema() {
 }
 
 Bytes encode_projected_sonar_image(const SceneDesc& s, const PolarImage& img, double t_s,
-                                   const std::string& frame_id, SonarDataType type) {
+                                   const std::string& frame_id, SonarDataType type,
+                                   const ByteMapping& mapping, ClipCount& count) {
     Cdr c;
     const long long ns = std::llround(t_s * 1e9);
     c.put<std::int32_t>(std::int32_t(ns / 1000000000)); // header.stamp (t >= 0)
@@ -93,7 +95,7 @@ Bytes encode_projected_sonar_image(const SceneDesc& s, const PolarImage& img, do
     c.put<std::uint32_t>(std::uint32_t(beams));
     Bytes data;
     if (type == SonarDataType::Uint8) {
-        for (float l : img.level_db) data.push_back(aris_byte(double(l)));
+        data = image_bytes(img, mapping, count);
     } else {
         le::append_bytes(data, img.level_db.data(), img.level_db.size() * sizeof(float));
     }
@@ -101,18 +103,32 @@ Bytes encode_projected_sonar_image(const SceneDesc& s, const PolarImage& img, do
     return c.take();
 }
 
-void write_sonar_mcap(const std::string& path, const SceneDesc& s, const Trajectory& trajectory,
-                      const FrameImageSource& image, SonarDataType type) {
+ExportReport write_sonar_mcap(const std::string& path, const SceneDesc& s, const Trajectory& trajectory,
+                              const FrameImageSource& image, SonarDataType type, const ByteMapping& mapping) {
     McapWriter w(path, "ros2", "sonarsim");
     const auto schema = w.add_schema("marine_acoustic_msgs/msg/ProjectedSonarImage", "ros2msg",
                                      projected_sonar_image_schema());
-    const auto channel = w.add_channel(schema, "/sonarsim/image", "cdr", {{"offered_qos_profiles", ""}});
+    std::map<std::string, std::string> metadata{{"offered_qos_profiles", ""}};
+    if (type == SonarDataType::Uint8) {
+        char lo[32], hi[32];
+        std::snprintf(lo, sizeof lo, "%.9g", mapping.lo_db);
+        std::snprintf(hi, sizeof hi, "%.9g", mapping.hi_db);
+        metadata["byte_lo_db"] = lo; // the image levels of bytes 0 and 255
+        metadata["byte_hi_db"] = hi;
+    }
+    const auto channel = w.add_channel(schema, "/sonarsim/image", "cdr", metadata);
+    ExportReport report;
+    report.mapping = mapping;
     for (size_t k = 0; k < trajectory.size(); ++k) {
         const double t = std::max(0.0, trajectory[k].t_s);
+        ClipCount count;
         w.add_message(channel, std::uint32_t(k), std::uint64_t(std::llround(t * 1e9)),
-                      encode_projected_sonar_image(s, image(k), t, "sonar", type));
+                      encode_projected_sonar_image(s, image(k), t, "sonar", type, mapping, count));
+        report.frames.push_back(count);
+        report.total += count;
     }
     w.finish();
+    return report;
 }
 
 } // namespace sonarsim

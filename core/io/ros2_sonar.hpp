@@ -14,15 +14,18 @@ enum class SonarDataType { Uint8, Float32 };
 /// The message's .msg definition with its dependencies (MCAP schema encoding `ros2msg`).
 const std::string& projected_sonar_image_schema();
 
-/// One ProjectedSonarImage of `image` (L_EN dB) in CDR (little-endian, with its encapsulation header).
-/// Uint8 data holds aris_byte(L_EN - display.lo_db); Float32 data holds L_EN [dB] (-inf where nothing
-/// echoes).
+/// One ProjectedSonarImage of `image` (the image level dB, as the frame's .npy) in CDR (little-endian, with
+/// its encapsulation header). Uint8 data holds level_byte(L, mapping), counted into `count`; Float32 data
+/// holds L [dB] (-inf where nothing echoes).
 Bytes encode_projected_sonar_image(const SceneDesc& scene, const PolarImage& image, double t_s,
-                                   const std::string& frame_id, SonarDataType type);
+                                   const std::string& frame_id, SonarDataType type,
+                                   const ByteMapping& mapping, ClipCount& count);
 
 /// Writes every frame of `trajectory` as a ROS 2 bag in MCAP (profile ros2, topic /sonarsim/image, frame
-/// id "sonar", log time = t), atomically.
-void write_sonar_mcap(const std::string& path, const SceneDesc& scene, const Trajectory& trajectory,
-                      const FrameImageSource& image, SonarDataType type);
+/// id "sonar", log time = t), atomically. Uint8 data under `mapping`, whose levels of bytes 0 and 255 the
+/// channel's metadata holds (byte_lo_db, byte_hi_db). Returns what the mapping clipped (nothing for
+/// Float32).
+ExportReport write_sonar_mcap(const std::string& path, const SceneDesc& scene, const Trajectory& trajectory,
+                              const FrameImageSource& image, SonarDataType type, const ByteMapping& mapping);
 
 } // namespace sonarsim

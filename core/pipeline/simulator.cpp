@@ -1,6 +1,8 @@
 #include "core/pipeline/simulator.hpp"
 
 #include "core/base/pose.hpp"
+#include "core/devices/device_overrides.hpp"
+#include "core/devices/devices.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/sensor/sensor.hpp"
 #include "core/shading/shade.hpp"
@@ -129,6 +131,8 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
                     {"image", f.image_ms},
                     {"total", f.trace_ms + f.shade_ms + f.sensor_ms + f.image_ms}};
     j["display_range_db"] = {f.display.lo_db, f.display.hi_db};
+    if (find_device(s.sonar.device)) // the preset's keys the scene file or --set gave other values
+        j["device_overrides"] = device_overrides_json(device_overrides(s));
     j["image"] = {{"npy_shape", {s.sonar.range_bins, s.sonar.beams}},
                   {"npy_rows", "range bins, row 0 nearest"},
                   {"npy_columns", "beams, column 0 port-most"},

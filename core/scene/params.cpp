@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <optional>
@@ -323,6 +324,17 @@ std::vector<ParamSpec> build_scene_params() {
                        [](S s) -> bool& { return s.display.auto_range; }),
                nullptr, true));
     add_sensor_params(t);
+    t.push_back(boolean("export.auto", Stage::None,
+                        "8-bit exports (.aris, MCAP uint8): byte 255 at the 99.5th percentile of the "
+                        "exported frames' finite levels, byte 0 80 dB below (ARIS's 80 dB over 255 steps), "
+                        "one mapping for all frames; instead of export.lo_db, export.hi_db",
+                        [](S s) -> bool& { return s.exports.auto_range; }));
+    t.push_back(number("export.lo_db", "dB", -1000, 1000, false, false, Stage::None,
+                       "8-bit exports without export.auto: the image level written as byte 0 (and below)",
+                       [](S s) -> double& { return s.exports.lo_db; }));
+    t.push_back(number("export.hi_db", "dB", -1000, 1000, false, false, Stage::None,
+                       "8-bit exports without export.auto: the image level written as byte 255 (and above)",
+                       [](S s) -> double& { return s.exports.hi_db; }));
     return t;
 }
 
@@ -781,11 +793,27 @@ Stage apply_setting_text(SceneDesc& scene, const std::string& text, const std::s
     return apply_setting(scene, key, value, origin);
 }
 
-void validate_scene(const SceneDesc& s, const std::string& file) {
+void validate_scene(const SceneDesc& s, const std::string& file, const std::vector<std::string>& just_set) {
+    // Whether `b`, not `a`, is the key to name: the caller has just set b and not a.
+    auto second = [&](const char* a, const char* b) {
+        auto set = [&](const char* k) {
+            return std::find(just_set.begin(), just_set.end(), k) != just_set.end();
+        };
+        return set(b) && !set(a);
+    };
+    // "KEY (value) must be below OTHER (value)", said of the key the caller set.
+    auto order = [&](const char* lo_key, double lo, const char* hi_key, double hi) {
+        auto name = [](const char* k) { return std::string(std::strrchr(k, '.') + 1); };
+        if (second(lo_key, hi_key))
+            throw InputError(file, hi_key,
+                             name(hi_key) + " (" + fmt(hi) + ") must be above " + name(lo_key) + " (" +
+                                 fmt(lo) + ")");
+        throw InputError(file, lo_key,
+                         name(lo_key) + " (" + fmt(lo) + ") must be below " + name(hi_key) + " (" + fmt(hi) +
+                             ")");
+    };
     if (!(s.sonar.range_min_m < s.sonar.range_max_m))
-        throw InputError(file, "sonar.range_min_m",
-                         "range_min_m (" + fmt(s.sonar.range_min_m) + ") must be below range_max_m (" +
-                             fmt(s.sonar.range_max_m) + ")");
+        order("sonar.range_min_m", s.sonar.range_min_m, "sonar.range_max_m", s.sonar.range_max_m);
     if (s.sampling.placement == RayPlacement::Adaptive && s.sampling.binning == EchoBinning::Point)
         throw InputError(file, "sampling.binning",
                          "adaptive placement needs \"footprint\" binning (its refinement and error estimate "
@@ -814,10 +842,11 @@ void validate_scene(const SceneDesc& s, const std::string& file) {
                              fmt(kMaxImageCells) + " cells per image");
     const double sector_px = sector_image_pixels(s.sonar);
     if (!(sector_px <= kMaxImageCells))
-        throw InputError(file, "sonar.range_min_m",
-                         "the sector image would have " + fmt(sector_px) + " pixels (limit " +
-                             fmt(kMaxImageCells) +
-                             "): range_min_m is too close to range_max_m for this field of view");
+        throw InputError(
+            file,
+            second("sonar.range_min_m", "sonar.range_max_m") ? "sonar.range_max_m" : "sonar.range_min_m",
+            "the sector image would have " + fmt(sector_px) + " pixels (limit " + fmt(kMaxImageCells) +
+                "): range_min_m is too close to range_max_m for this field of view");
     const ElevationWeight elevation(s);
     if (!(rad2deg(elevation.traced_fov_rad()) < 180))
         throw InputError(
@@ -840,7 +869,9 @@ void validate_scene(const SceneDesc& s, const std::string& file) {
                                  " m) must be below the water surface (z = " + fmt(*h) + " m)");
     }
     if (!(s.display.lo_db < s.display.hi_db))
-        throw InputError(file, "display.lo_db", "lo_db must be below hi_db");
+        order("display.lo_db", s.display.lo_db, "display.hi_db", s.display.hi_db);
+    if (!s.exports.auto_range && !(s.exports.lo_db < s.exports.hi_db))
+        order("export.lo_db", s.exports.lo_db, "export.hi_db", s.exports.hi_db);
     for (size_t i = 0; i < s.objects.size(); ++i) {
         const auto& o = s.objects[i];
         for (double c : o.scale)

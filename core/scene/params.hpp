@@ -133,8 +133,11 @@ Stage apply_setting_text(SceneDesc& scene, const std::string& assignment, const 
 /// alone: the earliest effective stage of the rows whose values differ.
 Stage changed_stage(const SceneDesc& before, const SceneDesc& after);
 
-/// Cross-field checks (range_min < range_max, ray buffers that fit in memory, ...).
-void validate_scene(const SceneDesc& scene, const std::string& file);
+/// Cross-field checks (range_min < range_max, ray buffers that fit in memory, ...). A check between two
+/// keys names the one of them in `just_set` (the keys the caller has just set, e.g. by `--set`), the first
+/// otherwise.
+void validate_scene(const SceneDesc& scene, const std::string& file,
+                    const std::vector<std::string>& just_set = {});
 
 /// Upper bound on the rays of one image; larger requests are rejected, not clamped.
 constexpr double kMaxRaysPerImage = 5.0e7;

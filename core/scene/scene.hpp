@@ -80,6 +80,13 @@ struct DisplayParams {
     bool auto_range = false; ///< lo/hi from the image's 5th and 99.5th percentiles instead of lo_db/hi_db
 };
 
+/// The 8-bit exports (.aris, MCAP uint8): the image levels bytes 0 and 255 stand for (io/byte_mapping.hpp).
+struct ExportParams {
+    bool auto_range = true; ///< chosen from the levels of the exported frames instead of lo_db/hi_db
+    double lo_db = 0;       ///< level of byte 0 (and below)
+    double hi_db = 80;      ///< level of byte 255 (and above)
+};
+
 enum class SensorModel { Ideal, Device };
 enum class AzimuthWindow { None, Rect, Hann, Taylor };
 enum class Beamformer { Lens, Array };
@@ -136,6 +143,7 @@ struct SceneDesc {
     SamplingParams sampling;
     DisplayParams display;
     SensorParams sensor;
+    ExportParams exports;
     std::optional<Seafloor> seafloor = Seafloor{};
     std::vector<ObjectDesc> objects;
 };

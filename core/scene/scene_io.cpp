@@ -163,7 +163,7 @@ SceneDesc parse_scene(const std::string& text, const std::string& file, const st
     }
     for (auto& [section, body] : root.items()) {
         if (section == "sonar" || section == "water" || section == "sampling" || section == "display" ||
-            section == "sensor") {
+            section == "sensor" || section == "export") {
             require_object(body, file, section);
             for (auto& [k, val] : body.items()) {
                 const std::string key = section + "." + k;
@@ -209,7 +209,7 @@ SceneDesc parse_scene(const std::string& text, const std::string& file, const st
         } else {
             throw InputError(
                 file, section,
-                "unknown key; allowed: sonar, water, sampling, display, sensor, seafloor, objects");
+                "unknown key; allowed: sonar, water, sampling, display, sensor, export, seafloor, objects");
         }
     }
     if (!root.contains("seafloor")) scene.seafloor.reset(); // omit the seafloor key: no floor

@@ -31,14 +31,17 @@ SceneDesc with_gain(SceneDesc s, double gain_db) {
     return s;
 }
 
+/// The mapping these tests read the files with: bytes 0 ... 255 = image levels 0 ... 80 dB.
+const ByteMapping kZeroTo80{0, 80, false};
+
 /// A dataset of 3 frames of the small scene (48 beams, 96 bins) along a line.
 struct Dataset {
     std::string dir;
     SceneDesc scene = with_gain(small_scene(), -80); // L_EN 80 ... 130 dB into the bytes' 0 ... 80 dB
     Trajectory trajectory = line_trajectory("0.3,2.4,0.9,0.4,2.3,0.9,3", {-1, 30, -39}, 6.5, "test");
     std::vector<PolarImage> images;
-    Dataset() {
-        dir = batch_out("formats");
+    explicit Dataset(const std::string& name) {
+        dir = batch_out(name);
         prepare_dataset(dir, scene, trajectory);
         run_batch(dir, {});
         for (size_t k = 0; k < trajectory.size(); ++k) {
@@ -48,8 +51,9 @@ struct Dataset {
     }
 };
 
-const Dataset& dataset() {
-    static const Dataset d;
+/// One directory per test case: ctest runs them as parallel processes.
+const Dataset& dataset(const std::string& name) {
+    static const Dataset d(name);
     return d;
 }
 
@@ -83,9 +87,9 @@ std::uint32_t bitwise_crc32(const std::uint8_t* p, size_t n) {
 } // namespace
 
 TEST_CASE("an ARIS file read from its specification gives back the frames", "[aris]") {
-    const Dataset& d = dataset();
+    const Dataset& d = dataset("formats_aris");
     const std::string path = d.dir + "/out.aris";
-    write_aris(path, d.scene, d.trajectory, dataset_images(d.dir, 3, "--aris"), "--aris");
+    write_aris(path, d.scene, d.trajectory, dataset_images(d.dir, 3, "--aris"), kZeroTo80, "--aris");
     const auto b = file_bytes(path);
     const size_t beams = at<std::uint32_t>(b, 1024 + 436) == 1 ? 48 : 0; // PingMode 1: 48 beams
     REQUIRE(beams == 48);
@@ -191,10 +195,10 @@ struct Reader {
 } // namespace
 
 TEST_CASE("an MCAP bag read from its specification gives back the frames", "[mcap]") {
-    const Dataset& d = dataset();
+    const Dataset& d = dataset("formats_mcap");
     for (const auto type : {SonarDataType::Uint8, SonarDataType::Float32}) {
         const std::string path = d.dir + "/out.mcap";
-        write_sonar_mcap(path, d.scene, d.trajectory, dataset_images(d.dir, 3, "--mcap"), type);
+        write_sonar_mcap(path, d.scene, d.trajectory, dataset_images(d.dir, 3, "--mcap"), type, kZeroTo80);
         const auto b = file_bytes(path);
         const auto recs = mcap_records(b);
         REQUIRE(recs.front().op == 0x01);
