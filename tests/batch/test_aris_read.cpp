@@ -142,7 +142,7 @@ TEST_CASE("a recording our writer made reads back frame by frame", "[aris]") {
     prepare_dataset(dir, scene, t);
     run_batch(dir, {});
     const std::string path = dir + "/out.aris";
-    write_aris(path, scene, t, dataset_images(dir, 3, "--aris"), "--aris");
+    write_aris(path, scene, t, dataset_images(dir, 3, "--aris"), ByteMapping{0, 80, false}, "--aris");
     REQUIRE(aris_frame_count(path) == 3);
     for (size_t k = 0; k < 3; ++k) {
         const ArisFrame f = read_aris_frame(path, k);

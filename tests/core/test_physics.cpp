@@ -71,7 +71,7 @@ TEST_CASE("GSAB: Lambert exponent, specular lobe and no return", "[physics]") {
 }
 
 TEST_CASE("one cell's echo level is L_S - 2 TL + L_BS + 10 log10(r^2 dOmega / cos)", "[physics]") {
-    const ShadeConstants k{230.0, 10.0, 3.04};
+    const ShadeConstants k{230.0, 10.0, 3.04, 0.0};
     Material m; // nu -45 dB, q 2
     const double r = 2.0, c = 0.5, dom = 1e-6;
     const double expect = 230 - 2 * (20 * std::log10(r) + 3.04 * r) + (-45 + 20 * std::log10(c)) +
