@@ -7,14 +7,15 @@
 viewer: `sonarsim view --script` under Xvfb replays the same cycle of work again and again: open each example
 scene, orbit the camera with the mouse, move sliders, play a recorded trajectory (the sonar moves every frame,
 so each frame retraces), toggle views. The first cycle is warm-up (caches fill, the mesh cache holds every
-scene). batch: one frame per pose of a circle around the wreck, with ground truth.
-The resident set size (VmRSS) is sampled every 0.2 s. Growth is measured between the end of the warm-up (the
-first cycle, or the first tenth of the frames) and the end, as the peak of the last stretch over the peak of the
-first one (peaks, so that a sample caught mid-frame does not decide it). Exit status 1 when a growth exceeds
+scene). batch: laps of the same 50-frame circle around the wreck, with ground truth, so that every lap does the
+same work; growth is the last lap's peak over the second lap's.
+The resident set size (VmRSS) is sampled every 0.2 s. Growth is the peak of the last cycle (lap) over the peak of
+the second (peaks, so that a sample caught mid-frame does not decide it). Exit status 1 when a growth exceeds
 --max-growth; the figures go to OUT/soak.json.
 """
 import argparse
 import json
+import math
 import os
 import pathlib
 import shutil
@@ -25,6 +26,7 @@ import time
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 SCENES = ["shipwreck.json", "monterey.json", "tank.json", "fig9.json"]
 FRAMES_PER_SCENE = 60  # viewer frames spent in each scene of a cycle
+LAP_FRAMES = 50  # batch frames per lap around the wreck
 
 
 def rss_kib(pid):
@@ -141,13 +143,13 @@ def main():
     ap.add_argument("--viewer-cycles", type=int, default=6)
     ap.add_argument("--batch-frames", type=int, default=1000)
     ap.add_argument("--batch-scene", default=str(ROOT / "assets" / "scenes" / "shipwreck.json"),
-                    help="scene of the batch soak (its circle: radius 17 m, 6 m up, around the origin)")
+                    help="scene of the batch soak (laps of a circle: radius 17 m, 6 m up, around the origin)")
     ap.add_argument("--max-growth", type=float, default=0.05)
     ap.add_argument("--no-viewer", action="store_true")
     ap.add_argument("--no-batch", action="store_true")
     a = ap.parse_args()
-    if a.viewer_cycles < 2 or a.batch_frames < 20:
-        sys.exit("soak: --viewer-cycles must be at least 2 and --batch-frames at least 20")
+    if a.viewer_cycles < 2 or a.batch_frames < 3 * LAP_FRAMES:
+        sys.exit(f"soak: --viewer-cycles must be at least 2 and --batch-frames at least {3 * LAP_FRAMES}")
     out = pathlib.Path(a.out)
     shutil.rmtree(out, ignore_errors=True)
     out.mkdir(parents=True)
@@ -171,16 +173,29 @@ def main():
         failed |= g > a.max_growth
 
     if not a.no_batch:
-        n = a.batch_frames
-        cmd = [exe, "batch", "--scene", a.batch_scene, "--circle",
-               f"0,0,0,17,6,{n}", "--ground-truth", "--out", str(out / "batch")]
+        # Laps of the same circle, so that every lap does the same work: growth is the last lap's peak over the
+        # second's (the first is warm-up).
+        laps = a.batch_frames // LAP_FRAMES
+        traj = out / "laps.csv"
+        with open(traj, "w") as f:
+            f.write("t,x,y,z,roll_deg,pitch_deg,yaw_deg\n")
+            for i in range(laps * LAP_FRAMES):
+                th = 2 * math.pi * (i % LAP_FRAMES) / LAP_FRAMES
+                yaw = (math.degrees(th) + 180 + 180) % 360 - 180
+                f.write(f"{0.1 * i:.1f},{17 * math.cos(th):.6f},{17 * math.sin(th):.6f},6,0,"
+                        f"{math.degrees(math.atan2(6, 17)):.6f},{yaw:.6f}\n")
+        cmd = [exe, "batch", "--scene", a.batch_scene, "--trajectory", str(traj), "--ground-truth", "--out",
+               str(out / "batch")]
         samples, secs = sample(cmd, "sonarsim", label="batch soak")
-        tenth = secs / 10
-        first, last, g = growth(samples, tenth, tenth)
-        report["batch"] = {"frames": n, "seconds": round(secs, 1), "rss_after_warmup_mib": round(first / 1024, 1),
-                           "rss_end_mib": round(last / 1024, 1), "growth": round(g, 4), "samples": samples}
-        print(f"batch: {n} frames, {secs:.0f} s; RSS after the first tenth {first / 1024:.0f} MiB, at the end "
-              f"{last / 1024:.0f} MiB: growth {g:+.1%}")
+        lap_s = secs / laps
+        peaks = [max([r for t, r in samples if k * lap_s <= t < (k + 1) * lap_s] or [0]) for k in range(laps)]
+        first, last = peaks[1], peaks[-1]
+        g = (last - first) / first
+        report["batch"] = {"frames": laps * LAP_FRAMES, "laps": laps, "seconds": round(secs, 1),
+                           "lap_peaks_mib": [round(p / 1024, 1) for p in peaks], "growth": round(g, 4),
+                           "samples": samples}
+        print(f"batch: {laps} laps of {LAP_FRAMES} frames around the wreck, {secs:.0f} s; peak RSS per lap "
+              f"{', '.join(f'{p / 1024:.0f}' for p in peaks)} MiB: growth from lap 2 to the last {g:+.1%}")
         failed |= g > a.max_growth
 
     (out / "soak.json").write_text(json.dumps(report))

@@ -720,7 +720,8 @@ void set_value(SceneDesc& scene, const std::string& key, const json& value, cons
         return;
     }
     std::string known;
-    for (auto& p : scene_params()) known += (known.empty() ? "" : ", ") + p.key;
+    for (const auto* list : {&scene_params(), &input_params()})
+        for (auto& p : *list) known += (known.empty() ? "" : ", ") + p.key;
     for (auto& p : seafloor_params()) known += ", seafloor." + p.key;
     throw InputError(file, key,
                      "unknown key; allowed: " + known +

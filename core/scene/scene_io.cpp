@@ -175,9 +175,10 @@ SceneDesc parse_scene(const std::string& text, const std::string& file, const st
                 const ParamSpec* p = find_param(key);
                 if (!p) {
                     std::string allowed;
-                    for (auto& q : scene_params())
-                        if (q.key.rfind(section + ".", 0) == 0)
-                            allowed += (allowed.empty() ? "" : ", ") + q.key.substr(section.size() + 1);
+                    for (const auto* list : {&scene_params(), &input_params()})
+                        for (auto& q : *list)
+                            if (q.key.rfind(section + ".", 0) == 0)
+                                allowed += (allowed.empty() ? "" : ", ") + q.key.substr(section.size() + 1);
                     if (section == "water") allowed += ", surface_material";
                     throw InputError(file, key, "unknown key; allowed: " + allowed);
                 }
