@@ -24,6 +24,10 @@ struct Sampler {
     int elevation_levels, azimuth_levels;
     mutable std::atomic<std::uint64_t> rays{0}; ///< rays traced or reserved in this image, all passes
     mutable std::atomic<bool> budget_hit{false};
+    std::vector<Angle> base_angles; ///< the base grid's elevations (set_base_grid)
+
+    /// Elevations of a pass's base grid of M0 rays (once per pass instead of once per column).
+    void set_base_grid(int M0);
 
     Sampler(const SceneGeometry& geo, const SceneDesc& scene, const TraceControl& c);
 

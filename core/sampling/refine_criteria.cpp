@@ -64,6 +64,16 @@ bool RefineCriteria::surface_edge(const Hit& x, const glm::dvec3& px, const Hit&
                                   const EdgeRay& edge) const {
     if (x.material != y.material) return true;
     if (x.material == kFloorMaterial || x.material == kSurfaceMaterial || x.prim == y.prim) return false;
+    glm::dvec3 d_near;
+    if (edge.dir_near(frame_, d_near)) {
+        const double rx = detail::plane_range_near(frame_.origin, px, x.face_normal, d_near);
+        const double ry = detail::plane_range_near(frame_.origin, py, y.face_normal, d_near);
+        // Decided by the near direction unless |rx - ry| lies within its error of gap_m_.
+        if (rx < 0 || ry < 0) return true;
+        if (rx > 0 && ry > 0 && std::abs(std::abs(rx - ry) - gap_m_) > 1e-7 * (rx + ry)) {
+            return std::abs(rx - ry) > gap_m_;
+        }
+    }
     const glm::dvec3 d_edge = edge.dir(frame_);
     const double rx = detail::plane_range(frame_.origin, px, x.face_normal, d_edge);
     const double ry = detail::plane_range(frame_.origin, py, y.face_normal, d_edge);
@@ -121,9 +131,19 @@ bool RefineCriteria::needs_split_alone(const Node& n, const Angle& a) const {
         const double e_star = std::atan2(v.z, v.x * a.c + v.y * a.s);
         if (std::abs(e_star - n.e) < n.de / 2 + 2 * deg2rad(m.h_deg)) return true;
     }
-    for (double edge : {n.e - n.de / 2, n.e + n.de / 2})
-        if (detail::plane_range(frame_.origin, n.p, n.hit->face_normal, frame_.dir(a, Angle(edge))) < 0)
+    // A horizon inside: an edge ray that misses the face's plane. Edge directions by the angle-sum
+    // identities decide unless an edge ray nearly grazes the plane; then sin and cos of the edge decide.
+    const Angle& h = detail::half_angle(n.de);
+    for (int sign : {-1, +1}) {
+        const double edge = sign < 0 ? n.e - n.de / 2 : n.e + n.de / 2;
+        const Angle near(edge, n.angle, h, sign);
+        const double r =
+            detail::plane_range_near(frame_.origin, n.p, n.hit->face_normal, frame_.dir(a, near));
+        if (r == r
+                ? r < 0
+                : detail::plane_range(frame_.origin, n.p, n.hit->face_normal, frame_.dir(a, Angle(edge))) < 0)
             return true;
+    }
     return false;
 }
 
@@ -135,9 +155,8 @@ bool RefineCriteria::absorbed_across(double footprint_m) const {
     return 2 * k_.alpha_db_per_m * footprint_m > range_jump_db_;
 }
 
-bool RefineCriteria::absorbed_across_azimuth(const Node& n, const Column& c) const {
+bool RefineCriteria::absorbed_across_azimuth(const Node& n, const Column& c, const Angle& a) const {
     if (!n.hit || !(k_.alpha_db_per_m > 0)) return false;
-    const Angle a(c.a);
     const glm::dvec3 d = frame_.dir(a, n.angle);
     const glm::dvec3 d_a = frame_.R * glm::dvec3(-n.angle.c * a.s, n.angle.c * a.c, 0);
     const glm::dvec3& nf = n.hit->face_normal; // the footprint's plane, as in make_cell
