@@ -7,7 +7,10 @@
 #include "core/sampling/adaptive_node.hpp"
 #include "core/sampling/refine_criteria.hpp"
 
+#include <tbb/enumerable_thread_specific.h>
+
 #include <atomic>
+#include <deque>
 #include <cstdint>
 
 namespace sonarsim::adaptive {
@@ -25,6 +28,8 @@ struct Sampler {
     mutable std::atomic<std::uint64_t> rays{0}; ///< rays traced or reserved in this image, all passes
     mutable std::atomic<bool> budget_hit{false};
     std::vector<Angle> base_angles; ///< the base grid's elevations (set_base_grid)
+    /// Multipath: the nodes' continuations (Node::via), per thread, in blocks that never move.
+    mutable tbb::enumerable_thread_specific<std::deque<Via>> via_store;
 
     /// Elevations of a pass's base grid of M0 rays (once per pass instead of once per column).
     void set_base_grid(int M0);

@@ -13,6 +13,7 @@ Sampler::Sampler(const SceneGeometry& geo, const SceneDesc& scene, const TraceCo
       elevation_levels(c.preview ? 0 : kElevationLevels), azimuth_levels(c.preview ? 0 : kAzimuthLevels) {}
 
 void Sampler::set_base_grid(int M0) {
+    for (auto& store : via_store) store.clear(); // the last pass's nodes are gone
     const double de0 = phi / M0;
     base_angles.resize(size_t(M0));
     for (int j = 0; j < M0; ++j) base_angles[size_t(j)] = Angle(phi / 2 - (j + 0.5) * de0);
@@ -27,7 +28,7 @@ bool Sampler::reserve(std::uint64_t n) const {
 
 Node Sampler::trace_node(const Angle& a, const Angle& e, double de, int group) const {
     Node n;
-    n.e = e.rad, n.de = de, n.group = group, n.angle = e;
+    n.de = de, n.group = group, n.angle = e;
     const glm::dvec3 d = frame.dir(a, n.angle);
     n.hit = detail::first_hit(g, s, frame.origin, d, frame.t_max);
     if (n.hit) {
@@ -46,13 +47,16 @@ Node Sampler::trace_node(const Angle& a, const Angle& e, double de, int group) c
 }
 
 void Sampler::trace_continuation(Node& n, const Angle& a) const {
-    n.via = mp.continuation(*n.hit, a, n.angle);
-    if (!n.via.hit) return;
-    const Hit& v = *n.via.hit;
-    const double c = n.via.cos_at_hit;
-    n.via_density_db =
-        cell_echo_db(criteria.constants(), material_of(s, v.material), v.t, c, frame.elevation_weight(n.e));
-    n.via_dr_de = v.t * std::min(1.0 / kLn10Over10, std::sqrt(std::max(0.0, 1 - c * c)) / std::max(c, 1e-9));
+    auto& store = via_store.local();
+    Via& via = store.emplace_back();
+    n.via = &via;
+    static_cast<detail::Multipath::Continuation&>(via) = mp.continuation(*n.hit, a, n.angle);
+    if (!via.hit) return;
+    const Hit& v = *via.hit;
+    const double c = via.cos_at_hit;
+    via.density_db = cell_echo_db(criteria.constants(), material_of(s, v.material), v.t, c,
+                                  frame.elevation_weight(n.angle.rad));
+    via.dr_de = v.t * std::min(1.0 / kLn10Over10, std::sqrt(std::max(0.0, 1 - c * c)) / std::max(c, 1e-9));
 }
 
 Column Sampler::trace_column(double a_rad, double da, int M0, int beam, int j0, int j1) const {
@@ -82,7 +86,8 @@ size_t Sampler::mark_for_split(Column& col, const Angle& a, double de_min) const
     for (size_t n = 0; n + 1 < col.nodes.size(); ++n) {
         const Node &x = col.nodes[n], &y = col.nodes[n + 1];
         if ((x.fresh || y.fresh) &&
-            criteria.discontinuous(x, col, y, col, EdgeRay{a, x.e - x.de / 2, nullptr, &x.angle, x.de}))
+            criteria.discontinuous(x, col, y, col,
+                                   EdgeRay{a, x.angle.rad - x.de / 2, nullptr, &x.angle, x.de}))
             mark(col.nodes[n]), mark(col.nodes[n + 1]);
     }
     for (auto& n : col.nodes) n.fresh = false;
@@ -114,7 +119,7 @@ void Sampler::split_marked(Column& col, const Angle& a, size_t marked, int& next
         const double de = n.de / 3;
         --grp;
         if (de != h_de) h_de = de, h = Angle(de);
-        const Angle up(n.e + de, n.angle, h, +1), down(n.e - de, n.angle, h, -1);
+        const Angle up(n.angle.rad + de, n.angle, h, +1), down(n.angle.rad - de, n.angle, h, -1);
         const int j = n.j;
         nodes[--dst] = trace_node(a, down, de, grp);
         nodes[dst].j = j;
