@@ -28,9 +28,18 @@ constexpr double kLn10Over10 = 0.23025850929940458;
 /// (what differs between columns often moves in elevation from one to the next).
 constexpr int kRunMargin = 1;
 
-/// One elevation cell of a column.
+/// Multipath: what the specular continuation of a mirror hit meets, its echo per steradian as a double
+/// path (reflection losses aside) and |d range / d elevation| there.
+struct Via : detail::Multipath::Continuation {
+    double density_db = 0, dr_de = 0;
+};
+/// A node's continuation when it has none (no hit, or no multipath).
+inline const Via kNoVia{};
+
+/// One elevation cell of a column. Kept small (it is copied and moved as columns are refined): what only
+/// multipath reads lives beside the nodes (Via, stored by the Sampler).
 struct Node {
-    double e = 0, de = 0; ///< centre and width [rad]
+    double de = 0; ///< width [rad] (the centre: angle)
     std::optional<Hit> hit;
     glm::dvec3 p{0};
     double density_db = 0;   ///< echo level per steradian (cell_echo_db with dOmega = B_v(e), the pattern)
@@ -42,11 +51,8 @@ struct Node {
     int j = 0;               ///< the base cell it lies in
     bool refine = false;
     bool alone_checked = false; ///< needs_split_alone() depends on the node only: evaluate it once
-    Angle angle;                ///< e with its sine and cosine
-    /// Multipath: what the specular continuation of a mirror hit meets, its echo per steradian as a double
-    /// path (reflection losses aside) and |d range / d elevation| there.
-    detail::Multipath::Continuation via;
-    double via_density_db = 0, via_dr_de = 0;
+    Angle angle;                ///< the centre [rad] with its sine and cosine
+    const Via* via = &kNoVia;   ///< multipath: the continuation (never null)
 };
 
 /// Sets the cell width of a node that hit and what follows from it for the neighbour comparisons (bin_m:

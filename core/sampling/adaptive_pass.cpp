@@ -88,6 +88,9 @@ void collect_cells(const Sampler& sp, Beams& beams, int stride, TraceResult& fin
     std::vector<std::uint64_t> ghost_rays(static_cast<size_t>(N), 0);
     tbb::parallel_for(0, N, [&](int i) {
         const auto& cols = beams[size_t(i)];
+        size_t nodes = 0;
+        for (auto& c : cols) nodes += c.nodes.size();
+        fine.cells[size_t(i)].reserve(nodes);
         for (auto& c : cols)
             ghost_rays[size_t(i)] +=
                 sp.cells_of(c, false, c.da, fine.cells[size_t(i)], fine_ghosts[size_t(i)]);
@@ -166,7 +169,7 @@ std::uint64_t Sampler::cells_of(const Column& c, bool coarse, double da, std::ve
         lo.rad = e.rad - h.rad, lo.c = e.c * h.c + e.s * h.s, lo.s = e.s * h.c - e.c * h.s;
         hi.rad = e.rad + h.rad, hi.c = e.c * h.c - e.s * h.s, hi.s = e.s * h.c + e.c * h.s;
         out.push_back(detail::make_cell(frame, *n.hit, a, e, a_lo, a_hi, lo, hi));
-        if (multipath) rays += mp.ghosts(*n.hit, a, e, a_lo, a_hi, lo, hi, ghosts, &n.via);
+        if (multipath) rays += mp.ghosts(*n.hit, a, e, a_lo, a_hi, lo, hi, ghosts, n.via);
     };
     for (size_t n = 0; n < c.nodes.size();) {
         if (coarse && n + 2 < c.nodes.size() && c.nodes[n].group == c.nodes[n + 1].group &&
@@ -184,6 +187,7 @@ std::uint64_t Sampler::cells_of(const Column& c, bool coarse, double da, std::ve
 TraceResult trace_pass(Sampler& sp, int M0, TraceResult::ErrorEstimate& est) {
     const SceneDesc& s = sp.s;
     const int N = s.sonar.beams;
+    sp.set_base_grid(M0);
     Beams beams = trace_base_grid(sp, M0);
     set_base_image(sp, beams);
     tbb::parallel_for(0, N, [&](int i) {

@@ -7,7 +7,10 @@
 #include "core/sampling/adaptive_node.hpp"
 #include "core/sampling/refine_criteria.hpp"
 
+#include <tbb/enumerable_thread_specific.h>
+
 #include <atomic>
+#include <deque>
 #include <cstdint>
 
 namespace sonarsim::adaptive {
@@ -24,6 +27,12 @@ struct Sampler {
     int elevation_levels, azimuth_levels;
     mutable std::atomic<std::uint64_t> rays{0}; ///< rays traced or reserved in this image, all passes
     mutable std::atomic<bool> budget_hit{false};
+    std::vector<Angle> base_angles; ///< the base grid's elevations (set_base_grid)
+    /// Multipath: the nodes' continuations (Node::via), per thread, in blocks that never move.
+    mutable tbb::enumerable_thread_specific<std::deque<Via>> via_store;
+
+    /// Elevations of a pass's base grid of M0 rays (once per pass instead of once per column).
+    void set_base_grid(int M0);
 
     Sampler(const SceneGeometry& geo, const SceneDesc& scene, const TraceControl& c);
 

@@ -50,9 +50,10 @@ bool mark_alone(const Sampler& sp, const std::vector<Column>& cols, double min_d
     bool any = false;
     for (size_t k = 0; k < cols.size(); ++k) {
         const Column& c = cols[k];
+        const Angle a(c.a);
         for (auto& n : c.nodes)
             if (sp.criteria.specular_in_azimuth(n, c.a - c.da / 2, c.a + c.da / 2, c.da) ||
-                sp.criteria.absorbed_across_azimuth(n, c))
+                sp.criteria.absorbed_across_azimuth(n, c, a))
                 m[k][size_t(n.j - c.j0)] = 1;
         if (c.da <= min_da) std::fill(m[k].begin(), m[k].end(), 0);
         any = any || std::find(m[k].begin(), m[k].end(), 1) != m[k].end();
@@ -89,6 +90,7 @@ void split_column(const Sampler& sp, Column&& c, const std::vector<char>& marked
         if (!sp.reserve(2 * std::uint64_t(hi - lo))) continue; // budget spent: this run stays as it is
         Column mid;
         mid.a = c.a, mid.da = da, mid.beam = c.beam, mid.j0 = lo, mid.j1 = hi;
+        mid.nodes.reserve(c.nodes.size());
         for (size_t k = 0; k < c.nodes.size(); ++k)
             if (c.nodes[k].j >= lo && c.nodes[k].j < hi) mid.nodes.push_back(c.nodes[k]), moved[k] = 1;
         mid.base.assign(c.base.begin() + (lo - c.j0), c.base.begin() + (hi - c.j0));
@@ -105,6 +107,7 @@ void split_column(const Sampler& sp, Column&& c, const std::vector<char>& marked
     // What stays of c: its cells outside the runs, never merged with others in the coarse image.
     Column rest = std::move(c);
     std::vector<Node> kept;
+    kept.reserve(rest.nodes.size());
     for (size_t k = 0; k < rest.nodes.size(); ++k)
         if (!moved[k]) kept.push_back(std::move(rest.nodes[k]));
     rest.nodes.swap(kept);

@@ -39,15 +39,15 @@ bool RefineCriteria::discontinuous_direct(const Node& x, const Column& cx, const
 /// meets nothing, or their levels step, where that matters against the image (as for direct cells).
 bool RefineCriteria::via_discontinuous(const Node& x, const Column& cx, const Node& y,
                                        const Column& cy) const {
-    if (!x.via.reflected && !y.via.reflected) return false;
-    const bool hx = bool(x.via.hit), hy = bool(y.via.hit);
+    if (!x.via->reflected && !y.via->reflected) return false;
+    const bool hx = bool(x.via->hit), hy = bool(y.via->hit);
     if (hx != hy) return significant_via(hx ? x : y, hx ? cx : cy, 0.5);
     if (!hx) return false;
-    const Hit &a = *x.via.hit, &b = *y.via.hit;
-    const double reach = x.via_dr_de * x.de + y.via_dr_de * y.de + gap_m_; // what a smooth surface spans
+    const Hit &a = *x.via->hit, &b = *y.via->hit;
+    const double reach = x.via->dr_de * x.de + y.via->dr_de * y.de + gap_m_; // what a smooth surface spans
     const bool edge = a.material != b.material || (a.prim != b.prim && std::abs(a.t - b.t) > reach);
     if (edge) return significant_via(x, cx, 0.5) || significant_via(y, cy, 0.5);
-    const double step_db = std::abs(x.via_density_db - y.via_density_db);
+    const double step_db = std::abs(x.via->density_db - y.via->density_db);
     if (step_db <= jump_db_) return false;
     const double f = 0.5 * (1 - std::pow(10.0, -0.1 * step_db));
     return significant_via(x, cx, f) || significant_via(y, cy, f);
@@ -64,6 +64,16 @@ bool RefineCriteria::surface_edge(const Hit& x, const glm::dvec3& px, const Hit&
                                   const EdgeRay& edge) const {
     if (x.material != y.material) return true;
     if (x.material == kFloorMaterial || x.material == kSurfaceMaterial || x.prim == y.prim) return false;
+    glm::dvec3 d_near;
+    if (edge.dir_near(frame_, d_near)) {
+        const double rx = detail::plane_range_near(frame_.origin, px, x.face_normal, d_near);
+        const double ry = detail::plane_range_near(frame_.origin, py, y.face_normal, d_near);
+        // Decided by the near direction unless |rx - ry| lies within its error of gap_m_.
+        if (rx < 0 || ry < 0) return true;
+        if (rx > 0 && ry > 0 && std::abs(std::abs(rx - ry) - gap_m_) > 1e-7 * (rx + ry)) {
+            return std::abs(rx - ry) > gap_m_;
+        }
+    }
     const glm::dvec3 d_edge = edge.dir(frame_);
     const double rx = detail::plane_range(frame_.origin, px, x.face_normal, d_edge);
     const double ry = detail::plane_range(frame_.origin, py, y.face_normal, d_edge);
@@ -90,7 +100,7 @@ bool RefineCriteria::significant(const Node& n, const Column& c, double f) const
 }
 
 bool RefineCriteria::significant_via(const Node& n, const Column& c, double f) const {
-    return n.via.hit && significant_at(n.via_density_db, n.via.hit->t, n.via_dr_de * n.de, n, c, f);
+    return n.via->hit && significant_at(n.via->density_db, n.via->hit->t, n.via->dr_de * n.de, n, c, f);
 }
 
 /// The same for an echo of `density_db` per steradian at range r spread over `footprint_m`.
@@ -119,11 +129,21 @@ bool RefineCriteria::needs_split_alone(const Node& n, const Angle& a) const {
     if (m.mu > 0 && n.de > deg2rad(m.h_deg) / 4) {
         const glm::dvec3 v = normal_direction_sonar(n);
         const double e_star = std::atan2(v.z, v.x * a.c + v.y * a.s);
-        if (std::abs(e_star - n.e) < n.de / 2 + 2 * deg2rad(m.h_deg)) return true;
+        if (std::abs(e_star - n.angle.rad) < n.de / 2 + 2 * deg2rad(m.h_deg)) return true;
     }
-    for (double edge : {n.e - n.de / 2, n.e + n.de / 2})
-        if (detail::plane_range(frame_.origin, n.p, n.hit->face_normal, frame_.dir(a, Angle(edge))) < 0)
+    // A horizon inside: an edge ray that misses the face's plane. Edge directions by the angle-sum
+    // identities decide unless an edge ray nearly grazes the plane; then sin and cos of the edge decide.
+    const Angle& h = detail::half_angle(n.de);
+    for (int sign : {-1, +1}) {
+        const double edge = sign < 0 ? n.angle.rad - n.de / 2 : n.angle.rad + n.de / 2;
+        const Angle near(edge, n.angle, h, sign);
+        const double r =
+            detail::plane_range_near(frame_.origin, n.p, n.hit->face_normal, frame_.dir(a, near));
+        if (r == r
+                ? r < 0
+                : detail::plane_range(frame_.origin, n.p, n.hit->face_normal, frame_.dir(a, Angle(edge))) < 0)
             return true;
+    }
     return false;
 }
 
@@ -135,9 +155,8 @@ bool RefineCriteria::absorbed_across(double footprint_m) const {
     return 2 * k_.alpha_db_per_m * footprint_m > range_jump_db_;
 }
 
-bool RefineCriteria::absorbed_across_azimuth(const Node& n, const Column& c) const {
+bool RefineCriteria::absorbed_across_azimuth(const Node& n, const Column& c, const Angle& a) const {
     if (!n.hit || !(k_.alpha_db_per_m > 0)) return false;
-    const Angle a(c.a);
     const glm::dvec3 d = frame_.dir(a, n.angle);
     const glm::dvec3 d_a = frame_.R * glm::dvec3(-n.angle.c * a.s, n.angle.c * a.c, 0);
     const glm::dvec3& nf = n.hit->face_normal; // the footprint's plane, as in make_cell

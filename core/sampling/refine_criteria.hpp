@@ -15,8 +15,19 @@ struct EdgeRay {
     const Angle& azimuth;
     double elevation_rad = 0;
     const Angle* elevation = nullptr; ///< when given, used instead of elevation_rad
+    /// With elevation_rad: the cell whose lower edge it is (centre angle and width), for a cheap
+    /// approximate direction (dir_near) that decides most tests without a sine or cosine.
+    const Angle* below = nullptr;
+    double below_width = 0;
     glm::dvec3 dir(const detail::RayFrame& frame) const {
         return elevation ? frame.dir(azimuth, *elevation) : frame.dir(azimuth, Angle(elevation_rad));
+    }
+    /// dir() or a direction within 1e-14 of it (false: none, take dir()).
+    bool dir_near(const detail::RayFrame& frame, glm::dvec3& d) const {
+        if (elevation) return d = frame.dir(azimuth, *elevation), true;
+        if (!below) return false;
+        const Angle lower(elevation_rad, *below, detail::half_angle(below_width), -1);
+        return d = frame.dir(azimuth, lower), true;
     }
 };
 
@@ -39,8 +50,8 @@ class RefineCriteria {
     bool specular_in_azimuth(const Node& n, double a_lo, double a_hi, double da) const;
 
     /// Absorption alone changes the echo by more than the range-spreading threshold across the column's
-    /// azimuth width.
-    bool absorbed_across_azimuth(const Node& n, const Column& c) const;
+    /// azimuth width; `a`: the column's azimuth (c.a) as an angle.
+    bool absorbed_across_azimuth(const Node& n, const Column& c, const Angle& a) const;
 
     const SceneDesc& scene() const { return s_; }
     const ShadeConstants& constants() const { return k_; }

@@ -12,6 +12,13 @@ Sampler::Sampler(const SceneGeometry& geo, const SceneDesc& scene, const TraceCo
       mp(geo, scene, frame), criteria(scene, frame, multipath), phi(frame.elevation_weight.traced_fov_rad()),
       elevation_levels(c.preview ? 0 : kElevationLevels), azimuth_levels(c.preview ? 0 : kAzimuthLevels) {}
 
+void Sampler::set_base_grid(int M0) {
+    for (auto& store : via_store) store.clear(); // the last pass's nodes are gone
+    const double de0 = phi / M0;
+    base_angles.resize(size_t(M0));
+    for (int j = 0; j < M0; ++j) base_angles[size_t(j)] = Angle(phi / 2 - (j + 0.5) * de0);
+}
+
 bool Sampler::reserve(std::uint64_t n) const {
     if (rays.fetch_add(n, std::memory_order_relaxed) + n <= std::uint64_t(s.sampling.max_rays)) return true;
     rays.fetch_sub(n, std::memory_order_relaxed);
@@ -21,7 +28,7 @@ bool Sampler::reserve(std::uint64_t n) const {
 
 Node Sampler::trace_node(const Angle& a, const Angle& e, double de, int group) const {
     Node n;
-    n.e = e.rad, n.de = de, n.group = group, n.angle = e;
+    n.de = de, n.group = group, n.angle = e;
     const glm::dvec3 d = frame.dir(a, n.angle);
     n.hit = detail::first_hit(g, s, frame.origin, d, frame.t_max);
     if (n.hit) {
@@ -40,13 +47,16 @@ Node Sampler::trace_node(const Angle& a, const Angle& e, double de, int group) c
 }
 
 void Sampler::trace_continuation(Node& n, const Angle& a) const {
-    n.via = mp.continuation(*n.hit, a, n.angle);
-    if (!n.via.hit) return;
-    const Hit& v = *n.via.hit;
-    const double c = n.via.cos_at_hit;
-    n.via_density_db =
-        cell_echo_db(criteria.constants(), material_of(s, v.material), v.t, c, frame.elevation_weight(n.e));
-    n.via_dr_de = v.t * std::min(1.0 / kLn10Over10, std::sqrt(std::max(0.0, 1 - c * c)) / std::max(c, 1e-9));
+    auto& store = via_store.local();
+    Via& via = store.emplace_back();
+    n.via = &via;
+    static_cast<detail::Multipath::Continuation&>(via) = mp.continuation(*n.hit, a, n.angle);
+    if (!via.hit) return;
+    const Hit& v = *via.hit;
+    const double c = via.cos_at_hit;
+    via.density_db = cell_echo_db(criteria.constants(), material_of(s, v.material), v.t, c,
+                                  frame.elevation_weight(n.angle.rad));
+    via.dr_de = v.t * std::min(1.0 / kLn10Over10, std::sqrt(std::max(0.0, 1 - c * c)) / std::max(c, 1e-9));
 }
 
 Column Sampler::trace_column(double a_rad, double da, int M0, int beam, int j0, int j1) const {
@@ -59,7 +69,7 @@ Column Sampler::trace_column(double a_rad, double da, int M0, int beam, int j0, 
         if (((j - j0) & 63) == 0 && control.cancelled()) return col;
         // Base triples share a group; the cells of an incomplete last triple get one each (never merged).
         const int group = j < M0 - M0 % 3 ? j / 3 : (M0 + 2) / 3 + j - (M0 - M0 % 3);
-        col.nodes.push_back(trace_node(a, Angle(phi / 2 - (j + 0.5) * de0), de0, group));
+        col.nodes.push_back(trace_node(a, base_angles[size_t(j)], de0, group));
         col.nodes.back().j = j;
     }
     col.rays = std::uint64_t(j1 - j0);
@@ -75,7 +85,9 @@ size_t Sampler::mark_for_split(Column& col, const Angle& a, double de_min) const
     // Pairs of unchanged neighbours were compared before and found smooth: compare only fresh pairs.
     for (size_t n = 0; n + 1 < col.nodes.size(); ++n) {
         const Node &x = col.nodes[n], &y = col.nodes[n + 1];
-        if ((x.fresh || y.fresh) && criteria.discontinuous(x, col, y, col, EdgeRay{a, x.e - x.de / 2}))
+        if ((x.fresh || y.fresh) &&
+            criteria.discontinuous(x, col, y, col,
+                                   EdgeRay{a, x.angle.rad - x.de / 2, nullptr, &x.angle, x.de}))
             mark(col.nodes[n]), mark(col.nodes[n + 1]);
     }
     for (auto& n : col.nodes) n.fresh = false;
@@ -88,30 +100,40 @@ size_t Sampler::mark_for_split(Column& col, const Angle& a, double de_min) const
 }
 
 void Sampler::split_marked(Column& col, const Angle& a, size_t marked, int& next_group) const {
-    std::vector<Node> next;
-    next.reserve(col.nodes.size() + 2 * marked);
-    for (auto& n : col.nodes) {
+    // In place, from the back: node k moves to k + 2 x (marked nodes before it), a marked one becomes
+    // three. Groups are numbered in column order, as the splits are met from the top.
+    auto& nodes = col.nodes;
+    size_t src = nodes.size(), dst = nodes.size() + 2 * marked;
+    int grp = next_group + int(marked);
+    next_group = grp;
+    nodes.resize(dst);
+    // Cells come in a few widths: keep sin and cos of the last third's.
+    double h_de = 0;
+    Angle h;
+    while (src > 0) {
+        Node& n = nodes[--src];
         if (!n.refine) {
-            next.push_back(n);
+            if (--dst != src) nodes[dst] = std::move(n);
             continue;
         }
         const double de = n.de / 3;
-        const int grp = next_group++;
-        const Angle h(de), up(n.e + de, n.angle, h, +1), down(n.e - de, n.angle, h, -1);
-        next.push_back(trace_node(a, up, de, grp));
-        next.back().j = n.j;
-        Node mid = n;
+        --grp;
+        if (de != h_de) h_de = de, h = Angle(de);
+        const Angle up(n.angle.rad + de, n.angle, h, +1), down(n.angle.rad - de, n.angle, h, -1);
+        const int j = n.j;
+        nodes[--dst] = trace_node(a, down, de, grp);
+        nodes[dst].j = j;
+        Node& mid = nodes[--dst];
+        if (dst != src) mid = std::move(n);
         mid.group = grp, mid.refine = false, mid.alone_checked = false;
         if (mid.hit)
             set_width(mid, de, criteria.bin_m());
         else
             mid.de = de, mid.fresh = true;
-        next.push_back(mid);
-        next.push_back(trace_node(a, down, de, grp));
-        next.back().j = n.j;
+        nodes[--dst] = trace_node(a, up, de, grp);
+        nodes[dst].j = j;
         col.rays += 2;
     }
-    col.nodes.swap(next);
 }
 
 void Sampler::refine_column(Column& col, int M0) const {

@@ -1,6 +1,9 @@
 #include "core/sampling/trace_detail.hpp"
 
 #include <algorithm>
+#include <array>
+#include <limits>
+#include <utility>
 
 namespace sonarsim::detail {
 
@@ -33,6 +36,27 @@ double plane_range(const glm::dvec3& o, const glm::dvec3& p, const glm::dvec3& n
     const double den = glm::dot(n, d);
     const double t = glm::dot(n, p - o) / den;
     return (den != 0 && t > 0 && std::isfinite(t)) ? t : -1;
+}
+
+double plane_range_near(const glm::dvec3& o, const glm::dvec3& p, const glm::dvec3& n, const glm::dvec3& d) {
+    // |d - d_exact| < 1e-14 moves n.d by as much: with |n.d| > 1e-6 its sign is the exact one and t moves by
+    // a relative 1e-8 at most; with 1e-9 < |n.(p - o)| < 1e12 the exact t is finite and nonzero.
+    const double den = glm::dot(n, d), num = glm::dot(n, p - o);
+    if (!(std::abs(den) > 1e-6) || !(std::abs(num) > 1e-9 && std::abs(num) < 1e12))
+        return std::numeric_limits<double>::quiet_NaN();
+    const double t = num / den;
+    return t > 0 ? t : -1;
+}
+
+const Angle& half_angle(double de) {
+    thread_local std::array<std::pair<double, Angle>, 8> cache{};
+    thread_local size_t next = 0;
+    for (const auto& [w, h] : cache)
+        if (w == de && w != 0) return h;
+    auto& slot = cache[next];
+    next = (next + 1) % cache.size();
+    slot = {de, Angle(de / 2)};
+    return slot.second;
 }
 
 Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, const Angle& a_lo,

@@ -35,6 +35,15 @@ struct RayFrame {
 /// Range at which direction d from o meets the plane through p with normal n; -1 if it does not.
 double plane_range(const glm::dvec3& o, const glm::dvec3& p, const glm::dvec3& n, const glm::dvec3& d);
 
+/// plane_range for a direction d known only to within ~1e-14 of the exact one (angles by the angle-sum
+/// identities instead of sin and cos): the exact call's sign (-1 when it misses) and its value to a relative
+/// 1e-7, or NaN when d is too close to the plane (or the plane to o) to say; the caller then takes the exact
+/// direction. Lets a criterion decide from cheap directions without changing any decision.
+double plane_range_near(const glm::dvec3& o, const glm::dvec3& p, const glm::dvec3& n, const glm::dvec3& d);
+
+/// Angle(de / 2), from a small per-thread cache: the adaptive sampler's cells come in a few widths.
+const Angle& half_angle(double de);
+
 /// First hit against the floor plane and the meshes (meshes skipped when the ray misses their bounds).
 std::optional<Hit> first_hit(const SceneGeometry& g, const SceneDesc& s, const glm::dvec3& o,
                              const glm::dvec3& d, double t_max);

@@ -35,7 +35,7 @@ Node plane_node(const detail::RayFrame& f, const RefineCriteria& c, double a_rad
                 double density_db) {
     const Angle a(a_rad);
     Node n;
-    n.e = e_rad, n.de = de, n.angle = Angle(e_rad);
+    n.de = de, n.angle = Angle(e_rad);
     const glm::dvec3 d = f.dir(a, n.angle);
     const glm::dvec3 nn = glm::normalize(normal);
     const double t = detail::plane_range(f.origin, on, nn, d);
@@ -52,7 +52,7 @@ Node plane_node(const detail::RayFrame& f, const RefineCriteria& c, double a_rad
 /// A cell whose ray meets nothing.
 Node miss_node(double e_rad, double de) {
     Node n;
-    n.e = e_rad, n.de = de, n.angle = Angle(e_rad);
+    n.de = de, n.angle = Angle(e_rad);
     return n;
 }
 
@@ -62,10 +62,15 @@ Column column(double da) {
     return c;
 }
 
-/// Whether the elevation neighbours x (above) and y in column c must split, as refine_column asks.
+/// Whether the elevation neighbours x (above) and y in column c must split, as refine_column asks (the edge
+/// ray by the angle-sum identities from x), checked against the edge ray from its own sine and cosine.
 bool split_pair(const RefineCriteria& crit, const Node& x, const Node& y, const Column& c) {
     const Angle a(c.a);
-    return crit.discontinuous(x, c, y, c, EdgeRay{a, x.e - x.de / 2});
+    const bool exact = crit.discontinuous(x, c, y, c, EdgeRay{a, x.angle.rad - x.de / 2});
+    const bool near =
+        crit.discontinuous(x, c, y, c, EdgeRay{a, x.angle.rad - x.de / 2, nullptr, &x.angle, x.de});
+    REQUIRE(near == exact);
+    return near;
 }
 
 const double kDe = deg2rad(1.0); // 1 deg cells
@@ -199,4 +204,35 @@ TEST_CASE("criteria: a cell with a plane horizon or a specular lobe inside split
     CHECK(crit.needs_split_alone(specular, Angle(0)));
     const Node tilted = plane_node(f, crit, 0, deg2rad(0.3), de, {3, 0, 0}, {-1, 0, 0.5}, 1, 0, 40);
     CHECK_FALSE(crit.needs_split_alone(tilted, Angle(0)));
+}
+
+TEST_CASE(
+    "plane_range_near: the exact call's sign and value from a direction 1e-14 off, or NaN when too close",
+    "[sampling][criteria]") {
+    const glm::dvec3 o(1, -2, 3), p(4, 5, -6);
+    const glm::dvec3 n = glm::normalize(glm::dvec3(0.3, -0.2, 1));
+    int decided = 0, undecided = 0;
+    for (int k = 0; k < 2000; ++k) {
+        // Directions sweeping through the plane's horizon (n.d from about -0.9 to 0.9, and near 0).
+        const double u = -1.2 + 2.4 * k / 1999.0;
+        const glm::dvec3 d = glm::normalize(glm::dvec3(std::cos(u), std::sin(3 * u), u * (k % 7 ? 1 : 1e-7)));
+        const glm::dvec3 d_off = d + glm::dvec3(1e-14, -1e-14, 1e-14);
+        const double exact = detail::plane_range(o, p, n, d), near = detail::plane_range_near(o, p, n, d_off);
+        if (std::isnan(near)) {
+            ++undecided;
+            CHECK(std::abs(glm::dot(n, d_off)) <= 1e-6);
+            continue;
+        }
+        ++decided;
+        REQUIRE((near < 0) == (exact < 0));
+        if (exact > 0) CHECK(std::abs(near - exact) <= 1e-8 * exact);
+    }
+    CHECK(decided > 1900);
+    CHECK(detail::plane_range_near(o, p, n, glm::dvec3(1, 0, 0)) == detail::plane_range(o, p, n, {1, 0, 0}));
+    // Grazing (n.d = 1e-8) or a plane through the sonar: too close to call.
+    const glm::dvec3 along = glm::normalize(glm::cross(n, glm::dvec3(1, 0, 0)));
+    CHECK(std::isnan(detail::plane_range_near(o, p, n, glm::normalize(along + 1e-8 * n))));
+    CHECK(std::isnan(detail::plane_range_near(o, o, n, glm::dvec3(0, 0, 1))));
+    CHECK(detail::half_angle(0.25).s == std::sin(0.125));
+    CHECK(detail::half_angle(0.25).c == std::cos(0.125));
 }
