@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <ctime>
+#include <sstream>
 
 namespace sonarsim {
 namespace {
@@ -14,18 +15,61 @@ namespace {
 constexpr std::uint32_t kArisVersion = 0x05464444; // "DDF\x05"
 constexpr size_t kHeaderBytes = 1024;
 
-/// PingMode, system type (0 = ARIS 1800, 1 = ARIS 3000) and HF flag of the beam counts ARIS has.
+/// The ARIS modes (Sound Metrics' SystemConfiguration: FrequencyLow/High per system; ping modes and
+/// beams of the file SDK's FrameFuncs.c). TheSystemType: 0 = ARIS 1800, 1 = ARIS 3000, 2 = ARIS 1200.
 struct ArisMode {
+    const char *name, *preset;
     int beams;
+    double frequency_khz;
     std::uint32_t ping_mode, system_type, high_frequency;
 };
-constexpr ArisMode kModes[] = {{48, 1, 0, 0}, {96, 3, 0, 1}, {64, 6, 1, 0}, {128, 9, 1, 1}};
+constexpr ArisMode kModes[] = {
+    {"ARIS 3000 HF", "aris3000-hf", 128, 3000, 9, 1, 1}, {"ARIS 3000 LF", "aris3000-lf", 64, 1800, 6, 1, 0},
+    {"ARIS 1800 HF", "aris1800-hf", 96, 1800, 3, 0, 1},  {"ARIS 1800 LF", "aris1800-lf", 48, 1100, 1, 0, 0},
+    {"ARIS 1200 HF", "aris1200", 48, 1200, 1, 2, 1},     {"ARIS 1200 LF", "aris1200", 48, 700, 1, 2, 0}};
+constexpr double kFrequencyTolerance = 0.25; ///< relative distance from the mode's frequency allowed
 
-const ArisMode& aris_mode(int beams, const std::string& origin) {
-    for (auto& m : kModes)
-        if (m.beams == beams) return m;
-    throw InputError(origin, "sonar.beams",
-                     "an ARIS file holds 48, 64, 96 or 128 beams, got " + std::to_string(beams));
+/// The system an ARIS preset fixes (TheSystemType), or -1 for any other device.
+int preset_system(const std::string& device) {
+    if (device.rfind("aris3000", 0) == 0) return 1;
+    if (device.rfind("aris1800", 0) == 0) return 0;
+    if (device.rfind("aris1200", 0) == 0) return 2;
+    return -1;
+}
+
+std::string khz(double f) {
+    std::ostringstream o;
+    o << f;
+    return o.str();
+}
+
+/// The mode of the scene's device (an ARIS preset fixes the system), beam count and frequency.
+const ArisMode& aris_mode(const SonarParams& sonar, const std::string& origin) {
+    const int system = preset_system(sonar.device);
+    const ArisMode* best = nullptr;
+    std::string counts;
+    for (auto& m : kModes) {
+        if (system >= 0 && int(m.system_type) != system) continue;
+        const std::string n = std::to_string(m.beams);
+        if (counts.find(n) == std::string::npos) counts += (counts.empty() ? "" : " or ") + n;
+        if (m.beams != sonar.beams) continue;
+        const double d = std::abs(sonar.frequency_khz - m.frequency_khz);
+        if (!best || d < std::abs(sonar.frequency_khz - best->frequency_khz)) best = &m;
+    }
+    if (!best) {
+        const std::string holder =
+            system < 0 ? "an ARIS file" : "an ARIS file of the " + sonar.device + " preset";
+        throw InputError(origin, "sonar.beams",
+                         holder + " holds " + (system < 0 ? std::string("48, 64, 96 or 128") : counts) +
+                             " beams, got " + std::to_string(sonar.beams));
+    }
+    if (std::abs(sonar.frequency_khz / best->frequency_khz - 1) > kFrequencyTolerance)
+        throw InputError(origin, "sonar.frequency_khz",
+                         khz(sonar.frequency_khz) + " kHz is no ARIS mode of " + std::to_string(sonar.beams) +
+                             " beams: they are the " + best->name + " mode at " + khz(best->frequency_khz) +
+                             " kHz (allowed within 25 %); set sonar.frequency_khz=" +
+                             khz(best->frequency_khz) + " or sonar.device=" + best->preset);
+    return *best;
 }
 
 le::Bytes file_header(const SceneDesc& s, const ArisMode& mode, size_t frames) {
@@ -83,8 +127,8 @@ le::Bytes frame_header(const SceneDesc& s, const ArisMode& mode, const ArisTimin
 
 } // namespace
 
-void check_aris_beams(const SceneDesc& s, const std::string& origin) {
-    aris_mode(s.sonar.beams, origin);
+void check_aris(const SceneDesc& s, const std::string& origin) {
+    aris_mode(s.sonar, origin);
 }
 
 ArisTiming aris_timing(const SonarParams& sonar, double c_water) {
@@ -103,7 +147,7 @@ ArisTiming aris_timing(const SonarParams& sonar, double c_water) {
 ExportReport write_aris(const std::string& path, const SceneDesc& s, const Trajectory& trajectory,
                         const FrameImageSource& image, const ByteMapping& mapping,
                         const std::string& origin) {
-    const ArisMode& mode = aris_mode(s.sonar.beams, origin);
+    const ArisMode& mode = aris_mode(s.sonar, origin);
     const ArisTiming tm = aris_timing(s.sonar, sound_speed_m_s(s.water.temperature_c, s.water.depth_m));
     const int beams = s.sonar.beams, samples = s.sonar.range_bins;
     AtomicFile out(path);

@@ -24,8 +24,9 @@ struct ArisTiming {
 };
 ArisTiming aris_timing(const SonarParams& sonar, double water_sound_speed_m_s);
 
-/// Throws InputError(origin, "sonar.beams", ...) unless the scene has 48, 64, 96 or 128 beams.
-void check_aris_beams(const SceneDesc& scene, const std::string& origin);
+/// Throws the InputError write_aris would (naming the scene key) unless the scene can be an ARIS file: a
+/// mode of its beam count (of the system an ARIS preset fixes) within 25 % of its frequency.
+void check_aris(const SceneDesc& scene, const std::string& origin);
 
 /// Writes every frame of `trajectory` as one .aris file (atomically: a temporary, then a rename), each
 /// sample the byte of its image level (the frame's .npy: the sensor's output, TVG and gain included; with

@@ -13,6 +13,9 @@ from conftest import small_scene_dict
 def write_scene(d, beams=48, rays=41):
     scene = small_scene_dict()
     scene["sonar"]["beams"] = beams
+    # As an ARIS file holds it: 48 beams at 1200 kHz (ARIS 1200 HF), samples from 1 m (SampleStartDelay >= 930 us).
+    scene["sonar"]["frequency_khz"] = 1200
+    scene["sonar"]["range_min_m"] = 1.0
     scene["sampling"]["elevation_rays"] = rays
     p = d / "scene.json"
     p.write_text(json.dumps(scene))

@@ -33,4 +33,14 @@ inline SceneDesc small_scene() {
     return s;
 }
 
+/// small_scene() as an ARIS file can hold it: 48 beams at 1200 kHz (the ARIS 1200 HF mode), from 1 m
+/// (ARIS samples from SampleStartDelay 930 us, about 0.7 m).
+inline SceneDesc small_aris_scene() {
+    SceneDesc s = small_scene();
+    for (const char* set : {"sonar.frequency_khz=1200", "sonar.range_min_m=1"})
+        apply_setting_text(s, set, "test");
+    validate_scene(s, "test");
+    return s;
+}
+
 } // namespace sonarsim::test
