@@ -29,6 +29,13 @@ constexpr ArisMode kModes[] = {
     {"ARIS 1200 HF", "aris1200", 48, 1200, 1, 2, 1},     {"ARIS 1200 LF", "aris1200", 48, 700, 1, 2, 0}};
 constexpr double kFrequencyTolerance = 0.25; ///< relative distance from the mode's frequency allowed
 
+/// The longest CyclePeriod of each system [us] (Sound Metrics' SystemConfiguration: ARIS 1800 1802-80000,
+/// ARIS 3000 1802-40000, ARIS 1200 1802-150000): a 50 m window needs more than the 65535 the frame
+/// header's comment gives.
+std::uint32_t max_cycle_us(const ArisMode& m) {
+    return m.system_type == 1 ? 40000 : m.system_type == 0 ? 80000 : 150000;
+}
+
 /// The system an ARIS preset fixes (TheSystemType), or -1 for any other device.
 int preset_system(const std::string& device) {
     if (device.rfind("aris3000", 0) == 0) return 1;
@@ -72,12 +79,12 @@ const ArisMode& aris_mode(const SonarParams& sonar, const std::string& origin) {
     return *best;
 }
 
-le::Bytes file_header(const SceneDesc& s, const ArisMode& mode, size_t frames) {
+le::Bytes file_header(const ArisMode& mode, const ArisTiming& timing, size_t frames) {
     le::Bytes h(kHeaderBytes, 0);
     le::put<std::uint32_t>(h, 0, kArisVersion);
     le::put<std::uint32_t>(h, 4, std::uint32_t(frames));
     le::put<std::uint32_t>(h, 16, std::uint32_t(mode.beams));
-    le::put<std::uint32_t>(h, 24, std::uint32_t(s.sonar.range_bins));
+    le::put<std::uint32_t>(h, 24, timing.samples);
     const std::time_t now = std::time(nullptr);
     std::tm tm{};
     gmtime_r(&now, &tm);
@@ -111,12 +118,14 @@ le::Bytes frame_header(const SceneDesc& s, const ArisMode& mode, const ArisTimin
     le::put<float>(h, 420, float(1e6 / tm.sample_period_us));
     le::put<std::uint32_t>(h, 436, mode.ping_mode);
     le::put<std::uint32_t>(h, 440, mode.high_frequency);
+    le::put<std::uint32_t>(h, 444, tm.pulse_width_us);
+    le::put<std::uint32_t>(h, 448, tm.cycle_period_us);
     le::put<std::uint32_t>(h, 452, tm.sample_period_us);
     le::put<std::uint32_t>(h, 456, 1); // TransmitEnable
     const double dt = k > 0 ? p.t_s - trajectory[k - 1].t_s : 0;
     le::put<float>(h, 460, dt > 0 ? float(1 / dt) : 0.0f); // frames per second, as recordings hold it
     le::put<float>(h, 464, tm.sound_speed_m_s);
-    le::put<std::uint32_t>(h, 468, std::uint32_t(s.sonar.range_bins));
+    le::put<std::uint32_t>(h, 468, tm.samples);
     le::put<std::uint32_t>(h, 472, 1); // Enable150V
     le::put<std::uint32_t>(h, 476, tm.sample_start_delay_us);
     le::put<std::uint32_t>(h, 484, mode.system_type);
@@ -128,38 +137,26 @@ le::Bytes frame_header(const SceneDesc& s, const ArisMode& mode, const ArisTimin
 } // namespace
 
 void check_aris(const SceneDesc& s, const std::string& origin) {
-    aris_mode(s.sonar, origin);
-}
-
-ArisTiming aris_timing(const SonarParams& sonar, double c_water) {
-    ArisTiming t;
-    const double bin_m = (sonar.range_max_m - sonar.range_min_m) / sonar.range_bins;
-    t.sample_period_us = std::uint32_t(std::max(1.0, std::round(2 * bin_m / c_water * 1e6)));
-    const double c = 2 * bin_m / (t.sample_period_us * 1e-6);
-    t.sound_speed_m_s = float(c);
-    const double first_m = sonar.range_min_m + bin_m / 2; // samples at the bin centres
-    t.sample_start_delay_us = std::uint32_t(std::llround(2 * first_m / double(t.sound_speed_m_s) * 1e6));
-    t.window_start_m = t.sample_start_delay_us * 1e-6 * double(t.sound_speed_m_s) / 2;
-    t.window_length_m = double(t.sample_period_us) * sonar.range_bins * 1e-6 * double(t.sound_speed_m_s) / 2;
-    return t;
+    aris_timing(s, max_cycle_us(aris_mode(s.sonar, origin)), origin);
 }
 
 ExportReport write_aris(const std::string& path, const SceneDesc& s, const Trajectory& trajectory,
                         const FrameImageSource& image, const ByteMapping& mapping,
                         const std::string& origin) {
     const ArisMode& mode = aris_mode(s.sonar, origin);
-    const ArisTiming tm = aris_timing(s.sonar, sound_speed_m_s(s.water.temperature_c, s.water.depth_m));
-    const int beams = s.sonar.beams, samples = s.sonar.range_bins;
+    const ArisTiming tm = aris_timing(s, max_cycle_us(mode), origin);
+    const int beams = s.sonar.beams, samples = int(tm.samples);
     AtomicFile out(path);
-    out.write(file_header(s, mode, trajectory.size()));
+    out.write(file_header(mode, tm, trajectory.size()));
     le::Bytes data(size_t(beams) * size_t(samples));
     ExportReport report;
     report.mapping = mapping;
     for (size_t k = 0; k < trajectory.size(); ++k) {
-        const PolarImage img = image(k);
-        if (img.beams != beams || img.bins != samples)
-            throw std::runtime_error("frame " + std::to_string(k) + " is not " + std::to_string(samples) +
-                                     " x " + std::to_string(beams));
+        const PolarImage frame = image(k);
+        if (frame.beams != beams || frame.bins != s.sonar.range_bins)
+            throw std::runtime_error("frame " + std::to_string(k) + " is not " +
+                                     std::to_string(s.sonar.range_bins) + " x " + std::to_string(beams));
+        const PolarImage img = aris_resample(frame, s.sonar, tm);
         ClipCount count;
         const std::vector<std::uint8_t> bytes = image_bytes(img, mapping, count);
         // Sample-major; ARIS beam 0 is the starboard-most, our column 0 the port-most.
