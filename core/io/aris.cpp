@@ -79,15 +79,15 @@ const ArisMode& aris_mode(const SonarParams& sonar, const std::string& origin) {
     return *best;
 }
 
-le::Bytes file_header(const ArisMode& mode, const ArisTiming& timing, size_t frames) {
+le::Bytes file_header(const ArisMode& mode, const ArisTiming& timing, size_t frames, double start_time_s) {
     le::Bytes h(kHeaderBytes, 0);
     le::put<std::uint32_t>(h, 0, kArisVersion);
     le::put<std::uint32_t>(h, 4, std::uint32_t(frames));
     le::put<std::uint32_t>(h, 16, std::uint32_t(mode.beams));
     le::put<std::uint32_t>(h, 24, timing.samples);
-    const std::time_t now = std::time(nullptr);
+    const std::time_t start = std::time_t(start_time_s); // the recording's date: the dataset's start
     std::tm tm{};
-    gmtime_r(&now, &tm);
+    gmtime_r(&start, &tm);
     std::strftime(reinterpret_cast<char*>(h.data() + 48), 32, "%Y-%m-%d %H:%M:%S UTC", &tm);
     const std::string id = "sonarsim simulated frames";
     std::copy(id.begin(), id.end(), h.begin() + 80);
@@ -98,7 +98,8 @@ le::Bytes frame_header(const SceneDesc& s, const ArisMode& mode, const ArisTimin
                        const ByteMapping& mapping, const Trajectory& trajectory, size_t k) {
     le::Bytes h(kHeaderBytes, 0);
     const TrajectoryPoint& p = trajectory[k];
-    const auto time_us = std::uint64_t(std::llround(std::max(0.0, p.t_s) * 1e6));
+    // Microseconds since 1970: the dataset's start plus t.
+    const auto time_us = std::uint64_t(std::llround(std::max(0.0, s.exports.start_time_s + p.t_s) * 1e6));
     le::put<std::uint32_t>(h, 0, std::uint32_t(k));
     le::put<std::uint64_t>(h, 4, time_us);
     le::put<std::uint32_t>(h, 12, kArisVersion);
@@ -147,7 +148,7 @@ ExportReport write_aris(const std::string& path, const SceneDesc& s, const Traje
     const ArisTiming tm = aris_timing(s, max_cycle_us(mode), origin);
     const int beams = s.sonar.beams, samples = int(tm.samples);
     AtomicFile out(path);
-    out.write(file_header(mode, tm, trajectory.size()));
+    out.write(file_header(mode, tm, trajectory.size(), s.exports.start_time_s));
     le::Bytes data(size_t(beams) * size_t(samples));
     ExportReport report;
     report.mapping = mapping;

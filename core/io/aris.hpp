@@ -24,8 +24,8 @@ void check_aris(const SceneDesc& scene, const std::string& origin);
 /// image level (the frame's .npy: the sensor's output, TVG and gain included; with
 /// the ideal sensor, L_EN) under `mapping`, whose levels of bytes 0 and 255 go into every frame header's
 /// UserValue1 and UserValue2 [dB]. Pose and time go into the frame headers (SonarX/Y/Z,
-/// SonarPan/Tilt/Roll = yaw/pitch/roll, FrameTime = t). Returns what the mapping clipped (of the
-/// file's samples). Throws what check_aris throws.
+/// SonarPan/Tilt/Roll = yaw/pitch/roll, FrameTime = scene.exports.start_time_s + t, in us). Returns what the
+/// mapping clipped (of the file's samples). Throws what check_aris throws.
 ExportReport write_aris(const std::string& path, const SceneDesc& scene, const Trajectory& trajectory,
                         const FrameImageSource& image, const ByteMapping& mapping, const std::string& origin);
 

@@ -5,6 +5,8 @@
 #include "support.hpp"
 
 #include "core/base/errors.hpp"
+#include "core/dataset/batch.hpp"
+#include "core/dataset/export.hpp"
 #include "core/dataset/trajectory.hpp"
 #include "core/io/aris.hpp"
 #include "core/io/aris_read.hpp"
@@ -12,6 +14,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <ctime>
 #include <filesystem>
 #include <limits>
 
@@ -183,4 +186,39 @@ TEST_CASE("ARIS grids outside the documented ranges are one input error naming t
     CHECK_THROWS_WITH(
         check_aris(with(s, {"sonar.range_min_m=0.72", "sonar.range_max_m=0.9", "sonar.range_bins=20"}), "s"),
         Catch::StartsWith("s: sonar.range_max_m: an ARIS ping cycle is 1802-150000 us"));
+}
+
+TEST_CASE("ARIS FrameTime is the dataset's start plus t, the start kept when a run resumes", "[aris]") {
+    const std::string dir = batch_out("aris_start_time");
+    const SceneDesc s = small_aris_scene();
+    const Trajectory t = line_trajectory("0.3,2.4,0.9,0.4,2.3,0.9,2", {-1, 30, -39}, 5, "test");
+    const double before = double(std::time(nullptr));
+    prepare_dataset(dir, s, t);
+    const double start = dataset_start_time_s(dir);
+    CHECK(start >= before);
+    CHECK(start <= double(std::time(nullptr)));
+    SceneDesc later = s;
+    later.exports.start_time_s = 1.7e9;
+    prepare_dataset(dir, later, t); // a resumed run keeps the recorded start
+    CHECK(dataset_start_time_s(dir) == start);
+    run_batch(dir, {});
+
+    export_dataset(dir, dir + "/a.aris", ExportFormat::Aris, ExportParams{}, "--aris");
+    ExportParams pinned;
+    pinned.start_time_s = 1700000000.25;
+    export_dataset(dir, dir + "/b.aris", ExportFormat::Aris, pinned, "--aris");
+    for (size_t k = 0; k < 2; ++k) {
+        CHECK(read_aris_frame(dir + "/a.aris", k).info.time_us ==
+              std::uint64_t(std::llround((start + t[k].t_s) * 1e6)));
+        CHECK(read_aris_frame(dir + "/b.aris", k).info.time_us ==
+              1700000000250000ull + std::uint64_t(std::llround(t[k].t_s * 1e6)));
+    }
+    CHECK(t[1].t_s > 0);
+    const auto b = file_bytes(dir + "/b.aris");
+    CHECK(std::string(reinterpret_cast<const char*>(b.data() + 48)) == "2023-11-14 22:13:20 UTC"); // strDate
+
+    // A start given when the dataset is first prepared is the one recorded.
+    const std::string dir2 = batch_out("aris_start_time_given");
+    prepare_dataset(dir2, later, t);
+    CHECK(dataset_start_time_s(dir2) == 1.7e9);
 }
