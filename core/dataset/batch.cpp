@@ -13,10 +13,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <fcntl.h>
 #include <filesystem>
 #include <optional>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace sonarsim {
@@ -153,7 +155,30 @@ void prepare_dataset(const std::string& dir, const SceneDesc& base, const Trajec
             throw InputError(dir, "",
                              "holds a dataset of another scene or trajectory (" + path +
                                  " differs); choose another directory");
-    write_files_atomically({{scene_path, to_bytes(scene_text)}, {traj_path, to_bytes(traj_text)}});
+    std::vector<std::pair<std::string, std::vector<std::uint8_t>>> files = {
+        {scene_path, to_bytes(scene_text)}, {traj_path, to_bytes(traj_text)}};
+    // The dataset's start (UNIX s of t = 0), fixed when it is first prepared so that resumed runs agree.
+    const std::string start_path = dir + "/dataset.json";
+    if (!fs::exists(start_path, ec)) {
+        const double start =
+            base.exports.start_time_s > 0 ? base.exports.start_time_s : double(std::time(nullptr));
+        files.push_back({start_path, to_bytes(json{{"start_time_s", start}}.dump(2) + "\n")});
+    }
+    write_files_atomically(files);
+}
+
+double dataset_start_time_s(const std::string& dir) {
+    const std::string path = dir + "/dataset.json";
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) { // a dataset of an earlier version: when it was prepared
+        struct stat st {};
+        return ::stat((dir + "/trajectory.csv").c_str(), &st) == 0 ? double(st.st_mtime) : 0.0;
+    }
+    const json j = json::parse(read_text(path), nullptr, false);
+    if (!j.is_object() || !j.contains("start_time_s") || !j["start_time_s"].is_number() ||
+        !(j["start_time_s"].get<double>() >= 0))
+        throw InputError(path, "start_time_s", "not a UNIX time in seconds (>= 0)");
+    return j["start_time_s"].get<double>();
 }
 
 void load_dataset(const std::string& dir, SceneDesc& base, Trajectory& trajectory) {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <ctime>
+#include <sstream>
 
 namespace sonarsim {
 namespace {
@@ -14,29 +15,79 @@ namespace {
 constexpr std::uint32_t kArisVersion = 0x05464444; // "DDF\x05"
 constexpr size_t kHeaderBytes = 1024;
 
-/// PingMode, system type (0 = ARIS 1800, 1 = ARIS 3000) and HF flag of the beam counts ARIS has.
+/// The ARIS modes (Sound Metrics' SystemConfiguration: FrequencyLow/High per system; ping modes and
+/// beams of the file SDK's FrameFuncs.c). TheSystemType: 0 = ARIS 1800, 1 = ARIS 3000, 2 = ARIS 1200.
 struct ArisMode {
+    const char *name, *preset;
     int beams;
+    double frequency_khz;
     std::uint32_t ping_mode, system_type, high_frequency;
 };
-constexpr ArisMode kModes[] = {{48, 1, 0, 0}, {96, 3, 0, 1}, {64, 6, 1, 0}, {128, 9, 1, 1}};
+constexpr ArisMode kModes[] = {
+    {"ARIS 3000 HF", "aris3000-hf", 128, 3000, 9, 1, 1}, {"ARIS 3000 LF", "aris3000-lf", 64, 1800, 6, 1, 0},
+    {"ARIS 1800 HF", "aris1800-hf", 96, 1800, 3, 0, 1},  {"ARIS 1800 LF", "aris1800-lf", 48, 1100, 1, 0, 0},
+    {"ARIS 1200 HF", "aris1200", 48, 1200, 1, 2, 1},     {"ARIS 1200 LF", "aris1200", 48, 700, 1, 2, 0}};
+constexpr double kFrequencyTolerance = 0.25; ///< relative distance from the mode's frequency allowed
 
-const ArisMode& aris_mode(int beams, const std::string& origin) {
-    for (auto& m : kModes)
-        if (m.beams == beams) return m;
-    throw InputError(origin, "sonar.beams",
-                     "an ARIS file holds 48, 64, 96 or 128 beams, got " + std::to_string(beams));
+/// The longest CyclePeriod of each system [us] (Sound Metrics' SystemConfiguration: ARIS 1800 1802-80000,
+/// ARIS 3000 1802-40000, ARIS 1200 1802-150000): a 50 m window needs more than the 65535 the frame
+/// header's comment gives.
+std::uint32_t max_cycle_us(const ArisMode& m) {
+    return m.system_type == 1 ? 40000 : m.system_type == 0 ? 80000 : 150000;
 }
 
-le::Bytes file_header(const SceneDesc& s, const ArisMode& mode, size_t frames) {
+/// The system an ARIS preset fixes (TheSystemType), or -1 for any other device.
+int preset_system(const std::string& device) {
+    if (device.rfind("aris3000", 0) == 0) return 1;
+    if (device.rfind("aris1800", 0) == 0) return 0;
+    if (device.rfind("aris1200", 0) == 0) return 2;
+    return -1;
+}
+
+std::string khz(double f) {
+    std::ostringstream o;
+    o << f;
+    return o.str();
+}
+
+/// The mode of the scene's device (an ARIS preset fixes the system), beam count and frequency.
+const ArisMode& aris_mode(const SonarParams& sonar, const std::string& origin) {
+    const int system = preset_system(sonar.device);
+    const ArisMode* best = nullptr;
+    std::string counts;
+    for (auto& m : kModes) {
+        if (system >= 0 && int(m.system_type) != system) continue;
+        const std::string n = std::to_string(m.beams);
+        if (counts.find(n) == std::string::npos) counts += (counts.empty() ? "" : " or ") + n;
+        if (m.beams != sonar.beams) continue;
+        const double d = std::abs(sonar.frequency_khz - m.frequency_khz);
+        if (!best || d < std::abs(sonar.frequency_khz - best->frequency_khz)) best = &m;
+    }
+    if (!best) {
+        const std::string holder =
+            system < 0 ? "an ARIS file" : "an ARIS file of the " + sonar.device + " preset";
+        throw InputError(origin, "sonar.beams",
+                         holder + " holds " + (system < 0 ? std::string("48, 64, 96 or 128") : counts) +
+                             " beams, got " + std::to_string(sonar.beams));
+    }
+    if (std::abs(sonar.frequency_khz / best->frequency_khz - 1) > kFrequencyTolerance)
+        throw InputError(origin, "sonar.frequency_khz",
+                         khz(sonar.frequency_khz) + " kHz is no ARIS mode of " + std::to_string(sonar.beams) +
+                             " beams: they are the " + best->name + " mode at " + khz(best->frequency_khz) +
+                             " kHz (allowed within 25 %); set sonar.frequency_khz=" +
+                             khz(best->frequency_khz) + " or sonar.device=" + best->preset);
+    return *best;
+}
+
+le::Bytes file_header(const ArisMode& mode, const ArisTiming& timing, size_t frames, double start_time_s) {
     le::Bytes h(kHeaderBytes, 0);
     le::put<std::uint32_t>(h, 0, kArisVersion);
     le::put<std::uint32_t>(h, 4, std::uint32_t(frames));
     le::put<std::uint32_t>(h, 16, std::uint32_t(mode.beams));
-    le::put<std::uint32_t>(h, 24, std::uint32_t(s.sonar.range_bins));
-    const std::time_t now = std::time(nullptr);
+    le::put<std::uint32_t>(h, 24, timing.samples);
+    const std::time_t start = std::time_t(start_time_s); // the recording's date: the dataset's start
     std::tm tm{};
-    gmtime_r(&now, &tm);
+    gmtime_r(&start, &tm);
     std::strftime(reinterpret_cast<char*>(h.data() + 48), 32, "%Y-%m-%d %H:%M:%S UTC", &tm);
     const std::string id = "sonarsim simulated frames";
     std::copy(id.begin(), id.end(), h.begin() + 80);
@@ -47,7 +98,8 @@ le::Bytes frame_header(const SceneDesc& s, const ArisMode& mode, const ArisTimin
                        const ByteMapping& mapping, const Trajectory& trajectory, size_t k) {
     le::Bytes h(kHeaderBytes, 0);
     const TrajectoryPoint& p = trajectory[k];
-    const auto time_us = std::uint64_t(std::llround(std::max(0.0, p.t_s) * 1e6));
+    // Microseconds since 1970: the dataset's start plus t.
+    const auto time_us = std::uint64_t(std::llround(std::max(0.0, s.exports.start_time_s + p.t_s) * 1e6));
     le::put<std::uint32_t>(h, 0, std::uint32_t(k));
     le::put<std::uint64_t>(h, 4, time_us);
     le::put<std::uint32_t>(h, 12, kArisVersion);
@@ -67,12 +119,14 @@ le::Bytes frame_header(const SceneDesc& s, const ArisMode& mode, const ArisTimin
     le::put<float>(h, 420, float(1e6 / tm.sample_period_us));
     le::put<std::uint32_t>(h, 436, mode.ping_mode);
     le::put<std::uint32_t>(h, 440, mode.high_frequency);
+    le::put<std::uint32_t>(h, 444, tm.pulse_width_us);
+    le::put<std::uint32_t>(h, 448, tm.cycle_period_us);
     le::put<std::uint32_t>(h, 452, tm.sample_period_us);
     le::put<std::uint32_t>(h, 456, 1); // TransmitEnable
     const double dt = k > 0 ? p.t_s - trajectory[k - 1].t_s : 0;
     le::put<float>(h, 460, dt > 0 ? float(1 / dt) : 0.0f); // frames per second, as recordings hold it
     le::put<float>(h, 464, tm.sound_speed_m_s);
-    le::put<std::uint32_t>(h, 468, std::uint32_t(s.sonar.range_bins));
+    le::put<std::uint32_t>(h, 468, tm.samples);
     le::put<std::uint32_t>(h, 472, 1); // Enable150V
     le::put<std::uint32_t>(h, 476, tm.sample_start_delay_us);
     le::put<std::uint32_t>(h, 484, mode.system_type);
@@ -83,39 +137,27 @@ le::Bytes frame_header(const SceneDesc& s, const ArisMode& mode, const ArisTimin
 
 } // namespace
 
-void check_aris_beams(const SceneDesc& s, const std::string& origin) {
-    aris_mode(s.sonar.beams, origin);
-}
-
-ArisTiming aris_timing(const SonarParams& sonar, double c_water) {
-    ArisTiming t;
-    const double bin_m = (sonar.range_max_m - sonar.range_min_m) / sonar.range_bins;
-    t.sample_period_us = std::uint32_t(std::max(1.0, std::round(2 * bin_m / c_water * 1e6)));
-    const double c = 2 * bin_m / (t.sample_period_us * 1e-6);
-    t.sound_speed_m_s = float(c);
-    const double first_m = sonar.range_min_m + bin_m / 2; // samples at the bin centres
-    t.sample_start_delay_us = std::uint32_t(std::llround(2 * first_m / double(t.sound_speed_m_s) * 1e6));
-    t.window_start_m = t.sample_start_delay_us * 1e-6 * double(t.sound_speed_m_s) / 2;
-    t.window_length_m = double(t.sample_period_us) * sonar.range_bins * 1e-6 * double(t.sound_speed_m_s) / 2;
-    return t;
+void check_aris(const SceneDesc& s, const std::string& origin) {
+    aris_timing(s, max_cycle_us(aris_mode(s.sonar, origin)), origin);
 }
 
 ExportReport write_aris(const std::string& path, const SceneDesc& s, const Trajectory& trajectory,
                         const FrameImageSource& image, const ByteMapping& mapping,
                         const std::string& origin) {
-    const ArisMode& mode = aris_mode(s.sonar.beams, origin);
-    const ArisTiming tm = aris_timing(s.sonar, sound_speed_m_s(s.water.temperature_c, s.water.depth_m));
-    const int beams = s.sonar.beams, samples = s.sonar.range_bins;
+    const ArisMode& mode = aris_mode(s.sonar, origin);
+    const ArisTiming tm = aris_timing(s, max_cycle_us(mode), origin);
+    const int beams = s.sonar.beams, samples = int(tm.samples);
     AtomicFile out(path);
-    out.write(file_header(s, mode, trajectory.size()));
+    out.write(file_header(mode, tm, trajectory.size(), s.exports.start_time_s));
     le::Bytes data(size_t(beams) * size_t(samples));
     ExportReport report;
     report.mapping = mapping;
     for (size_t k = 0; k < trajectory.size(); ++k) {
-        const PolarImage img = image(k);
-        if (img.beams != beams || img.bins != samples)
-            throw std::runtime_error("frame " + std::to_string(k) + " is not " + std::to_string(samples) +
-                                     " x " + std::to_string(beams));
+        const PolarImage frame = image(k);
+        if (frame.beams != beams || frame.bins != s.sonar.range_bins)
+            throw std::runtime_error("frame " + std::to_string(k) + " is not " +
+                                     std::to_string(s.sonar.range_bins) + " x " + std::to_string(beams));
+        const PolarImage img = aris_resample(frame, s.sonar, tm);
         ClipCount count;
         const std::vector<std::uint8_t> bytes = image_bytes(img, mapping, count);
         // Sample-major; ARIS beam 0 is the starboard-most, our column 0 the port-most.

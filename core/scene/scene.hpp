@@ -82,9 +82,10 @@ struct DisplayParams {
 
 /// The 8-bit exports (.aris, MCAP uint8): the image levels bytes 0 and 255 stand for (io/byte_mapping.hpp).
 struct ExportParams {
-    bool auto_range = true; ///< chosen from the levels of the exported frames instead of lo_db/hi_db
-    double lo_db = 0;       ///< level of byte 0 (and below)
-    double hi_db = 80;      ///< level of byte 255 (and above)
+    bool auto_range = true;  ///< chosen from the levels of the exported frames instead of lo_db/hi_db
+    double lo_db = 0;        ///< level of byte 0 (and below)
+    double hi_db = 80;       ///< level of byte 255 (and above)
+    double start_time_s = 0; ///< UNIX time of t = 0 (ARIS FrameTime); 0: the dataset's (dataset.json)
 };
 
 enum class SensorModel { Ideal, Device };

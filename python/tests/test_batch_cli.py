@@ -13,6 +13,9 @@ from conftest import small_scene_dict
 def write_scene(d, beams=48, rays=41):
     scene = small_scene_dict()
     scene["sonar"]["beams"] = beams
+    # As an ARIS file holds it: 48 beams at 1200 kHz (ARIS 1200 HF), samples from 1 m (SampleStartDelay >= 930 us).
+    scene["sonar"]["frequency_khz"] = 1200
+    scene["sonar"]["range_min_m"] = 1.0
     scene["sampling"]["elevation_rays"] = rays
     p = d / "scene.json"
     p.write_text(json.dumps(scene))
@@ -38,6 +41,19 @@ def test_aris_needs_an_aris_beam_count(sonarsim_exe, scratch):
     assert "sonar.beams: an ARIS file holds 48, 64, 96 or 128 beams, got 50" in r.stderr
     assert len(r.stderr.splitlines()) == 1
     assert not (scratch / "o").exists()
+
+
+def test_aris_needs_a_frequency_of_the_beams_mode(sonarsim_exe, scratch):
+    scene = write_scene(scratch, beams=64)  # ARIS 3000 LF: 1800 kHz, not the scene's 1200
+    r = subprocess.run([sonarsim_exe, "batch", "--scene", str(scene), "--line", "0.3,2.4,0.9,0.4,2.4,0.9,2",
+                        "--out", str(scratch / "o"), "--aris", str(scratch / "x.aris")],
+                       capture_output=True, text=True)
+    assert r.returncode == 2
+    assert r.stderr == (f"sonarsim: error: {scene}: sonar.frequency_khz: 1200 kHz is no ARIS mode of 64 beams: "
+                        "they are the ARIS 3000 LF mode at 1800 kHz (allowed within 25 %); set "
+                        "sonar.frequency_khz=1800 or sonar.device=aris3000-lf\n")
+    assert not (scratch / "o").exists()
+    assert not (scratch / "x.aris").exists()
 
 
 def test_resume_after_a_kill_completes_the_set(sonarsim_exe, scratch):
@@ -69,6 +85,11 @@ def test_resume_after_a_kill_completes_the_set(sonarsim_exe, scratch):
         level = np.load(out / "frames" / f"{k:06d}.npy")
         assert level.shape == (96, 48)
         assert np.isfinite(level).sum() > 100
-    # The ARIS file: 1024 + 40 frames of (1024 + 48 x 96) bytes.
-    assert (scratch / "o.aris").stat().st_size == 1024 + 40 * (1024 + 48 * 96)
+    # The ARIS file: 1024 + 40 frames of (1024 + 48 x SamplesPerBeam) bytes; the samples cover the 1-5 m
+    # window at SamplePeriod 56 us (2 x 41.7 mm bins / the water's 1490 m/s), 41.7 mm each: 96.
+    data = (scratch / "o.aris").read_bytes()
+    samples = int.from_bytes(data[1024 + 468:1024 + 472], "little")
+    assert int.from_bytes(data[1024 + 452:1024 + 456], "little") == 56
+    assert samples == 96
+    assert len(data) == 1024 + 40 * (1024 + 48 * samples)
     assert (scratch / "o.mcap").read_bytes()[:8] == b"\x89MCAP0\r\n"

@@ -137,7 +137,7 @@ TEST_CASE("malformed ARIS files are one clear error naming the field", "[aris]")
 
 TEST_CASE("a recording our writer made reads back frame by frame", "[aris]") {
     const std::string dir = batch_out("aris_read");
-    const SceneDesc scene = small_scene();
+    const SceneDesc scene = small_aris_scene();
     const Trajectory t = line_trajectory("0.3,2.4,0.9,0.4,2.3,0.9,3", {-1, 30, -39}, 6.5, "test");
     prepare_dataset(dir, scene, t);
     run_batch(dir, {});

@@ -33,10 +33,11 @@ struct ArisFrame {
     std::vector<std::uint8_t> header, samples;
 };
 
-std::vector<ArisFrame> read_aris(const std::string& path, size_t beams, size_t bins) {
+std::vector<ArisFrame> read_aris(const std::string& path, size_t beams) {
     const auto b = file_bytes(path);
-    REQUIRE(b.size() > 1024);
+    REQUIRE(b.size() > 2048);
     REQUIRE(at<std::uint32_t>(b, 16) == beams);
+    const size_t bins = at<std::uint32_t>(b, 1024 + 468); // SamplesPerBeam
     REQUIRE(at<std::uint32_t>(b, 24) == bins);
     const size_t frame = 1024 + beams * bins;
     REQUIRE((b.size() - 1024) % frame == 0);
@@ -47,21 +48,26 @@ std::vector<ArisFrame> read_aris(const std::string& path, size_t beams, size_t b
     return out;
 }
 
-/// The level of sample s, ARIS beam i, in the image of frame k (its last column is ARIS beam 0).
-float level_of(const PolarImage& img, size_t sample_beam_index) {
+/// The level of sample s, ARIS beam i, in the image of frame k (its last column is ARIS beam 0), at the
+/// range the frame header gives sample s: (SampleStartDelay + s SamplePeriod) SoundSpeed / 2.
+float level_of(const PolarImage& img, const SceneDesc& scene, const ArisFrame& f, size_t sample_beam_index) {
     const size_t beams = size_t(img.beams);
     const size_t s = sample_beam_index / beams, i = sample_beam_index % beams;
-    return img.at(int(s), int(beams - 1 - i));
+    const double c = header_field<float>(f.header, 464);
+    const double r = (header_field<std::uint32_t>(f.header, 476) +
+                      double(s) * header_field<std::uint32_t>(f.header, 452)) *
+                     1e-6 * c / 2;
+    return level_at_range(img, int(beams - 1 - i), scene.sonar.range_min_m, scene.sonar.range_max_m, r);
 }
 
-/// README's example: the shipwreck at 128 beams, two frames of a circle around it.
+/// README's example: the shipwreck at 48 beams (ARIS 1200 HF), two frames of a circle around it.
 struct Wreck {
     std::string dir;
     SceneDesc scene;
     std::vector<PolarImage> images;
     explicit Wreck(const std::string& name) : dir(batch_out(name)) {
         scene = load_scene(SONARSIM_ASSETS "/scenes/shipwreck.json");
-        apply_setting(scene, "sonar.beams", 128, "test");
+        apply_setting(scene, "sonar.beams", 48, "test"); // ARIS 1200 HF at the scene's 1200 kHz
         apply_setting(scene, "sonar.range_bins", 500, "test");
         validate_scene(scene, "test");
         prepare_dataset(dir, scene, circle_trajectory("0,0,0,17,6,2", 10, "test"));
@@ -87,7 +93,7 @@ TEST_CASE("the shipwreck exported with the default mapping fits the byte range",
     const ExportParams defaults; // export.auto
     REQUIRE(defaults.auto_range);
     const ExportReport report = export_dataset(w.dir, path, ExportFormat::Aris, defaults, "--aris");
-    const auto frames = read_aris(path, 128, 500);
+    const auto frames = read_aris(path, 48);
     REQUIRE(frames.size() == 2);
 
     // The mapping: byte 255 at the 99.5th percentile of both frames' finite levels (the test's own sort),
@@ -112,7 +118,7 @@ TEST_CASE("the shipwreck exported with the default mapping fits the byte range",
         size_t frame_255 = 0, frame_0 = 0;
         for (size_t i = 0; i < f.samples.size(); ++i) {
             const std::uint8_t b = f.samples[i];
-            const bool has_level = std::isfinite(level_of(w.images[k], i));
+            const bool has_level = std::isfinite(level_of(w.images[k], w.scene, f, i));
             distinct.insert(b);
             frame_255 += b == 255;
             frame_0 += has_level && b == 0;
@@ -155,36 +161,35 @@ TEST_CASE("the fixed 0-80 dB mapping saturates the shipwreck, and says so", "[ex
     CHECK(report.total.high_fraction() > 0.05);
     CHECK(report.warning(path).find("clipped at 255") != std::string::npos);
     size_t at_255 = 0;
-    for (auto& f : read_aris(path, 128, 500))
-        at_255 += size_t(std::count(f.samples.begin(), f.samples.end(), 255));
+    for (auto& f : read_aris(path, 48)) at_255 += size_t(std::count(f.samples.begin(), f.samples.end(), 255));
     CHECK(report.total.high == at_255);
 }
 
 TEST_CASE("an explicit byte mapping is honoured exactly in ARIS and MCAP", "[exports][aris][mcap]") {
     const std::string dir = batch_out("exports_explicit");
-    const SceneDesc scene = small_scene();
+    const SceneDesc scene = small_aris_scene();
     prepare_dataset(dir, scene, line_trajectory("0.3,2.4,0.9,0.4,2.3,0.9,2", {-1, 30, -39}, 5, "test"));
     run_batch(dir, {});
     std::vector<PolarImage> images;
     for (size_t k = 0; k < 2; ++k)
         images.push_back(decode_npy(file_bytes(frame_prefix(dir, k) + ".npy"), "npy"));
     ExportParams p;
-    p.auto_range = false, p.lo_db = 95, p.hi_db = 115;
+    p.auto_range = false, p.lo_db = 115, p.hi_db = 135;
     // The test's own reading of the mapping: 255 (L - lo) / (hi - lo), clamped, rounded; 0 without echo.
     auto expected = [&](float l) -> int {
         if (!std::isfinite(l)) return 0;
-        const double t = std::min(1.0, std::max(0.0, (double(l) - 95) / 20));
+        const double t = std::min(1.0, std::max(0.0, (double(l) - 115) / 20));
         return int(std::floor(255 * t + 0.5));
     };
     const ExportReport a = export_dataset(dir, dir + "/x.aris", ExportFormat::Aris, p, "--aris");
-    CHECK(a.mapping.lo_db == 95);
-    CHECK(a.mapping.hi_db == 115);
-    const auto frames = read_aris(dir + "/x.aris", 48, 96);
+    CHECK(a.mapping.lo_db == 115);
+    CHECK(a.mapping.hi_db == 135);
+    const auto frames = read_aris(dir + "/x.aris", 48);
     size_t mismatches = 0, middle = 0, at_255 = 0;
     for (size_t k = 0; k < 2; ++k)
         for (size_t i = 0; i < frames[k].samples.size(); ++i) {
             const int b = frames[k].samples[i];
-            mismatches += b != expected(level_of(images[k], i));
+            mismatches += b != expected(level_of(images[k], scene, frames[k], i));
             middle += b > 0 && b < 255;
             at_255 += b == 255;
         }
@@ -195,15 +200,20 @@ TEST_CASE("an explicit byte mapping is honoured exactly in ARIS and MCAP", "[exp
 
     // MCAP: the same bytes, range-major with beam 0 port-most; the mapping in the channel's metadata.
     const ExportReport m = export_dataset(dir, dir + "/x.mcap", ExportFormat::McapUint8, p, "--mcap");
-    CHECK(m.total.high == a.total.high);
-    CHECK(m.total.low == a.total.low);
+    // MCAP holds our bins (ARIS the device's samples): its counts are the images' own.
+    size_t bins_255 = 0, bins_0 = 0;
+    for (auto& img : images)
+        for (float l : img.level_db)
+            bins_255 += expected(l) == 255, bins_0 += std::isfinite(l) && expected(l) == 0;
+    CHECK(m.total.high == bins_255);
+    CHECK(m.total.low == bins_0);
     const auto bytes = file_bytes(dir + "/x.mcap");
     const std::string text(bytes.begin(), bytes.end());
     CHECK(text.find("byte_lo_db") != std::string::npos);
     const size_t hi = text.find("byte_hi_db");
     REQUIRE(hi != std::string::npos);
-    CHECK(text.compare(hi + 10 + 4, 3, "115") == 0); // the map's value follows its uint32 length
+    CHECK(text.compare(hi + 10 + 4, 3, "135") == 0); // the map's value follows its uint32 length
     const auto sidecar = nlohmann::json::parse(file_bytes(dir + "/x.mcap.json"));
     CHECK(sidecar["byte_mapping"]["chosen_by"] == "export.lo_db, export.hi_db");
-    CHECK(sidecar["byte_mapping"]["lo_db"].get<double>() == 95);
+    CHECK(sidecar["byte_mapping"]["lo_db"].get<double>() == 115);
 }

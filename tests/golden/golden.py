@@ -35,7 +35,9 @@ CASES = [
     ("tank_b2", "tank.json", ["--set", "sampling.bounces=2"]),
 ]
 BATCH = ["--circle", "1.5,1.5,0,1.2,0.8,3", "--ground-truth", "--aris", "BATCHDIR/rec.aris", "--mcap",
-         "BATCHDIR/rec.mcap", "--set", "sonar.beams=64", "--set", "sensor.model=device"]
+         "BATCHDIR/rec.mcap", "--set", "sonar.beams=64", "--set", "sonar.frequency_khz=1800",
+         "--set", "sonar.range_min_m=0.75", "--set", "export.start_time_s=1700000000",
+         "--set", "sensor.model=device"]
 
 
 def normalise(path, root):

@@ -1,0 +1,224 @@
+// ARIS headers a vendor tool would believe: the mode (PingMode, FrequencyHiLow, TheSystemType) from the
+// device and the frequency, never from the beam count alone; the water's sound speed; every field within
+// the vendor's documented range (file SDK, FrameHeader.h), read back as its layout says; the samples at the
+// ranges the header implies; and the scenes no ARIS file can hold refused, naming the key.
+#include "support.hpp"
+
+#include "core/base/errors.hpp"
+#include "core/dataset/batch.hpp"
+#include "core/dataset/export.hpp"
+#include "core/dataset/trajectory.hpp"
+#include "core/io/aris.hpp"
+#include "core/io/aris_read.hpp"
+#include "core/shading/physics.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+#include <limits>
+
+using namespace sonarsim;
+using namespace sonarsim::test;
+
+namespace {
+
+SceneDesc with(SceneDesc s, std::initializer_list<const char*> sets) {
+    for (const char* set : sets) apply_setting_text(s, set, "test");
+    return s;
+}
+
+} // namespace
+
+TEST_CASE("ARIS files hold only the beam counts and frequencies ARIS modes have", "[aris]") {
+    const SceneDesc s = small_aris_scene();
+    CHECK_THROWS_WITH(check_aris(with(s, {"sonar.beams=100"}), "scene.json"),
+                      "scene.json: sonar.beams: an ARIS file holds 48, 64, 96 or 128 beams, got 100");
+    for (const char* ok : {"sonar.beams=48", "sonar.frequency_khz=700", "sonar.frequency_khz=1100"})
+        CHECK_NOTHROW(check_aris(with(s, {ok}), "scene.json"));
+    CHECK_NOTHROW(check_aris(with(s, {"sonar.beams=64", "sonar.frequency_khz=1800"}), "s"));
+    CHECK_NOTHROW(check_aris(with(s, {"sonar.beams=96", "sonar.frequency_khz=1800"}), "s"));
+    CHECK_NOTHROW(check_aris(with(s, {"sonar.beams=128", "sonar.frequency_khz=3000"}), "s"));
+    // 64 beams are ARIS 3000 LF: 3000 kHz is 67 % off its 1800 kHz.
+    CHECK_THROWS_WITH(check_aris(with(s, {"sonar.beams=64", "sonar.frequency_khz=3000"}), "scene.json"),
+                      "scene.json: sonar.frequency_khz: 3000 kHz is no ARIS mode of 64 beams: they are the "
+                      "ARIS 3000 LF mode at 1800 kHz (allowed within 25 %); set sonar.frequency_khz=1800 or "
+                      "sonar.device=aris3000-lf");
+    CHECK_THROWS_WITH(
+        check_aris(with(s, {"sonar.beams=128", "sonar.frequency_khz=1200"}), "--aris"),
+        Catch::Contains("--aris: sonar.frequency_khz: 1200 kHz is no ARIS mode of 128 beams: they "
+                        "are the ARIS 3000 HF mode at 3000 kHz"));
+    // 2300 kHz is 28 % above 1800; 2200 kHz 22 %.
+    CHECK_THROWS_AS(check_aris(with(s, {"sonar.beams=96", "sonar.frequency_khz=2300"}), "s"), InputError);
+    CHECK_NOTHROW(check_aris(with(s, {"sonar.beams=96", "sonar.frequency_khz=2200"}), "s"));
+    // An ARIS preset fixes the system: the ARIS 3000 has no 96-beam mode.
+    CHECK_THROWS_WITH(
+        check_aris(with(s, {"sonar.device=aris3000-hf", "sonar.beams=96"}), "scene.json"),
+        "scene.json: sonar.beams: an ARIS file of the aris3000-hf preset holds 128 or 64 beams, got 96");
+}
+
+namespace {
+
+/// What each ARIS preset's recordings must say: PingMode, FrequencyHiLow, TheSystemType, beams, and the
+/// longest CyclePeriod of the system (Sound Metrics' SystemConfiguration).
+struct PresetMode {
+    const char* preset;
+    std::uint32_t ping_mode, high_frequency, system_type;
+    int beams;
+    std::uint32_t max_cycle_us;
+};
+const PresetMode kPresets[] = {{"aris3000-hf", 9, 1, 1, 128, 40000},
+                               {"aris3000-lf", 6, 0, 1, 64, 40000},
+                               {"aris1800-hf", 3, 1, 0, 96, 80000},
+                               {"aris1800-lf", 1, 0, 0, 48, 80000},
+                               {"aris1200", 1, 1, 2, 48, 150000}};
+
+/// A synthetic level profile: smooth in range, a little different per beam, nothing echoing in every
+/// 17th bin.
+PolarImage profile(const SonarParams& sonar) {
+    PolarImage img;
+    img.beams = sonar.beams, img.bins = sonar.range_bins;
+    for (int i = 0; i < img.bins; ++i)
+        for (int b = 0; b < img.beams; ++b)
+            img.level_db.push_back(i % 17 == 5 ? -std::numeric_limits<float>::infinity()
+                                               : float(40 + 30 * std::sin(i * 0.05) + 0.05 * b));
+    return img;
+}
+
+} // namespace
+
+TEST_CASE("every ARIS preset's recording has its mode, the water's sound speed and documented ranges",
+          "[aris]") {
+    for (const PresetMode& m : kPresets) {
+        INFO(m.preset);
+        const SceneDesc s =
+            with(small_scene(), {("sonar.device=" + std::string(m.preset)).c_str(), "sensor.model=device"});
+        REQUIRE(s.sonar.beams == m.beams);
+        const std::string dir = batch_out(std::string("aris_header_") + m.preset);
+        std::filesystem::create_directories(dir);
+        const std::string path = dir + "/p.aris";
+        const Trajectory t = line_trajectory("0.3,2.4,0.9,0.4,2.3,0.9,2", {-1, 30, -39}, 5, "test");
+        const PolarImage img = profile(s.sonar);
+        write_aris(
+            path, s, t, [&](size_t) { return img; }, ByteMapping{0, 80, false}, "--aris");
+        const auto bytes = file_bytes(path);
+        REQUIRE(aris_frame_count(path) == 2);
+        const ArisFrame f = read_aris_frame(path, 1);
+        const auto frame1 = bytes.begin() + 1024 + long(1024 + f.info.beams * f.info.samples);
+        const std::vector<std::uint8_t> h(frame1, frame1 + 1024);
+        CHECK(f.info.ping_mode == m.ping_mode);
+        CHECK(f.info.high_frequency == bool(m.high_frequency));
+        CHECK(header_field<std::uint32_t>(h, 440) == m.high_frequency);
+        CHECK(header_field<std::uint32_t>(h, 484) == m.system_type); // TheSystemType
+        const double c = sound_speed_m_s(s.water.temperature_c, s.water.depth_m);
+        CHECK(header_field<float>(h, 464) == float(c));
+        // The documented ranges (FrameHeader.h): SamplePeriod 4-100 us, SampleStartDelay 930-65535 us,
+        // PulseWidth 4-100 us, CyclePeriod from 1802 us.
+        const std::uint32_t sp = header_field<std::uint32_t>(h, 452),
+                            ssd = header_field<std::uint32_t>(h, 476);
+        const std::uint32_t pw = header_field<std::uint32_t>(h, 444),
+                            cp = header_field<std::uint32_t>(h, 448);
+        const std::uint32_t n = header_field<std::uint32_t>(h, 468);
+        const double bin = (s.sonar.range_max_m - s.sonar.range_min_m) / s.sonar.range_bins;
+        CHECK(sp == std::uint32_t(std::round(2 * bin / c * 1e6)));
+        CHECK(sp >= 4);
+        CHECK(sp <= 100);
+        CHECK(ssd >= 930);
+        CHECK(ssd <= 65535);
+        CHECK(ssd == std::uint32_t(std::round(2 * (s.sonar.range_min_m + bin / 2) / c * 1e6)));
+        CHECK(pw == std::uint32_t(std::round(2 * s.sensor.range_resolution_m / c * 1e6)));
+        CHECK(s.sensor.range_resolution_m > 0);
+        CHECK(pw >= 4);
+        CHECK(pw <= 100);
+        CHECK(cp == ssd + sp * n + 360);
+        CHECK(cp >= 1802);
+        CHECK(cp <= m.max_cycle_us);
+        CHECK(header_field<float>(h, 420) == float(1e6 / sp)); // SampleRate
+        const double sample_m = sp * 1e-6 * double(float(c)) / 2;
+        CHECK(std::abs(n * sample_m - (s.sonar.range_max_m - s.sonar.range_min_m)) <= sample_m / 2);
+        CHECK(header_field<float>(h, 52) == Approx(ssd * 1e-6 * double(float(c)) / 2).epsilon(1e-6));
+        CHECK(header_field<float>(h, 56) == Approx(n * sample_m).epsilon(1e-6));
+        CHECK(header_field<std::uint32_t>(bytes, 24) == n);
+
+        // The samples sit at the ranges the header implies: the profile, resampled there, read back.
+        size_t off = 0, finite = 0;
+        for (int j = 0; j < f.level_db.bins; ++j)
+            for (int col = 0; col < f.level_db.beams; ++col) {
+                const double r = f.info.window_start_m + j * f.info.sample_length_m;
+                const float want = level_at_range(img, col, s.sonar.range_min_m, s.sonar.range_max_m, r);
+                const float got = f.level_db.at(j, col);
+                if (!std::isfinite(want) || !std::isfinite(got)) { // byte 0: nothing above 0 dB
+                    off += std::isfinite(want) && want > 0.5 * 80 / 255;
+                    off += std::isfinite(got);
+                    continue;
+                }
+                ++finite;
+                off += std::abs(got - want) > 0.5 * 80 / 255 + 1e-3;
+            }
+        CHECK(off == 0);
+        CHECK(finite > size_t(f.level_db.bins) * size_t(f.level_db.beams) / 2);
+    }
+}
+
+TEST_CASE("ARIS grids outside the documented ranges are one input error naming the key", "[aris]") {
+    const SceneDesc s = small_aris_scene(); // 1-5 m, 96 bins, 48 beams at 1200 kHz
+    CHECK_NOTHROW(check_aris(s, "scene.json"));
+    // SampleStartDelay < 930 us: about 0.7 m of water before the first sample.
+    CHECK_THROWS_WITH(
+        check_aris(with(s, {"sonar.range_min_m=0.3"}), "scene.json"),
+        Catch::StartsWith("scene.json: sonar.range_min_m: ARIS starts sampling 930-65535 us after "
+                          "the ping (SampleStartDelay)") &&
+            Catch::Contains("the smallest range_min_m allowed is 0.6"));
+    // SamplePeriod: 4096 bins over 4 m are 1.3 us, 20 bins 267 us.
+    CHECK_THROWS_WITH(
+        check_aris(with(s, {"sonar.range_bins=4096"}), "scene.json"),
+        Catch::StartsWith("scene.json: sonar.range_bins: ARIS samples every 4-100 us (SamplePeriod)"));
+    CHECK_THROWS_WITH(check_aris(with(s, {"sonar.range_bins=20"}), "s"), Catch::Contains("sonar.range_bins"));
+    // PulseWidth: 0.1 m of range resolution is a 133 us pulse.
+    CHECK_THROWS_WITH(check_aris(with(s, {"sensor.range_resolution_m=0.1"}), "s"),
+                      Catch::StartsWith("s: sensor.range_resolution_m: an ARIS pulse is 4-100 us long"));
+    CHECK_NOTHROW(check_aris(with(s, {"sensor.range_resolution_m=0.01"}), "s"));
+    // CyclePeriod: an ARIS 3000 pings at most every 40000 us, so not out to 40 m; nor less than 1802 us.
+    CHECK_THROWS_WITH(check_aris(with(s, {"sonar.beams=64", "sonar.frequency_khz=1800",
+                                          "sonar.range_bins=2048", "sonar.range_max_m=40"}),
+                                 "s"),
+                      Catch::StartsWith("s: sonar.range_max_m: an ARIS ping cycle is 1802-40000 us"));
+    CHECK_THROWS_WITH(
+        check_aris(with(s, {"sonar.range_min_m=0.72", "sonar.range_max_m=0.9", "sonar.range_bins=20"}), "s"),
+        Catch::StartsWith("s: sonar.range_max_m: an ARIS ping cycle is 1802-150000 us"));
+}
+
+TEST_CASE("ARIS FrameTime is the dataset's start plus t, the start kept when a run resumes", "[aris]") {
+    const std::string dir = batch_out("aris_start_time");
+    const SceneDesc s = small_aris_scene();
+    const Trajectory t = line_trajectory("0.3,2.4,0.9,0.4,2.3,0.9,2", {-1, 30, -39}, 5, "test");
+    const double before = double(std::time(nullptr));
+    prepare_dataset(dir, s, t);
+    const double start = dataset_start_time_s(dir);
+    CHECK(start >= before);
+    CHECK(start <= double(std::time(nullptr)));
+    SceneDesc later = s;
+    later.exports.start_time_s = 1.7e9;
+    prepare_dataset(dir, later, t); // a resumed run keeps the recorded start
+    CHECK(dataset_start_time_s(dir) == start);
+    run_batch(dir, {});
+
+    export_dataset(dir, dir + "/a.aris", ExportFormat::Aris, ExportParams{}, "--aris");
+    ExportParams pinned;
+    pinned.start_time_s = 1700000000.25;
+    export_dataset(dir, dir + "/b.aris", ExportFormat::Aris, pinned, "--aris");
+    for (size_t k = 0; k < 2; ++k) {
+        CHECK(read_aris_frame(dir + "/a.aris", k).info.time_us ==
+              std::uint64_t(std::llround((start + t[k].t_s) * 1e6)));
+        CHECK(read_aris_frame(dir + "/b.aris", k).info.time_us ==
+              1700000000250000ull + std::uint64_t(std::llround(t[k].t_s * 1e6)));
+    }
+    CHECK(t[1].t_s > 0);
+    const auto b = file_bytes(dir + "/b.aris");
+    CHECK(std::string(reinterpret_cast<const char*>(b.data() + 48)) == "2023-11-14 22:13:20 UTC"); // strDate
+
+    // A start given when the dataset is first prepared is the one recorded.
+    const std::string dir2 = batch_out("aris_start_time_given");
+    prepare_dataset(dir2, later, t);
+    CHECK(dataset_start_time_s(dir2) == 1.7e9);
+}
