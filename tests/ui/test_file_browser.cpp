@@ -8,14 +8,21 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 using namespace sonarsim::ui;
 namespace fs = std::filesystem;
 
 namespace {
 
+/// A tree of its own per test case: ctest runs the cases as parallel processes.
+std::string case_dir() {
+    const std::string name = Catch::getResultCapture().getCurrentTestName();
+    return "file_browser/" + std::to_string(std::hash<std::string>{}(name));
+}
+
 struct Tree {
-    fs::path root = fs::path(sonarsim::test::ui_out_path("file_browser"));
+    fs::path root = fs::path(sonarsim::test::ui_out_path(case_dir()));
     Tree() {
         fs::remove_all(root);
         fs::create_directories(root / "scenes");
