@@ -71,13 +71,6 @@ std::vector<double> form_beams(const std::vector<double>& in, int K, int J, cons
 
 } // namespace
 
-std::uint64_t mix64(std::uint64_t x) {
-    x += 0x9e3779b97f4a7c15ULL;
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-    return x ^ (x >> 31);
-}
-
 double KeyedRandom::uniform() {
     state_ = mix64(state_);
     return (double(state_ >> 11) + 1.0) * 0x1.0p-53;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <tbb/parallel_for.h>
 
 namespace sonarsim {
@@ -31,12 +32,6 @@ WorldKeyGrid::WorldKeyGrid(std::uint64_t seed, double cell_m) {
     row_key_ = mix64(seed ^ std::uint64_t(std::int64_t(q_exp)));
 }
 
-std::uint64_t WorldKeyGrid::operator()(const glm::dvec3& p) const {
-    auto cell = [&](double x) { return std::uint64_t(fast::floor_int(x * inv_q_)); };
-    return mix64(row_key_ ^ cell(p.x) * 0x9e3779b97f4a7c15ULL ^ cell(p.y) * 0xc2b2ae3d27d4eb4fULL ^
-                 cell(p.z) * 0x165667b19e3779f9ULL);
-}
-
 SonarFrame::SonarFrame(const SceneDesc& s)
     : origin(to_glm(s.sonar.pose.position_m)), R(rotation_matrix(s.sonar.pose.orientation_deg)) {
     up = R * glm::dvec3(0, 0, 1);
@@ -46,9 +41,9 @@ glm::dvec3 SonarFrame::ahead(double a) const {
     return R * glm::dvec3(std::cos(a), std::sin(a), 0);
 }
 
-glm::dvec3 SonarFrame::point(const glm::dvec3& dir, double r, float e) const {
+std::pair<glm::dvec3, double> SonarFrame::raised(double r, float e) const {
     const double se = std::isnan(e) ? 0.0 : key_sin(e), ce = std::sqrt(1 - se * se);
-    return origin + r * (ce * dir + se * up);
+    return {origin + r * se * up, r * ce};
 }
 
 void convolve_range(std::vector<double>& rows, int K, int width, const std::vector<double>& h) {
@@ -77,6 +72,8 @@ std::vector<double> form_speckle(const std::vector<double>& I, int K, int J, con
     for (int j = 0; j < J; ++j) ahead[size_t(j)] = frame.ahead(theta / 2 - (j + 0.5) * column);
     const bool formed = s.sensor.azimuth_window != AzimuthWindow::None;
     const AzimuthBeamforming bf = formed ? make_azimuth_beamforming(s, true) : AzimuthBeamforming{};
+    std::vector<double> w2(2 * bf.amplitude.size()); // each weight twice: (re, im) pairs in one step
+    for (size_t i = 0; i < bf.amplitude.size(); ++i) w2[2 * i] = w2[2 * i + 1] = bf.amplitude[i];
     const std::uint64_t seed = mix64(std::uint64_t(s.sensor.seed) ^ 0x677261696eULL); // "grain"
 
     // Per range bin: the field on the source columns, then (formed) the beams' complex amplitudes.
@@ -88,12 +85,15 @@ std::vector<double> form_speckle(const std::vector<double>& I, int K, int J, con
         double* field = formed ? local.data() : beams.data() + size_t(k) * N * 2;
         const double* x = I.data() + size_t(k) * J;
         const float* elevation = in.elevation_rad.data() + size_t(k) * N;
+        glm::dvec3 base{};
+        double scale = 0;
         for (int j = 0; j < J; ++j) {
+            if (j % S == 0) std::tie(base, scale) = frame.raised(r, elevation[j / S]); // the beam's elevation
             if (x[j] == 0) {
                 field[2 * j] = field[2 * j + 1] = 0;
                 continue;
             }
-            const std::uint64_t h = grid(frame.point(ahead[size_t(j)], r, elevation[j / S]));
+            const std::uint64_t h = grid(base + scale * ahead[size_t(j)]);
             const double a = std::sqrt(x[j] * fast::neg_ln(unit(h))), u = unit(h << 32);
             field[2 * j] = a * fast::cos_turn(u), field[2 * j + 1] = a * fast::cos_turn(u + 0.75);
         }
@@ -102,10 +102,10 @@ std::vector<double> form_speckle(const std::vector<double>& I, int K, int J, con
         for (int j = 0; j < J; ++j) {
             const double re = field[2 * j], im = field[2 * j + 1];
             if (re == 0 && im == 0) continue;
-            const double* w = bf.amplitude.data() + bf.offset[size_t(j)];
+            const double* w = w2.data() + 2 * bf.offset[size_t(j)];
             double* o = row + 2 * bf.first[size_t(j)];
-            for (int t = 0, n = bf.count[size_t(j)]; t < n; ++t)
-                o[2 * t] += w[t] * re, o[2 * t + 1] += w[t] * im;
+            for (int u = 0, n = 2 * bf.count[size_t(j)]; u < n; u += 2)
+                o[u] += w[u] * re, o[u + 1] += w[u + 1] * im; // one (re, im) pair a step
         }
     });
     const SensorParams& p = s.sensor;

@@ -5,10 +5,13 @@
 // pulse length, and the mean is the intensity path's (sum of P I, then the range kernel) exactly.
 #pragma once
 #include "core/base/pose.hpp"
+#include "core/base/fast_math.hpp"
 #include "core/scene/scene.hpp"
+#include "core/sensor/sensor.hpp"
 #include "core/shading/accumulate.hpp"
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace sonarsim {
@@ -19,7 +22,11 @@ namespace sonarsim {
 class WorldKeyGrid {
   public:
     WorldKeyGrid(std::uint64_t seed, double cell_m);
-    std::uint64_t operator()(const glm::dvec3& point_m) const;
+    std::uint64_t operator()(const glm::dvec3& p) const {
+        auto cell = [&](double x) { return std::uint64_t(fast::floor_int(x * inv_q_)); };
+        return mix64(row_key_ ^ cell(p.x) * 0x9e3779b97f4a7c15ULL ^ cell(p.y) * 0xc2b2ae3d27d4eb4fULL ^
+                     cell(p.z) * 0x165667b19e3779f9ULL);
+    }
 
   private:
     std::uint64_t row_key_;
@@ -27,13 +34,18 @@ class WorldKeyGrid {
 };
 
 /// Where the sonar looks from: the world point at range r along a direction of the fan (`ahead`, unit,
-/// horizontal in the sonar frame) raised by the elevation e [rad] (NaN: 0) towards `up`.
+/// horizontal in the sonar frame) raised by the elevation e [rad] (NaN: 0) towards `up`, as
+/// base + scale * ahead with (base, scale) = raised(r, e), shared by every direction at that r and e.
 struct SonarFrame {
     explicit SonarFrame(const SceneDesc& s);
     glm::dvec3 origin, up;
     glm::dmat3 R;
     glm::dvec3 ahead(double azimuth_rad) const; ///< R (cos a, sin a, 0)
-    glm::dvec3 point(const glm::dvec3& ahead, double r_m, float elevation_rad) const;
+    std::pair<glm::dvec3, double> raised(double r_m, float elevation_rad) const;
+    glm::dvec3 point(const glm::dvec3& ahead, double r_m, float elevation_rad) const {
+        const auto [base, scale] = raised(r_m, elevation_rad);
+        return base + scale * ahead;
+    }
 };
 
 /// The speckled intensity per (range bin, beam) [bin * beams + beam] from the linear intensities `I` per
