@@ -17,13 +17,6 @@ double unit(std::uint64_t h) {
     return (double(h >> 32) + 0.5) * 0x1.0p-32;
 }
 
-/// sin of an elevation angle |e| <= pi/2 (Taylor to e^9: error below 2e-4 at pi/2, 1e-8 within 0.5 rad):
-/// only used to place a key, where any fixed function of e does.
-double key_sin(double e) {
-    const double e2 = e * e;
-    return e * (1 - e2 / 6 * (1 - e2 / 20 * (1 - e2 / 42 * (1 - e2 / 72))));
-}
-
 } // namespace
 
 WorldKeyGrid::WorldKeyGrid(std::uint64_t seed, double cell_m) {
@@ -39,11 +32,6 @@ SonarFrame::SonarFrame(const SceneDesc& s)
 
 glm::dvec3 SonarFrame::ahead(double a) const {
     return R * glm::dvec3(std::cos(a), std::sin(a), 0);
-}
-
-std::pair<glm::dvec3, double> SonarFrame::raised(double r, float e) const {
-    const double se = std::isnan(e) ? 0.0 : key_sin(e), ce = std::sqrt(1 - se * se);
-    return {origin + r * se * up, r * ce};
 }
 
 void convolve_range(std::vector<double>& rows, int K, int width, const std::vector<double>& h) {
