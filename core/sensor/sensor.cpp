@@ -3,6 +3,7 @@
 #include "core/base/fast_math.hpp"
 #include "core/base/pose.hpp"
 #include "core/sensor/sensor_patterns.hpp"
+#include "core/sensor/speckle_field.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -33,13 +34,6 @@ std::uint64_t pose_key(const SceneDesc& s) {
 /// A uniform variate in (0, 1) from the top 32 bits of h.
 double unit(std::uint64_t h) {
     return (double(h >> 32) + 0.5) * 0x1.0p-32;
-}
-
-/// sin of an elevation angle |e| <= pi/2 (Taylor to e^9: error below 2e-4 at pi/2, 1e-8 within 0.5 rad):
-/// only used to place a speckle key, where any fixed function of e does.
-double key_sin(double e) {
-    const double e2 = e * e;
-    return e * (1 - e2 / 6 * (1 - e2 / 20 * (1 - e2 / 42 * (1 - e2 / 72))));
 }
 
 /// Linear intensity relative to 10^(peak/10) (0 where -inf); returns the peak [dB].
@@ -75,31 +69,7 @@ std::vector<double> form_beams(const std::vector<double>& in, int K, int J, cons
     return out;
 }
 
-/// The matched filter along range: each row the kernel-weighted sum of its neighbours (energy kept).
-void blur_range(std::vector<double>& I, int K, int N, const std::vector<double>& h) {
-    const int half = int(h.size() / 2);
-    std::vector<double> out(I.size(), 0.0);
-    tbb::parallel_for(0, K, [&](int k) {
-        double* o = out.data() + size_t(k) * N;
-        for (int t = -half; t <= half; ++t) {
-            const int src = k - t;
-            if (src < 0 || src >= K) continue;
-            const double w = h[size_t(t + half)];
-            const double* x = I.data() + size_t(src) * N;
-            for (int b = 0; b < N; ++b) o[b] += w * x[b];
-        }
-    });
-    I.swap(out);
-}
-
 } // namespace
-
-std::uint64_t mix64(std::uint64_t x) {
-    x += 0x9e3779b97f4a7c15ULL;
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-    return x ^ (x >> 31);
-}
 
 double KeyedRandom::uniform() {
     state_ = mix64(state_);
@@ -151,30 +121,31 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
     const double r_min = s.sonar.range_min_m, dr = (s.sonar.range_max_m - r_min) / K;
     const SensorParams& p = s.sensor;
 
-    // 1-2. Linear intensity relative to the peak, formed into beams by the receive pattern.
+    // 1-4. Linear intensity relative to the peak. With speckle, a complex field anchored to the scatterers
+    // formed through the receive pattern and the matched filter (speckle_field.hpp); otherwise the
+    // intensities formed into beams by the receive pattern, then the matched filter along range.
     const bool fine = inputs && inputs->sub > 1 && p.azimuth_window != AzimuthWindow::None;
     const PolarImage& src = fine ? inputs->fine : ideal;
     std::vector<double> I;
     const double peak = to_linear(src, I);
-    if (p.azimuth_window != AzimuthWindow::None) I = form_beams(I, K, src.beams, s);
-    // 3. Matched filter along range.
-    if (const std::vector<double> h = range_kernel(p.pulse, p.range_resolution_m, dr); h.size() > 1)
-        blur_range(I, K, N, h);
-
-    // 4-6. Speckle anchored to the scatterers, noise anchored to the pose, then TVG and gain.
     const bool speckle = p.speckle != Speckle::Off && inputs && !inputs->elevation_rad.empty();
-    const bool k_dist = p.speckle == Speckle::K;
+    if (speckle) {
+        I = form_speckle(I, K, src.beams, *inputs, s);
+    } else {
+        if (p.azimuth_window != AzimuthWindow::None) I = form_beams(I, K, src.beams, s);
+        if (const std::vector<double> h = range_kernel(p.pulse, p.range_resolution_m, dr); h.size() > 1)
+            convolve_range(I, K, N, h);
+    }
+
+    // 4-6. The K texture per resolution cell, noise anchored to the pose, then TVG and gain.
+    const bool k_dist = speckle && p.speckle == Speckle::K;
     const double noise_power = p.noise ? std::pow(10.0, -peak / 10) : 0.0; // L_EN of noise is 0 dB
     const double sigma = std::sqrt(noise_power);
-    const glm::dmat3 R = rotation_matrix(s.sonar.pose.orientation_deg);
-    const glm::dvec3 origin = to_glm(s.sonar.pose.position_m), up = R * glm::dvec3(0, 0, 1);
+    const SonarFrame frame(s);
     const double theta = deg2rad(s.sonar.azimuth_fov_deg), spacing = theta / N;
-    std::vector<glm::dvec3> ahead(static_cast<size_t>(N)); // R (cos a, sin a, 0) per beam
-    for (int b = 0; b < N; ++b) {
-        const double a = theta / 2 - (b + 0.5) * spacing;
-        ahead[size_t(b)] = R * glm::dvec3(std::cos(a), std::sin(a), 0);
-    }
-    const std::uint64_t speckle_seed = mix64(std::uint64_t(p.seed) ^ 0x737065636b6c65ULL); // "speckle"
+    std::vector<glm::dvec3> ahead(static_cast<size_t>(N));
+    for (int b = 0; b < N; ++b) ahead[size_t(b)] = frame.ahead(theta / 2 - (b + 0.5) * spacing);
+    const std::uint64_t texture_seed = mix64(std::uint64_t(p.seed) ^ 0x737065636b6c65ULL); // "speckle"
     const std::uint64_t noise_seed = pose_key(s);
     PolarImage out;
     out.bins = K, out.beams = N;
@@ -182,25 +153,14 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
     tbb::parallel_for(0, K, [&](int k) {
         const double r = r_min + (k + 0.5) * dr;
         const double gain = tvg_db(p.tvg, r, alpha) + p.gain_db + peak;
-        // Speckle cells: world points quantised on a grid of half a range bin (or half the beam spacing
-        // across, where finer), rounded down to a power of two in metres so that the grid is the same at all
-        // ranges within an octave: a scatterer keeps its speckle while the sonar moves over it.
-        const int q_exp = int(std::floor(std::log2(0.5 * std::min(dr, r * spacing))));
-        const double inv_q = std::ldexp(1.0, -q_exp);
-        const std::uint64_t row_key = mix64(speckle_seed ^ std::uint64_t(std::int64_t(q_exp)));
-        auto cell = [&](double x) { return std::uint64_t(fast::floor_int(x * inv_q)); };
+        // The texture's cells: world points on a grid of half a range bin (or half the beam spacing across).
+        const WorldKeyGrid grid(texture_seed, std::min(dr, r * spacing));
         for (int b = 0; b < N; ++b) {
             const size_t c = size_t(k) * N + b;
             double v = I[c];
-            if (speckle && v > 0) {
-                const float e_mean = inputs->elevation_rad[c];
-                const double se = std::isnan(e_mean) ? 0.0 : key_sin(e_mean), ce = std::sqrt(1 - se * se);
-                const glm::dvec3 pt = origin + r * (ce * ahead[size_t(b)] + se * up);
-                const std::uint64_t key =
-                    mix64(row_key ^ cell(pt.x) * 0x9e3779b97f4a7c15ULL ^ cell(pt.y) * 0xc2b2ae3d27d4eb4fULL ^
-                          cell(pt.z) * 0x165667b19e3779f9ULL);
-                v *= fast::neg_ln(unit(key));
-                if (k_dist) v *= KeyedRandom(key).gamma(p.speckle_k_shape) / p.speckle_k_shape;
+            if (k_dist && v > 0) {
+                const std::uint64_t key = grid(frame.point(ahead[size_t(b)], r, inputs->elevation_rad[c]));
+                v *= KeyedRandom(key).gamma(p.speckle_k_shape) / p.speckle_k_shape;
             }
             if (noise_power > 0) {
                 // |sqrt(v) + n|^2, n = sigma sqrt(E) e^(i phi): circular complex Gaussian of power sigma^2.

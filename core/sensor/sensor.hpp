@@ -1,6 +1,7 @@
 // The sensor stage: from the ideal echo image (what the sampler converges, L_EN per range bin and beam) to
 // what a device shows. In order (SENSORS.md 2.8): the receive beam pattern across azimuth, the matched
-// filter along range, speckle, additive noise, then time-varying gain and receiver gain. Each effect is off
+// filter along range, speckle (with speckle on, the three formed together as a complex field:
+// speckle_field.hpp), additive noise, then time-varying gain and receiver gain. Each effect is off
 // unless the scene turns it on (sensor.*), and the ideal sensor passes the image through untouched.
 #pragma once
 #include "core/display/polar_image.hpp"
@@ -38,6 +39,11 @@ class KeyedRandom {
 };
 
 /// splitmix64's finaliser: a 64-bit mix.
-std::uint64_t mix64(std::uint64_t x);
+inline std::uint64_t mix64(std::uint64_t x) {
+    x += 0x9e3779b97f4a7c15ULL;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+    return x ^ (x >> 31);
+}
 
 } // namespace sonarsim

@@ -47,12 +47,18 @@ std::vector<double> window_weights(AzimuthWindow window, double taylor_sidelobe_
     return w;
 }
 
-/// |AF(psi)|^2 of the weighted array, 1 at psi = 0.
-double array_intensity(const std::vector<double>& w, double psi) {
+/// AF(psi) of the weighted array (real, the weights being symmetric), 1 at psi = 0.
+double array_factor(const std::vector<double>& w, double psi) {
     const double mid = 0.5 * (double(w.size()) - 1);
     double sum = 0, norm = 0;
     for (size_t k = 0; k < w.size(); ++k) sum += w[k] * std::cos((double(k) - mid) * psi), norm += w[k];
-    return (sum / norm) * (sum / norm);
+    return sum / norm;
+}
+
+/// |AF(psi)|^2, 1 at psi = 0.
+double array_intensity(const std::vector<double>& w, double psi) {
+    const double af = array_factor(w, psi);
+    return af * af;
 }
 
 } // namespace
@@ -95,8 +101,11 @@ ArrayPattern::ArrayPattern(AzimuthWindow window, double taylor_sidelobe_db) {
     }
     const double psi3 = 0.5 * (lo + hi);
     const int n = int(kAzimuthPatternExtent * kStepsPerWidth) + 2;
-    table_.resize(size_t(n));
-    for (int i = 0; i < n; ++i) table_[size_t(i)] = array_intensity(w, 2 * psi3 * i / kStepsPerWidth);
+    table_.resize(size_t(n)), sign_.resize(size_t(n));
+    for (int i = 0; i < n; ++i) {
+        const double af = array_factor(w, 2 * psi3 * i / kStepsPerWidth);
+        table_[size_t(i)] = af * af, sign_[size_t(i)] = af < 0 ? -1 : 1;
+    }
 }
 
 const ArrayPattern& array_pattern(AzimuthWindow window, double taylor_sidelobe_db) {
@@ -120,6 +129,12 @@ double ArrayPattern::operator()(double x) const {
     return table_[i] * (1 - f) + table_[i + 1] * f;
 }
 
+double ArrayPattern::amplitude(double x) const {
+    const double t = std::abs(x) * kStepsPerWidth;
+    const size_t i = std::min(size_t(t + 0.5), sign_.size() - 1); // the nearest sample's sign
+    return sign_[i] * std::sqrt((*this)(x));
+}
+
 double ArrayPattern::first_sidelobe_db() const {
     size_t i = 1;
     while (i + 1 < table_.size() && table_[i + 1] <= table_[i]) ++i; // down the main lobe to the null
@@ -140,7 +155,7 @@ int azimuth_subcolumns(const SceneDesc& s) {
     return std::clamp(int(std::ceil(4 * spacing / azimuth_beamwidth_deg(s) - 1e-9)), 1, 8);
 }
 
-AzimuthBeamforming make_azimuth_beamforming(const SceneDesc& s) {
+AzimuthBeamforming make_azimuth_beamforming(const SceneDesc& s, bool amplitudes) {
     AzimuthBeamforming f;
     const int N = s.sonar.beams, S = azimuth_subcolumns(s);
     f.beams = N, f.sub = S;
@@ -171,11 +186,31 @@ AzimuthBeamforming make_azimuth_beamforming(const SceneDesc& s) {
             }
         f.offset[size_t(j)] = f.weight.size();
         f.first[size_t(j)] = std::max(first, 0), f.count[size_t(j)] = last - first + 1;
-        for (int b = first; b <= last; ++b)
-            f.weight.push_back(pattern((tj - centre[size_t(b)]) / width[size_t(b)]));
+        for (int b = first; b <= last; ++b) {
+            const double x = (tj - centre[size_t(b)]) / width[size_t(b)];
+            f.weight.push_back(pattern(x));
+            if (amplitudes) f.amplitude.push_back(pattern.amplitude(x));
+        }
     }
     f.offset[size_t(J)] = f.weight.size();
     return f;
+}
+
+std::vector<double> range_amplitude_kernel(Pulse pulse, double res_m, double dr_m) {
+    if (!(res_m > 0)) return {1.0};
+    const double extent = pulse == Pulse::Cw ? res_m : 8 * res_m;
+    const int h = int(std::floor(extent / dr_m)); // bin centres within `extent` of 0
+    std::vector<double> g(size_t(2 * h + 1));
+    double energy = 0;
+    for (int t = -h; t <= h; ++t) {
+        const double u = std::abs(t) * dr_m / res_m;
+        const double a = pulse == Pulse::Cw ? std::max(0.0, 1 - u)
+                         : u < 1e-9         ? 1.0
+                                            : std::sin(kPi * u) / (kPi * u);
+        g[size_t(t + h)] = a, energy += a * a;
+    }
+    for (double& x : g) x /= std::sqrt(energy);
+    return g;
 }
 
 std::vector<double> range_kernel(Pulse pulse, double res_m, double dr_m) {

@@ -39,13 +39,17 @@ class ArrayPattern {
   public:
     ArrayPattern(AzimuthWindow window, double taylor_sidelobe_db);
     double operator()(double x) const;
+    /// The amplitude pattern AF (real: the window is symmetric) with the sign of the array factor and the
+    /// magnitude sqrt of operator(), so that amplitude(x)^2 is exactly the intensity pattern.
+    double amplitude(double x) const;
     /// The first sidelobe's level [dB], found on the table (for tests and docs).
     double first_sidelobe_db() const;
     /// The |x| beyond which the pattern stays below `floor_db` (at most kAzimuthPatternExtent).
     double extent(double floor_db) const;
 
   private:
-    std::vector<double> table_; ///< at x = i / kStepsPerWidth
+    std::vector<double> table_;     ///< at x = i / kStepsPerWidth
+    std::vector<signed char> sign_; ///< sign of AF at the same x
 };
 
 /// The pattern of a window (and, for taylor, its sidelobe level), made once per process and shared.
@@ -68,13 +72,20 @@ struct AzimuthBeamforming {
     std::vector<int> first, count;
     std::vector<std::size_t> offset; ///< into weight
     std::vector<double> weight;
+    std::vector<double>
+        amplitude; ///< with `amplitudes`: the signed sqrt of each weight (ArrayPattern::amplitude)
 };
-AzimuthBeamforming make_azimuth_beamforming(const SceneDesc& scene);
+AzimuthBeamforming make_azimuth_beamforming(const SceneDesc& scene, bool amplitudes = false);
 
 /// The matched filter's intensity response sampled on range bins of width dr_m: weights of bins -h..h
 /// (h = (size - 1) / 2), each the kernel's integral over the bin, summing to 1. cw: (1 - |x| / dr)^2 for
 /// |x| < dr (the squared triangle); chirp: sinc^2(x / dr) out to +-8 dr. A single 1 when the resolution
 /// is 0.
 std::vector<double> range_kernel(Pulse pulse, double resolution_m, double dr_m);
+
+/// The matched filter's amplitude response sampled at the bin centres t dr_m (the device samples the filter's
+/// output): cw the triangle 1 - |x| / dr, chirp sinc(x / dr) out to +-8 dr; scaled so that the squares sum
+/// to 1 (energy kept). A single 1 when the resolution is below a bin.
+std::vector<double> range_amplitude_kernel(Pulse pulse, double resolution_m, double dr_m);
 
 } // namespace sonarsim

@@ -1,0 +1,75 @@
+// Speckle with the device's grain (docs/model.md, "The sensor"): a circular complex Gaussian field drawn per
+// sample of the ideal image, keyed by the world point the sample stands for, formed coherently through the
+// receive pattern's amplitude across azimuth and the matched filter's amplitude response along range, then
+// |.|^2. Neighbouring beams share speckle in proportion to their overlap, range bins in proportion to the
+// pulse length, and the mean is the intensity path's (sum of P I, then the range kernel) exactly.
+#pragma once
+#include "core/base/pose.hpp"
+#include "core/base/fast_math.hpp"
+#include "core/scene/scene.hpp"
+#include "core/sensor/sensor.hpp"
+#include "core/shading/accumulate.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace sonarsim {
+
+/// Keys of world points: a point is quantised on a grid of 2^q metres, the largest power of two at or below
+/// half of `cell_m` (so the grid is the same at all ranges within an octave and a scatterer keeps its key
+/// while the sonar moves over it); the key hashes the seed, q and the grid cell.
+class WorldKeyGrid {
+  public:
+    WorldKeyGrid(std::uint64_t seed, double cell_m);
+    std::uint64_t operator()(const glm::dvec3& p) const {
+        auto cell = [&](double x) { return std::uint64_t(fast::floor_int(x * inv_q_)); };
+        return mix64(row_key_ ^ cell(p.x) * 0x9e3779b97f4a7c15ULL ^ cell(p.y) * 0xc2b2ae3d27d4eb4fULL ^
+                     cell(p.z) * 0x165667b19e3779f9ULL);
+    }
+
+  private:
+    std::uint64_t row_key_;
+    double inv_q_;
+};
+
+/// Where the sonar looks from: the world point at range r along a direction of the fan (`ahead`, unit,
+/// horizontal in the sonar frame) raised by the elevation e [rad] (NaN: 0) towards `up`, as
+/// base + scale * ahead with (base, scale) = raised(r, e), shared by every direction at that r and e.
+struct SonarFrame {
+    explicit SonarFrame(const SceneDesc& s);
+    glm::dvec3 origin, up;
+    glm::dmat3 R;
+    glm::dvec3 ahead(double azimuth_rad) const; ///< R (cos a, sin a, 0)
+    std::pair<glm::dvec3, double> raised(double r_m, float elevation_rad) const {
+        const double se = std::isnan(elevation_rad) ? 0.0 : key_sin(elevation_rad),
+                     ce = std::sqrt(1 - se * se);
+        return {origin + r_m * se * up, r_m * ce};
+    }
+    /// sin of an elevation angle |e| <= pi/2 (Taylor to e^9: error below 2e-4 at pi/2, 1e-8 within 0.5 rad):
+    /// only used to place a key, where any fixed function of e does.
+    static double key_sin(double e) {
+        const double e2 = e * e;
+        return e * (1 - e2 / 6 * (1 - e2 / 20 * (1 - e2 / 42 * (1 - e2 / 72))));
+    }
+    glm::dvec3 point(const glm::dvec3& ahead, double r_m, float elevation_rad) const {
+        const auto [base, scale] = raised(r_m, elevation_rad);
+        return base + scale * ahead;
+    }
+};
+
+/// The speckled intensity per (range bin, beam) [bin * beams + beam] from the linear intensities `I` per
+/// (range bin, source column) (K x J; J = beams x sub, the fine columns when the receive pattern is formed
+/// from them): the field sqrt(I) z, z ~ CN(0, 1) keyed by the sample's world point (range, column azimuth,
+/// the beam's mean elevation in `inputs`, quantised to half the sample spacing), summed over the columns
+/// with the receive pattern's amplitude (when the window is on), convolved along range with the matched
+/// filter's amplitude response, then |.|^2.
+std::vector<double> form_speckle(const std::vector<double>& I, int K, int J, const SensorInputs& inputs,
+                                 const SceneDesc& scene);
+
+/// Each row of `rows` (K rows of `width` values) replaced by the h-weighted sum of its neighbours along
+/// range: out_k = sum_t h[t + half] x_(k - t).
+void convolve_range(std::vector<double>& rows, int K, int width, const std::vector<double>& h);
+
+} // namespace sonarsim
