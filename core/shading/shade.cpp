@@ -71,16 +71,17 @@ namespace {
 double textured_db(const ShadeConstants& k, const SceneDesc& s, const SceneTexture& texture, const Cell& c,
                    const GhostCell* g) {
     const MaterialTexture& t = texture.of(c.material);
-    const glm::dvec3 p(c.point);
-    const double level = t.level_on ? t.level_db(p) : 0.0;
-    if (g) return ghost_echo_db(k, s, *g) + level;
+    const MaterialTexture::Sample x = t.at(glm::dvec3(c.point));
+    if (g) return ghost_echo_db(k, s, *g) + x.level_db;
     const Material& m = material_of(s, c.material);
-    if (!t.slope_on) return cell_echo_db(k, m, c.range_m, c.cos_incidence, c.solid_angle_sr) + level;
+    if (!t.slope_on) return cell_echo_db(k, m, c.range_m, c.cos_incidence, c.solid_angle_sr) + x.level_db;
     if (!(c.cos_incidence > 0)) return kNegInf;
-    const double cos_facet = t.facet_cos(p, c.cos_incidence);
+    const double cos_mean = std::min(1.0, double(c.cos_incidence)),
+                 cos_facet = cos_mean * std::cos(x.tilt_rad) -
+                             std::sqrt(1 - cos_mean * cos_mean) * std::sin(x.tilt_rad);
     if (!(cos_facet > 0)) return kNegInf; // the facet faces away
     return cell_echo_db(k, m, c.range_m, cos_facet, c.solid_angle_sr) +
-           std::log(cos_facet / std::min(1.0, double(c.cos_incidence))) / kLn10Over10 + level;
+           std::log(cos_facet / cos_mean) / kLn10Over10 + x.level_db;
 }
 
 } // namespace

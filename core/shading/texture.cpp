@@ -57,53 +57,66 @@ glm::dmat3 random_rotation(std::uint32_t seed) {
                       2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y));
 }
 
-/// Smoothstep weights of the lower and upper lattice node, normalised so their squares sum to 1.
-inline void weights(double f, double& w0, double& w1) {
-    const double s = f * f * (3 - 2 * f), n = 1.0 / std::sqrt((1 - s) * (1 - s) + s * s);
-    w0 = (1 - s) * n, w1 = s * n;
+/// Smoothstep: the upper node's weight before normalisation.
+inline double smooth(double f) {
+    return f * f * (3 - 2 * f);
 }
 
 } // namespace
 
 GaussianField::GaussianField(double correlation_m, std::uint32_t seed, const glm::dmat3& to_frame,
-                             const glm::dvec3& frame_offset_m)
-    : seed_(mix(seed)) {
+                             const glm::dvec3& frame_offset_m) {
     const double per_m = 1.0 / (kSpacingPerCorrelation * correlation_m); // lattice spacings per metre
-    const glm::dmat3 L = random_rotation(mix(seed, 0x5eed));
-    m_ = per_m * (L * to_frame), b_ = per_m * (L * frame_offset_m);
-}
-
-double GaussianField::operator()(const glm::dvec3& p) const {
-    const glm::dvec3 u = m_ * p + b_;
-    const glm::dvec3 fl = glm::floor(u);
-    double w[3][2];
-    for (int a = 0; a < 3; ++a) weights(u[a] - fl[a], w[a][0], w[a][1]);
-    const auto& table = normal_table();
-    const std::uint32_t ix = std::uint32_t(std::int64_t(fl.x)), iy = std::uint32_t(std::int64_t(fl.y)),
-                        iz = std::uint32_t(std::int64_t(fl.z));
-    double g = 0;
-    for (std::uint32_t dx = 0; dx < 2; ++dx) {
-        const std::uint32_t hx = mix(seed_, ix + dx);
-        for (std::uint32_t dy = 0; dy < 2; ++dy) {
-            const std::uint32_t hy = mix(hx, iy + dy);
-            const double wxy = w[0][dx] * w[1][dy];
-            g += wxy * (w[2][0] * table[mix(hy, iz) >> (32 - kTableBits)] +
-                        w[2][1] * table[mix(hy, iz + 1) >> (32 - kTableBits)]);
-        }
+    for (std::uint32_t n = 0; n < 2; ++n) {
+        Lattice& l = lattice_[n];
+        const std::uint32_t s = mix(seed, 0x5eed + n);
+        const glm::dmat3 L = random_rotation(s);
+        const glm::dvec3 shift(uniform01(mix(s, 4)), uniform01(mix(s, 5)), uniform01(mix(s, 6)));
+        l.m = per_m * (L * to_frame), l.b = per_m * (L * frame_offset_m) + shift, l.seed = mix(s, 7);
     }
-    return g;
 }
 
-double MaterialTexture::level_db(const glm::dvec3& p) const {
-    double l = mean_offset_db;
-    if (rms_db > 0) l += rms_db * level(p);
-    if (ripple_db > 0) l += ripple_db * std::cos(glm::dot(ripple_k, p) + ripple_phase);
-    return l;
+glm::dvec2 GaussianField::operator()(const glm::dvec3& p) const {
+    return (lattice_[0](p) + lattice_[1](p)) * 0.70710678118654752; // independent: variance 1
+}
+
+glm::dvec2 GaussianField::Lattice::operator()(const glm::dvec3& p) const {
+    const glm::dvec3 u = m * p + b, fl = glm::floor(u);
+    const double sx = smooth(u.x - fl.x), sy = smooth(u.y - fl.y), sz = smooth(u.z - fl.z);
+    // The node hash: the lattice point's coordinates times odd 64-bit constants (no two points within ~2
+    // million spacings of each other share the sum), folded to 32 bits with the seed, then mixed.
+    constexpr std::uint64_t kX = 0x9e3779b97f4a7c15ull, kY = 0xc2b2ae3d27d4eb4full,
+                            kZ = 0x165667b19e3779f9ull;
+    const std::uint64_t X = std::uint64_t(std::int64_t(fl.x)) * kX,
+                        Y = std::uint64_t(std::int64_t(fl.y)) * kY,
+                        Z = std::uint64_t(std::int64_t(fl.z)) * kZ;
+    const auto& table = normal_table();
+    auto value = [&](std::uint64_t h) { // a node's two values: the hash's top and bottom bits
+        const std::uint32_t m = mix(std::uint32_t(h ^ (h >> 32)) ^ seed);
+        return glm::dvec2(table[m >> (32 - kTableBits)], table[m & ((1u << kTableBits) - 1)]);
+    };
+    const double z0 = 1 - sz, z1 = sz, y0 = 1 - sy, y1 = sy, x0 = 1 - sx, x1 = sx;
+    const std::uint64_t a = X + Y + Z;
+    const glm::dvec2 g = x0 * (y0 * (z0 * value(a) + z1 * value(a + kZ)) +
+                               y1 * (z0 * value(a + kY) + z1 * value(a + kY + kZ))) +
+                         x1 * (y0 * (z0 * value(a + kX) + z1 * value(a + kX + kZ)) +
+                               y1 * (z0 * value(a + kX + kY) + z1 * value(a + kX + kY + kZ)));
+    // Unit variance: the squared weights are separable, (x0^2 + x1^2)(y0^2 + y1^2)(z0^2 + z1^2).
+    return g / std::sqrt((x0 * x0 + x1 * x1) * (y0 * y0 + y1 * y1) * (z0 * z0 + z1 * z1));
+}
+
+MaterialTexture::Sample MaterialTexture::at(const glm::dvec3& p) const {
+    Sample r;
+    const glm::dvec2 g = rms_db > 0 || slope_on ? field(p) : glm::dvec2(0.0);
+    r.level_db = mean_offset_db + rms_db * g.x;
+    if (ripple_db > 0) r.level_db += ripple_db * std::cos(glm::dot(ripple_k, p) + ripple_phase);
+    r.tilt_rad = slope_rms_rad * g.y;
+    return r;
 }
 
 double MaterialTexture::facet_cos(const glm::dvec3& p, double cos_incidence) const {
-    const double theta = std::acos(std::min(1.0, cos_incidence));
-    return std::cos(theta + slope_rms_rad * slope(p));
+    const double c = std::min(1.0, cos_incidence), d = at(p).tilt_rad;
+    return c * std::cos(d) - std::sqrt(1 - c * c) * std::sin(d); // cos(theta + delta)
 }
 
 MaterialTexture material_texture(const Material& m, const glm::dmat3& R, const glm::dvec3& t,
@@ -117,7 +130,6 @@ MaterialTexture material_texture(const Material& m, const glm::dmat3& R, const g
     // ln10/10; for L = A cos(phase), phase uniform, E[exp(beta A cos)] = I0(beta A). Subtract both in dB.
     x.mean_offset_db = -(x.rms_db * x.rms_db * kLn10Over10 / 2 +
                          10 * std::log10(std::cyl_bessel_i(0.0, kLn10Over10 * x.ripple_db)));
-    if (x.rms_db > 0) x.level = GaussianField(m.texture_correlation_m, mix(seed, 1), Rt, offset);
     if (x.ripple_db > 0) {
         const double k = 2 * kPi / m.ripple_wavelength_m, d = deg2rad(m.ripple_direction_deg);
         x.ripple_k = R * glm::dvec3(k * std::cos(d), k * std::sin(d), 0);
@@ -125,7 +137,8 @@ MaterialTexture material_texture(const Material& m, const glm::dmat3& R, const g
     }
     x.slope_rms_rad = deg2rad(m.slope_rms_deg);
     x.slope_on = x.slope_rms_rad > 0;
-    if (x.slope_on) x.slope = GaussianField(m.texture_correlation_m, mix(seed, 2), Rt, offset);
+    if (x.rms_db > 0 || x.slope_on)
+        x.field = GaussianField(m.texture_correlation_m, mix(seed, 1), Rt, offset);
     return x;
 }
 

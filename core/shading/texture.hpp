@@ -9,43 +9,54 @@
 
 namespace sonarsim {
 
-/// A stationary random field with standard normal marginals at every point and an autocorrelation that falls
-/// to 1/e at `correlation_m` (along any direction within a few per cent): Gaussian values on a seeded,
-/// randomly rotated cubic lattice, interpolated with smoothstep weights normalised to unit variance. The
-/// normalised weights are separable, so the autocorrelation is the product of one 1D function per axis.
+/// Two independent stationary random fields (the level's and the slope's, one lattice walk for both) with
+/// standard normal marginals at every point and an autocorrelation that falls
+/// to 1/e at `correlation_m` (along any direction within a few per cent): the sum, over sqrt 2, of two
+/// independent lattices, each of Gaussian values on a seeded, randomly rotated and shifted cubic lattice,
+/// interpolated with smoothstep weights normalised to unit variance (separable: each lattice's
+/// autocorrelation is the product of one 1D function per axis). Two lattices hide each one's nodes.
 class GaussianField {
   public:
     GaussianField() = default;
     /// `to_frame`: world point -> the surface's frame [m] (rotation R^T, then -R^T t).
     GaussianField(double correlation_m, std::uint32_t seed, const glm::dmat3& to_frame,
                   const glm::dvec3& frame_offset_m);
-    /// g(point), point in world coordinates [m].
-    double operator()(const glm::dvec3& world_m) const;
+    /// (g1, g2) at a world point [m]: two independent fields (each node holds two values).
+    glm::dvec2 operator()(const glm::dvec3& world_m) const;
 
     /// The lattice spacing per metre of correlation length: the 1/e lag of the 1D autocorrelation of
     /// smoothstep-interpolated unit-variance lattice values is 0.8237 spacings.
     static constexpr double kSpacingPerCorrelation = 1.0 / 0.8237;
 
   private:
-    glm::dmat3 m_{1.0};
-    glm::dvec3 b_{0.0};
-    std::uint32_t seed_ = 0;
+    struct Lattice {
+        glm::dmat3 m{1.0}; ///< world -> lattice coordinates
+        glm::dvec3 b{0.0};
+        std::uint32_t seed = 0;
+        glm::dvec2 operator()(const glm::dvec3& p) const;
+    };
+    Lattice lattice_[2];
 };
 
 /// One material's texture, ready to evaluate.
 struct MaterialTexture {
     bool level_on = false, slope_on = false;
-    double rms_db = 0;          ///< sigma: rms of the random level [dB]
-    double ripple_db = 0;       ///< A: peak amplitude of the ripples' level [dB]
-    double mean_offset_db = 0;  ///< -(sigma^2 ln10/20 + 10 log10 I0(A ln10/10)): keeps the linear mean
-    glm::dvec3 ripple_k{0.0};   ///< ripples' wave vector in world coordinates [rad/m]
-    double ripple_phase = 0;    ///< its phase at the world origin [rad]
-    double slope_rms_rad = 0;   ///< rms of the facet tilt in the plane of incidence [rad]
-    GaussianField level, slope; ///< independent fields (different seeds)
+    double rms_db = 0;         ///< sigma: rms of the random level [dB]
+    double ripple_db = 0;      ///< A: peak amplitude of the ripples' level [dB]
+    double mean_offset_db = 0; ///< -(sigma^2 ln10/20 + 10 log10 I0(A ln10/10)): keeps the linear mean
+    glm::dvec3 ripple_k{0.0};  ///< ripples' wave vector in world coordinates [rad/m]
+    double ripple_phase = 0;   ///< its phase at the world origin [rad]
+    double slope_rms_rad = 0;  ///< rms of the facet tilt in the plane of incidence [rad]
+    GaussianField field;       ///< g1: the level's, g2: the slope's
 
-    /// Level offset at a world point [dB]; unit mean in linear intensity over the surface.
-    double level_db(const glm::dvec3& world_m) const;
-    /// cos of the incidence on the tilted facet at a world point: cos(theta + sigma_s h(x)).
+    /// The texture at a world point: its level offset [dB] (unit mean in linear intensity over the surface)
+    /// and the facet's tilt delta [rad] (cos of the facet's incidence: cos(theta + delta)).
+    struct Sample {
+        double level_db = 0, tilt_rad = 0;
+    };
+    Sample at(const glm::dvec3& world_m) const;
+    double level_db(const glm::dvec3& world_m) const { return at(world_m).level_db; }
+    /// cos(theta + delta) at a world point.
     double facet_cos(const glm::dvec3& world_m, double cos_incidence) const;
 };
 

@@ -122,6 +122,18 @@ TEST_CASE("texture slope: the facet tilt has the rms and correlation length set"
     CHECK(std::abs(mean(tilt)) < 0.5);
     CHECK(std::sqrt(mean(d2)) == Approx(8.0).epsilon(0.15));
     CHECK(correlation_length_m(tilt, 400, 0.125, true) == Approx(0.5).epsilon(0.15));
+    // The level's field is another, independent one (one lattice walk gives both).
+    m.texture_rms_db = 3;
+    const MaterialTexture both = material_texture(m, kWorld, kOrigin, 11);
+    const auto level = sample([&](const glm::dvec3& p) { return both.at(p).level_db; }, 400, 0.125);
+    const auto tilt2 = sample([&](const glm::dvec3& p) { return both.at(p).tilt_rad; }, 400, 0.125);
+    const double ml = mean(level), mt = mean(tilt2);
+    double sxy = 0, sxx = 0, syy = 0;
+    for (size_t k = 0; k < level.size(); ++k) {
+        const double a = level[k] - ml, b = tilt2[k] - mt;
+        sxy += a * b, sxx += a * a, syy += b * b;
+    }
+    CHECK(std::abs(sxy / std::sqrt(sxx * syy)) < 0.05);
 }
 
 TEST_CASE("texture moves with its object and not with the sonar", "[texture]") {
