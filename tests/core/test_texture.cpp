@@ -189,7 +189,7 @@ TEST_CASE("a world point keeps its texture when the sonar turns", "[texture]") {
     CHECK(sum_same / double(count) > 1.0); // the texture is there: neighbouring beams differ
 }
 
-TEST_CASE("a textured floor keeps the mean level; rms 0 changes nothing", "[texture]") {
+TEST_CASE("a textured floor keeps the mean level, and rms 0 changes nothing", "[texture]") {
     SceneDesc s = level_floor_scene(0);
     s.sonar.pose.position_m = {0, 0, 2};
     s.sonar.pose.orientation_deg = {0, 15, 0};
