@@ -375,6 +375,25 @@ std::vector<MaterialSpec> build_material_params() {
                                    "Multipath: energy lost per specular reflection, -10 log10 R^2; absent "
                                    "(null): not a mirror",
                                    &Material::reflection_db)),
+        material("texture_rms_db", "dB", 0, 20, false,
+                 "Seabed texture: rms of a random backscatter level fixed to the surface (linear mean kept); "
+                 "0 = off",
+                 &Material::texture_rms_db),
+        material("texture_correlation_m", "m", 0, 1e4, true,
+                 "Seabed texture and slope: lag at which their autocorrelation falls to 1/e",
+                 &Material::texture_correlation_m),
+        material("ripple_amplitude_db", "dB", 0, 20, false,
+                 "Ripples: peak amplitude of a sinusoidal backscatter level (linear mean kept); 0 = off",
+                 &Material::ripple_amplitude_db),
+        material("ripple_wavelength_m", "m", 0, 1e4, true, "Ripples: crest spacing",
+                 &Material::ripple_wavelength_m),
+        material(
+            "ripple_direction_deg", "deg", -360, 360, false,
+            "Ripples: direction of the wave vector, from the surface's x axis toward y (seafloor: world)",
+            &Material::ripple_direction_deg),
+        material("slope_rms_deg", "deg", 0, 45, false,
+                 "Small-scale slope: rms tilt of the facets in the plane of incidence; 0 = off",
+                 &Material::slope_rms_deg),
     };
 }
 

@@ -20,6 +20,13 @@ struct Material {
     /// Energy lost per specular reflection, -10 log10 |R|^2 [dB]; infinite (absent in a scene file): not a
     /// mirror. Multipath only (sampling.bounces > 0).
     double reflection_db = std::numeric_limits<double>::infinity();
+    /// Seabed texture (shading/texture.hpp), fixed to the surface: rms of a random level [dB]; 0: off.
+    double texture_rms_db = 0.0;
+    double texture_correlation_m = 0.5; ///< lag at which the texture's autocorrelation falls to 1/e [m]
+    double ripple_amplitude_db = 0.0;   ///< peak amplitude of the ripples' level sinusoid [dB]; 0: off
+    double ripple_wavelength_m = 0.5;   ///< ripple crest spacing [m]
+    double ripple_direction_deg = 0.0;  ///< ripples' wave vector, from the surface frame's x toward y [deg]
+    double slope_rms_deg = 0.0;         ///< rms facet tilt in the plane of incidence [deg]; 0: off
     bool is_mirror() const { return reflection_db < std::numeric_limits<double>::infinity(); }
 };
 

@@ -35,12 +35,15 @@ struct Pass {
     StrongestContribution* strongest = nullptr;
     std::vector<std::vector<LogSum>>* orders = nullptr; ///< [beam][order]
     size_t order_count = 1;
+    SceneTexture texture_field;
+    const SceneTexture* texture = nullptr; ///< null when no material has a texture
 
     Pass(const TraceResult& h, const SceneDesc& scene)
         : hits(h), s(scene), k(shade_constants(scene)), grid(scene.sonar), K(grid.bins), N(grid.beams),
           S(azimuth_subcolumns(scene)), r_min(grid.range_min_m), r_max(grid.range_max_m), dr(grid.bin_m),
           spread(scene.sampling.binning == EchoBinning::Footprint),
-          R(rotation_matrix(scene.sonar.pose.orientation_deg)), origin(to_glm(scene.sonar.pose.position_m)) {}
+          R(rotation_matrix(scene.sonar.pose.orientation_deg)), origin(to_glm(scene.sonar.pose.position_m)),
+          texture_field(scene), texture(texture_field.none() ? nullptr : &texture_field) {}
 };
 
 /// One beam's sums; `Img`, `Sens`, `Gt`, `Ord`, `Str` say which channels it fills (compiled out otherwise).
@@ -49,7 +52,7 @@ template <bool Img, bool Sens, bool Gt, bool Ord, bool Str> class BeamPass {
     BeamPass(const Pass& p, int beam) : p_(p), i_(beam), cells_(p.hits, beam) {}
 
     void run() {
-        const double x_max = contribution_levels(cells_, p_.s, p_.k, x_);
+        const double x_max = contribution_levels(cells_, p_.s, p_.k, x_, p_.texture);
         if constexpr (Ord) orders();
         if (x_max == kNegInf) return; // nothing echoes in this beam
         const size_t K = size_t(p_.K);

@@ -63,17 +63,43 @@ BeamContributions::BeamContributions(const TraceResult& hits, int beam)
     : cells_(hits.cells[size_t(beam)]),
       ghosts_(size_t(beam) < hits.ghosts.size() ? &hits.ghosts[size_t(beam)] : nullptr) {}
 
+namespace {
+
+/// A contribution's level [dB] with its material's texture: the level field at its point and, on a direct
+/// cell, the backscatter at the facet's incidence theta' over the mean plane's area: cell_echo_db(theta') +
+/// 10 log10(cos theta' / cos theta).
+double textured_db(const ShadeConstants& k, const SceneDesc& s, const SceneTexture& texture, const Cell& c,
+                   const GhostCell* g) {
+    const MaterialTexture& t = texture.of(c.material);
+    const MaterialTexture::Sample x = t.at(glm::dvec3(c.point));
+    if (g) return ghost_echo_db(k, s, *g) + x.level_db;
+    const Material& m = material_of(s, c.material);
+    if (!t.slope_on) return cell_echo_db(k, m, c.range_m, c.cos_incidence, c.solid_angle_sr) + x.level_db;
+    if (!(c.cos_incidence > 0)) return kNegInf;
+    const double cos_mean = std::min(1.0, double(c.cos_incidence)),
+                 cos_facet = cos_mean * std::cos(x.tilt_rad) -
+                             std::sqrt(1 - cos_mean * cos_mean) * std::sin(x.tilt_rad);
+    if (!(cos_facet > 0)) return kNegInf; // the facet faces away
+    return cell_echo_db(k, m, c.range_m, cos_facet, c.solid_angle_sr) +
+           std::log(cos_facet / cos_mean) / kLn10Over10 + x.level_db;
+}
+
+} // namespace
+
 double contribution_levels(const BeamContributions& beam, const SceneDesc& s, const ShadeConstants& k,
-                           std::vector<double>& x) {
+                           std::vector<double>& x, const SceneTexture* texture) {
     x.resize(beam.size());
     double x_max = kNegInf;
     for (size_t n = 0; n < beam.size(); ++n) {
         const Cell& c = beam[n];
         const GhostCell* g = beam.ghost(n);
-        x[n] =
-            (g ? ghost_echo_db(k, s, *g)
-               : cell_echo_db(k, material_of(s, c.material), c.range_m, c.cos_incidence, c.solid_angle_sr)) *
-            kLn10Over10;
+        if (texture)
+            x[n] = textured_db(k, s, *texture, c, g) * kLn10Over10;
+        else
+            x[n] = (g ? ghost_echo_db(k, s, *g)
+                      : cell_echo_db(k, material_of(s, c.material), c.range_m, c.cos_incidence,
+                                     c.solid_angle_sr)) *
+                   kLn10Over10;
         if (std::isnan(x[n])) x[n] = kNegInf;
         x_max = std::max(x_max, x[n]);
     }

@@ -2,6 +2,7 @@
 // them per (range bin, beam) is accumulate.hpp.
 #pragma once
 #include "core/shading/physics.hpp"
+#include "core/shading/texture.hpp"
 #include "core/scene/scene.hpp"
 #include "core/sampling/trace.hpp"
 
@@ -48,8 +49,10 @@ class BeamContributions {
 };
 
 /// Each contribution's echo level before noise in natural-log units (cell_echo_db or ghost_echo_db times
-/// ln 10 / 10; -inf where nothing returns) into x; returns the largest (-inf when none).
+/// ln 10 / 10; -inf where nothing returns) into x; returns the largest (-inf when none). With `texture`
+/// (null when no material has one), each level gains its material's texture at the contribution's point, and
+/// a direct cell's backscatter takes the facet's tilted incidence (its area stays the mean plane's).
 double contribution_levels(const BeamContributions& beam, const SceneDesc& scene, const ShadeConstants& k,
-                           std::vector<double>& x);
+                           std::vector<double>& x, const SceneTexture* texture = nullptr);
 
 } // namespace sonarsim

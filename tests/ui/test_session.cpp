@@ -197,6 +197,10 @@ TEST_CASE("every slider visibly changes the image", "[ui][params]") {
         if (m.key == "h_deg") before.objects[0].material.mu = 1e-4;
         if (m.key == "reflection_db") // the prism a mirror: its reflections reach the floor
             before.objects[0].material.reflection_db = 3, before.sampling.bounces = 1;
+        // The texture's shape shows once it is on.
+        if (m.key == "texture_correlation_m") before.objects[0].material.texture_rms_db = 3;
+        if (m.key == "ripple_wavelength_m" || m.key == "ripple_direction_deg")
+            before.objects[0].material.ripple_amplitude_db = 2;
         SceneDesc after = before;
         after.objects[0].material.*(m.field) += 0.2 * (r.hi - r.lo);
         INFO("objects.0.material." << m.key);

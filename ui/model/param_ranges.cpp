@@ -37,6 +37,12 @@ SliderRange slider_range(const ValueSpec& spec) {
         {"q", {0, 20, false}},
         {"mu", {0, 10, false}},
         {"h_deg", {0.5, 45, false}},
+        {"texture_rms_db", {0, 8, false}},
+        {"texture_correlation_m", {0.02, 20, true}},
+        {"ripple_amplitude_db", {0, 6, false}},
+        {"ripple_wavelength_m", {0.05, 5, true}},
+        {"ripple_direction_deg", {-180, 180, false}},
+        {"slope_rms_deg", {0, 20, false}},
     };
     SliderRange r{spec.min, spec.max, false};
     if (auto it = table.find(spec.key); it != table.end()) r = it->second;
