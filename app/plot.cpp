@@ -76,6 +76,17 @@ std::string tick_label(double v, double step) {
     return buf;
 }
 
+/// The plot area's border, the title and the axis labels.
+void draw_frame(Canvas& c, int L, int T, int R, int B, int H, const std::string& title, const std::string& xl,
+                const std::string& yl) {
+    const std::array<std::uint8_t, 3> black{0, 0, 0};
+    c.line(L, B, R, B, black), c.line(L, T, L, B, black), c.line(R, T, R, B, black),
+        c.line(L, T, R, T, black);
+    c.text(L, 8, title, black);
+    c.text((L + R) / 2 - Canvas::text_width(xl) / 2, H - 35, xl, black);
+    c.text(10, T - 22, yl, black);
+}
+
 } // namespace
 
 Image8 linear_plot(const std::vector<Series>& series, const std::string& title, const std::string& xl,
@@ -107,11 +118,7 @@ Image8 linear_plot(const std::vector<Series>& series, const std::string& title, 
         const std::string s = tick_label(y, sy);
         c.text(L - 10 - Canvas::text_width(s), int(Y(y)) - 6, s, black);
     }
-    c.line(L, B, R, B, black), c.line(L, T, L, B, black), c.line(R, T, R, B, black),
-        c.line(L, T, R, T, black);
-    c.text(L, 8, title, black);
-    c.text((L + R) / 2 - Canvas::text_width(xl) / 2, H - 35, xl, black);
-    c.text(10, T - 22, yl, black);
+    draw_frame(c, L, T, R, B, H, title, xl, yl);
     int ly = T + 10;
     for (auto& s : series) {
         for (size_t k = 0; k + 1 < s.points.size(); ++k) {
@@ -173,11 +180,7 @@ Image8 loglog_plot(const std::vector<Series>& series, const std::string& title, 
         const std::string s = decade_label(p);
         c.text(L - 10 - Canvas::text_width(s), int(Y(std::pow(10, p))) - 6, s, black);
     }
-    c.line(L, B, R, B, black), c.line(L, T, L, B, black), c.line(R, T, R, B, black),
-        c.line(L, T, R, T, black);
-    c.text(L, 8, title, black);
-    c.text((L + R) / 2 - Canvas::text_width(xl) / 2, H - 35, xl, black);
-    c.text(10, T - 22, yl, black);
+    draw_frame(c, L, T, R, B, H, title, xl, yl);
     int ly = T + 10;
     for (auto& s : series) {
         for (size_t k = 0; k + 1 < s.points.size(); ++k)

@@ -1,6 +1,7 @@
 #include "core/geometry/geometry.hpp"
 
 #include "core/base/errors.hpp"
+#include "core/base/shared_registry.hpp"
 #include "core/geometry/mesh_cache.hpp"
 #include "core/geometry/shading_normals.hpp"
 
@@ -121,35 +122,7 @@ struct ShapeKey {
 
 /// The BVHs in use by any SceneGeometry, one per shape: a scene built while another holds a mesh's BVH shares
 /// it. A BVH lives as long as a scene uses it (it keeps its mesh alive, so a mesh's address names one mesh).
-class BlasRegistry {
-  public:
-    std::shared_ptr<const Blas> get(const ShapeKey& key,
-                                    const std::function<std::shared_ptr<const TriMesh>()>& make_mesh) {
-        std::shared_ptr<Slot> slot;
-        {
-            const std::lock_guard<std::mutex> lock(mutex_);
-            for (auto it = slots_.begin(); it != slots_.end();) // forget BVHs that no scene uses any more
-                it = it->second.use_count() == 1 && it->second->blas.expired() ? slots_.erase(it)
-                                                                               : std::next(it);
-            std::shared_ptr<Slot>& s = slots_[key];
-            if (!s) s = std::make_shared<Slot>();
-            slot = s;
-        }
-        const std::lock_guard<std::mutex> lock(slot->mutex); // one build per shape; others wait for it
-        if (std::shared_ptr<const Blas> b = slot->blas.lock()) return b;
-        std::shared_ptr<const Blas> b = build_blas(make_mesh());
-        slot->blas = b;
-        return b;
-    }
-
-  private:
-    struct Slot {
-        std::mutex mutex;
-        std::weak_ptr<const Blas> blas;
-    };
-    std::mutex mutex_;
-    std::map<ShapeKey, std::shared_ptr<Slot>> slots_;
-};
+using BlasRegistry = SharedRegistry<ShapeKey, Blas>;
 
 BlasRegistry& blas_registry() {
     static BlasRegistry registry;
@@ -229,11 +202,12 @@ SceneGeometry::SceneGeometry(const SceneDesc& s) : impl_(std::make_unique<Impl>(
         ob.mesh_resolved = o.mesh_resolved;
         ob.box_m = o.box_m;
         if (o.box_m) {
-            ob.blas = blas_registry().get(
-                {nullptr, *o.box_m}, [&] { return std::make_shared<const TriMesh>(make_box(*o.box_m)); });
+            ob.blas = blas_registry().get({nullptr, *o.box_m}, [&] {
+                return build_blas(std::make_shared<const TriMesh>(make_box(*o.box_m)));
+            });
         } else {
             std::shared_ptr<const TriMesh> mesh = cached_mesh(o.mesh_resolved, s.source_file, key + ".mesh");
-            ob.blas = blas_registry().get({mesh.get(), {0, 0, 0}}, [&] { return mesh; });
+            ob.blas = blas_registry().get({mesh.get(), {0, 0, 0}}, [&] { return build_blas(mesh); });
         }
         ob.placement = place(o, *ob.blas, s.source_file, key);
         ob.normals = shared_corner_normals(ob.blas->mesh, o.crease_angle_deg);

@@ -1,5 +1,7 @@
 #include "core/geometry/shading_normals.hpp"
 
+#include "core/base/shared_registry.hpp"
+
 #include "core/base/pose.hpp"
 
 #include <tbb/parallel_for.h>
@@ -91,47 +93,19 @@ ShadingNormals corner_normals(const TriMesh& m, double crease_angle_deg) {
     return out;
 }
 
-namespace {
-
-/// The corner normals in use, one per (mesh, crease angle): computed by the first to ask, shared while
-/// anything holds them (they keep their mesh alive, so a mesh's address names one mesh).
-class NormalsRegistry {
-  public:
-    std::shared_ptr<const ShadingNormals> get(const std::shared_ptr<const TriMesh>& mesh, double crease_deg) {
-        std::shared_ptr<Slot> slot;
-        {
-            const std::lock_guard<std::mutex> lock(mutex_);
-            for (auto it = slots_.begin(); it != slots_.end();) // forget normals nothing uses any more
-                it = it->second.use_count() == 1 && it->second->normals.expired() ? slots_.erase(it)
-                                                                                  : std::next(it);
-            std::shared_ptr<Slot>& s = slots_[{mesh.get(), crease_deg}];
-            if (!s) s = std::make_shared<Slot>();
-            slot = s;
-        }
-        const std::lock_guard<std::mutex> lock(slot->mutex); // one computation per key; others wait for it
-        if (std::shared_ptr<const ShadingNormals> n = slot->normals.lock()) return n;
-        auto n = std::make_shared<ShadingNormals>(corner_normals(*mesh, crease_deg));
-        n->mesh = mesh;
-        slot->normals = n;
-        return n;
-    }
-
-  private:
-    struct Slot {
-        std::mutex mutex;
-        std::weak_ptr<const ShadingNormals> normals;
-    };
-    std::mutex mutex_;
-    std::map<std::pair<const TriMesh*, double>, std::shared_ptr<Slot>> slots_;
-};
-
-} // namespace
+namespace {} // namespace
 
 std::shared_ptr<const ShadingNormals> shared_corner_normals(const std::shared_ptr<const TriMesh>& mesh,
                                                             double crease_angle_deg) {
     if (!mesh || !(crease_angle_deg > 0)) return nullptr;
-    static NormalsRegistry registry;
-    return registry.get(mesh, crease_angle_deg);
+    // The corner normals in use, one per (mesh, crease angle): computed by the first to ask, shared while
+    // anything holds them (they keep their mesh alive, so a mesh's address names one mesh).
+    static SharedRegistry<std::pair<const TriMesh*, double>, ShadingNormals> registry;
+    return registry.get({mesh.get(), crease_angle_deg}, [&] {
+        auto n = std::make_shared<ShadingNormals>(corner_normals(*mesh, crease_angle_deg));
+        n->mesh = mesh;
+        return std::shared_ptr<const ShadingNormals>(std::move(n));
+    });
 }
 
 } // namespace sonarsim

@@ -1,9 +1,10 @@
 // Helpers of the dataset tests: a small fast scene, file bytes, fresh directories.
 #pragma once
+#include "core/display/polar_image.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/scene_io.hpp"
-#include "core/display/polar_image.hpp"
 
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -20,6 +21,14 @@ inline std::string batch_out(const std::string& name) {
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(std::filesystem::path(dir).parent_path());
     return dir;
+}
+
+/// A little-endian field of type T at byte `off` (the test host is little-endian, as the files are).
+template <typename T> T at(const std::vector<std::uint8_t>& b, size_t off) {
+    REQUIRE(off + sizeof(T) <= b.size());
+    T v;
+    std::memcpy(&v, b.data() + off, sizeof v);
+    return v;
 }
 
 inline std::vector<std::uint8_t> file_bytes(const std::string& path) {

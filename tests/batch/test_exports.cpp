@@ -21,13 +21,6 @@ using namespace sonarsim::test;
 
 namespace {
 
-template <typename T> T at(const std::vector<std::uint8_t>& b, size_t off) {
-    REQUIRE(off + sizeof(T) <= b.size());
-    T v;
-    std::memcpy(&v, b.data() + off, sizeof v);
-    return v;
-}
-
 /// Per frame of an ARIS file: its frame header and its bytes (sample-major, beam 0 starboard-most).
 struct ArisFrame {
     std::vector<std::uint8_t> header, samples;

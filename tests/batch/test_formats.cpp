@@ -20,13 +20,6 @@ using namespace sonarsim::test;
 
 namespace {
 
-template <typename T> T at(const std::vector<std::uint8_t>& b, size_t off) {
-    REQUIRE(off + sizeof(T) <= b.size());
-    T v;
-    std::memcpy(&v, b.data() + off, sizeof v); // the test host is little-endian, as the files are
-    return v;
-}
-
 SceneDesc with_gain(SceneDesc s, double gain_db) {
     s.sensor.gain_db = gain_db;
     return s;

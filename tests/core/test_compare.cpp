@@ -67,7 +67,8 @@ TEST_CASE("compare: the range profile follows the mean level, whatever the gain"
     for (int sl = 0; sl < 20; ++sl) {
         double m = 0;
         for (int k = sl * kBins / 20; k < (sl + 1) * kBins / 20; ++k) m += falling(k) / (kBins / 20);
-        CHECK(s.range_profile_db[size_t(sl)] == Approx(10 * std::log10(m / overall)).margin(0.25)); // 1.6 % per slice: 0.07 dB rms
+        CHECK(s.range_profile_db[size_t(sl)] ==
+              Approx(10 * std::log10(m / overall)).margin(0.25)); // 1.6 % per slice: 0.07 dB rms
     }
     // A trend across the local window does not pass for speckle: the contrast stays the exponential law's.
     CHECK(s.contrast_intensity == Approx(1.0).margin(0.04));
