@@ -5,9 +5,10 @@
 // the device's own frame interval, which a live simulation has to beat.
 //
 // Device frame interval: a single-ping sonar cannot image faster than the echo from range_max returns,
-// 2 r_max / c. An ARIS frame is fired as beams / 16 pings [SENSORS.md 1.2, Reorder.cpp], each taking the
-// echo time plus 420 us of overhead, at most 15 fps (FrameRate.cpp, anti-aliasing delay left out). DIDSON:
-// at most 21 fps, its pings per frame not being in our sources, so 2 r_max / c is a lower bound there.
+// 2 r_max / c. An ARIS frame is fired as sonar.pings_per_frame pings [SENSORS.md 1.2, Reorder.cpp], each
+// taking the echo time plus 420 us of overhead, at most 15 fps (FrameRate.cpp, anti-aliasing delay left out).
+// DIDSON: at most 21 fps, its pings per frame not being in our sources, so 2 r_max / c is a lower bound
+// there.
 //
 // Scenes, scaled to each device's window so that it sees something: the terrain (bench/terrain.cpp) scaled
 // uniformly by r_max / 20 m (relief by at most 2), the sonar pitched 15 deg down with the fan's centre
@@ -20,6 +21,7 @@
 #include "core/base/pose.hpp"
 #include "core/devices/devices.hpp"
 #include "core/pipeline/simulator.hpp"
+#include "core/sampling/acquisition.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/sampling_scheme.hpp"
 #include "core/scene/scene_io.hpp"
@@ -52,10 +54,9 @@ struct Interval {
 Interval device_interval(const std::string& name, const SceneDesc& s) {
     const double c = sound_speed_m_s(s.water.temperature_c, s.water.depth_m);
     const double echo_s = 2 * s.sonar.range_max_m / c;
-    if (name.rfind("aris", 0) == 0) {
-        const double pings = std::max(1, s.sonar.beams / 16);
-        return {1e3 * std::max(1.0 / 15, pings * (echo_s + 420e-6)), "pings x (2R/c + 0.42 ms), <= 15 fps"};
-    }
+    if (name.rfind("aris", 0) == 0)
+        return {1e3 * std::max(1.0 / 15, s.sonar.pings_per_frame * ping_interval_s(s.sonar, c)),
+                "pings x (2R/c + 0.42 ms), <= 15 fps"};
     if (name.rfind("didson", 0) == 0) return {1e3 * std::max(1.0 / 21, echo_s), ">= 2R/c, <= 21 fps"};
     return {1e3 * echo_s, "2R/c"};
 }

@@ -107,6 +107,7 @@ std::vector<size_t> shard_frames(const std::string& spec, size_t total, const st
 SceneDesc frame_scene(const SceneDesc& base, const Trajectory& trajectory, size_t k) {
     SceneDesc s = base;
     s.sonar.pose = trajectory.at(k).pose;
+    if (base.sonar.motion_from_trajectory) set_motion_from_trajectory(s.sonar, trajectory, k);
     // Each frame its own speckle and noise, reproducible from the base seed and the frame number alone (so
     // shards and resumed runs give the same bytes as one run).
     const ParamSpec& seed = *find_param("sensor.seed");

@@ -4,6 +4,7 @@
 #include "core/base/file_io.hpp"
 #include "core/base/pose.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -162,6 +163,27 @@ std::string trajectory_to_csv(const Trajectory& trajectory) {
         text += row;
     }
     return text;
+}
+
+void set_motion_from_trajectory(SonarParams& sonar, const Trajectory& tr, size_t k) {
+    sonar.velocity_mps = {0, 0, 0}, sonar.angular_rate_dps = {0, 0, 0};
+    if (tr.size() < 2) return;
+    const size_t a = k + 1 < tr.size() ? k : k - 1, b = a + 1;
+    const double dt = tr[b].t_s - tr[a].t_s;
+    if (!(dt > 0)) return;
+    // Velocity and rates in the sonar's frame: R_a^T (p_b - p_a) / dt, and the rotation vector of
+    // R_a^T R_b (its axis times its angle) / dt.
+    const glm::dmat3 Ra = rotation_matrix(tr[a].pose.orientation_deg);
+    const glm::dmat3 Rab = glm::transpose(Ra) * rotation_matrix(tr[b].pose.orientation_deg);
+    const glm::dvec3 v =
+        glm::transpose(Ra) * (to_glm(tr[b].pose.position_m) - to_glm(tr[a].pose.position_m)) / dt;
+    const double cos_angle = std::clamp((Rab[0][0] + Rab[1][1] + Rab[2][2] - 1) / 2, -1.0, 1.0);
+    const double angle = std::acos(cos_angle);
+    glm::dvec3 axis(Rab[1][2] - Rab[2][1], Rab[2][0] - Rab[0][2], Rab[0][1] - Rab[1][0]); // 2 sin(angle) k
+    const double len = glm::length(axis);
+    const glm::dvec3 w = len > 0 ? axis / len * angle / dt : glm::dvec3(0.0);
+    sonar.velocity_mps = {v.x, v.y, v.z};
+    sonar.angular_rate_dps = {rad2deg(w.x), rad2deg(w.y), rad2deg(w.z)};
 }
 
 } // namespace sonarsim

@@ -43,6 +43,11 @@ Trajectory line_trajectory(const std::string& spec, const Vec3d& orientation_deg
 Trajectory make_trajectory(const std::string& csv_path, const std::string& circle, const std::string& line,
                            double rate_hz, const Vec3d& orientation_deg);
 
+/// Sets `sonar.velocity_mps` (in the sonar's frame at frame k) and `sonar.angular_rate_dps` (body rates)
+/// from the poses of frames k and k + 1 over their time difference (the last frame: k - 1 and k); zero for a
+/// single frame or frames at the same time.
+void set_motion_from_trajectory(SonarParams& sonar, const Trajectory& trajectory, size_t k);
+
 /// The trajectory as CSV text (kTrajectoryHeader, then one row per frame); parses back to the same poses.
 std::string trajectory_to_csv(const Trajectory& trajectory);
 

@@ -3,7 +3,9 @@
 #include "core/base/pose.hpp"
 #include "core/devices/device_overrides.hpp"
 #include "core/devices/devices.hpp"
+#include "core/sampling/acquisition.hpp"
 #include "core/scene/scene_io.hpp"
+#include "core/shading/physics.hpp"
 #include "core/sensor/sensor.hpp"
 #include "core/shading/shade.hpp"
 
@@ -110,6 +112,20 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
             {"ghost_cells", ghosts},
             {"echo_db_by_order", orders},
             {"orders", "reflections out and back: 0 direct, then 1 ... 2 x bounces; null: none"}};
+    }
+    if (moving(s.sonar)) { // motion during the frame: how it was acquired
+        const double c = sound_speed_m_s(s.water.temperature_c, s.water.depth_m);
+        const auto slots = acquisition_slots(s.sonar, c);
+        const auto change = slab_pose_change(s.sonar, c);
+        j["motion"] = {{"pings", s.sonar.pings_per_frame},
+                       {"ping_interval_s", ping_interval_s(s.sonar, c)},
+                       {"slots", slots.size()},
+                       {"frame_duration_s", slots.back().t_tx_s + 2 * s.sonar.range_max_m / c},
+                       {"max_rotation_within_slot_deg", change.rotation_deg},
+                       {"max_translation_within_slot_m", change.translation_m},
+                       {"model",
+                        "each (ping, range slab) traced from the pose at its receive time; range = half the "
+                        "two-way path from the transmit position"}};
     }
     const auto& est = f.hits().error_estimate;
     if (est.valid)

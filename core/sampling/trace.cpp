@@ -1,5 +1,8 @@
 #include "core/sampling/trace.hpp"
 
+#include "core/sampling/acquisition.hpp"
+#include "core/sampling/motion_trace.hpp"
+
 #include "core/sampling/multipath.hpp"
 #include "core/base/timing.hpp"
 #include "core/sampling/trace_detail.hpp"
@@ -106,8 +109,9 @@ TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s, const Trac
 
 TraceResult trace(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control) {
     const auto t0 = std::chrono::steady_clock::now();
-    TraceResult out = s.sampling.placement == RayPlacement::Adaptive ? trace_adaptive(g, s, control)
-                                                                     : trace_uniform(g, s, control);
+    TraceResult out = moving(s.sonar)                                  ? trace_moving(g, s, control)
+                      : s.sampling.placement == RayPlacement::Adaptive ? trace_adaptive(g, s, control)
+                                                                       : trace_uniform(g, s, control);
     out.trace_ms = ms_since(t0);
     return out;
 }

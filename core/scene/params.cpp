@@ -257,6 +257,22 @@ std::vector<ParamSpec> build_scene_params() {
                        [](S s) -> double& { return s.sonar.source_level_db; }));
     t.push_back(number("sonar.noise_level_db", "dB", -200, 300, false, false, Stage::Shade, "Noise level L_N",
                        [](S s) -> double& { return s.sonar.noise_level_db; }));
+    t.push_back(vec3("sonar.velocity_mps", "m/s", -100, 100, Stage::Trace,
+                     "Motion during a frame: velocity in the sonar's frame (x forward, y port, z up) at the "
+                     "frame's first transmit; each echo is traced from the pose of its receive time",
+                     [](S s) -> Vec3d& { return s.sonar.velocity_mps; }));
+    t.push_back(vec3("sonar.angular_rate_dps", "deg/s", -1000, 1000, Stage::Trace,
+                     "Motion during a frame: rates about the sonar's x, y, z axes (roll, pitch, yaw rate; "
+                     "positive yaw turns to port)",
+                     [](S s) -> Vec3d& { return s.sonar.angular_rate_dps; }));
+    t.push_back(integer("sonar.pings_per_frame", 1, 64, Stage::Trace,
+                        "Pings that build one frame: ping k fires every P-th beam (ARIS: beams / 16); pings "
+                        "follow each other every 2 r_max / c + 0.42 ms. Matters only with motion",
+                        [](S s) -> int& { return s.sonar.pings_per_frame; }));
+    t.push_back(boolean("sonar.motion_from_trajectory", Stage::None,
+                        "batch: each frame's sonar.velocity_mps and sonar.angular_rate_dps from its "
+                        "trajectory (the difference of its neighbouring poses over their times)",
+                        [](S s) -> bool& { return s.sonar.motion_from_trajectory; }));
     // Bounds: the absorption formula (Ainslie & McColm 1998) holds for -6 < T < 35 degC and 0 < z < 7 km;
     // below -2 degC sea water is ice.
     t.push_back(steers(number("water.temperature_c", "degC", -2, 35, false, false, Stage::Shade,
@@ -838,6 +854,11 @@ void validate_scene(const SceneDesc& s, const std::string& file, const std::vect
     };
     if (!(s.sonar.range_min_m < s.sonar.range_max_m))
         order("sonar.range_min_m", s.sonar.range_min_m, "sonar.range_max_m", s.sonar.range_max_m);
+    if (s.sonar.beams % s.sonar.pings_per_frame != 0)
+        throw InputError(file, "sonar.pings_per_frame",
+                         "value " + std::to_string(s.sonar.pings_per_frame) +
+                             " does not divide sonar.beams (" + std::to_string(s.sonar.beams) +
+                             "): each ping fires every P-th beam");
     if (s.sampling.placement == RayPlacement::Adaptive && s.sampling.binning == EchoBinning::Point)
         throw InputError(file, "sampling.binning",
                          "adaptive placement needs \"footprint\" binning (its refinement and error estimate "

@@ -47,6 +47,15 @@ struct SonarParams {
     int range_bins = 512;
     double source_level_db = 230.0;
     double noise_level_db = 10.0;
+    /// Motion during a frame (sampling/acquisition.hpp): velocity in the sonar's frame at the frame's first
+    /// transmit [m/s] and body rates about the sonar's x, y, z axes [deg/s]. Zero: each frame a snapshot.
+    Vec3d velocity_mps{0, 0, 0};
+    Vec3d angular_rate_dps{0, 0, 0};
+    /// Pings that build one frame: ping k fires every P-th beam (ARIS: beams / 16, device beam
+    /// c x P + k). 1: every beam from one ping.
+    int pings_per_frame = 1;
+    /// `batch`: each frame's velocity and rates from its trajectory (the poses before and after it).
+    bool motion_from_trajectory = false;
 };
 
 struct WaterParams {

@@ -1,0 +1,95 @@
+#include "core/sampling/motion_trace.hpp"
+
+#include "core/base/pose.hpp"
+#include "core/sampling/acquisition.hpp"
+#include "core/shading/physics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace sonarsim {
+
+namespace {
+
+/// Moves a cell's range and its footprint by the same amount.
+void shift_range(Cell& c, float d_m) {
+    c.range_m += d_m;
+    c.range_e_lo_m += d_m, c.range_e_hi_m += d_m;
+    c.range_a_lo_m += d_m, c.range_a_hi_m += d_m;
+}
+
+/// Half the two-way path minus the receive leg: the transmit leg was |X - p_tx|, not |X - p_rx|.
+float two_way_correction(const Cell& c, const glm::dvec3& p_tx) {
+    const double tx_leg = glm::length(glm::dvec3(c.point) - p_tx);
+    return float(0.5 * (tx_leg - double(c.range_m)));
+}
+
+void merge_estimate(TraceResult::ErrorEstimate& into, const TraceResult::ErrorEstimate& e, bool first) {
+    if (first) {
+        into = e;
+        return;
+    }
+    into.valid = into.valid && e.valid;
+    into.rel_l1 = std::max(into.rel_l1, e.rel_l1);
+    into.median_abs_db = std::max(into.median_abs_db, e.median_abs_db);
+    into.p95_abs_db = std::max(into.p95_abs_db, e.p95_abs_db);
+    into.passes = std::max(into.passes, e.passes);
+    into.budget_reached = into.budget_reached || e.budget_reached;
+}
+
+} // namespace
+
+TraceResult trace_moving(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control) {
+    const double c = sound_speed_m_s(s.water.temperature_c, s.water.depth_m);
+    const auto slots = acquisition_slots(s.sonar, c);
+    const int N = s.sonar.beams, K = s.sonar.range_bins;
+    const double r0 = s.sonar.range_min_m, bin_m = (s.sonar.range_max_m - r0) / K;
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+
+    TraceResult out;
+    out.beams = N;
+    out.cells.resize(size_t(N));
+    bool first = true;
+    for (const AcquisitionSlot& slot : slots) {
+        // The slab's own range window on the frame's bin edges, seen from the receive pose; the budget of
+        // rays shared between the slots.
+        SceneDesc sub = s;
+        sub.sonar.pose = pose_at(s.sonar, slot.t_rx_s);
+        sub.sonar.velocity_mps = {0, 0, 0}, sub.sonar.angular_rate_dps = {0, 0, 0};
+        sub.sonar.range_min_m = r0 + slot.bin_begin * bin_m;
+        sub.sonar.range_max_m = slot.bin_end == K ? s.sonar.range_max_m : r0 + slot.bin_end * bin_m;
+        sub.sonar.range_bins = slot.bin_end - slot.bin_begin;
+        sub.sampling.max_rays = std::max(1000, int(s.sampling.max_rays / std::int64_t(slots.size())));
+        TraceControl tc = control;
+        tc.channels = {};
+        TraceResult r = trace(g, sub, tc);
+
+        // Keep the echoes of this ping's beams that arrive in the slab (the first slab keeps everything
+        // nearer, the last everything farther), at half their two-way path.
+        const glm::dvec3 p_tx = to_glm(pose_at(s.sonar, slot.t_tx_s).position_m);
+        const double lo = slot.bin_begin == 0 ? -kInf : sub.sonar.range_min_m;
+        const double hi = slot.bin_end == K ? kInf : sub.sonar.range_max_m;
+        auto keep = [&](Cell& cell) {
+            shift_range(cell, two_way_correction(cell, p_tx));
+            return cell.range_m >= lo && cell.range_m < hi;
+        };
+        if (!r.ghosts.empty() && out.ghosts.empty()) out.ghosts.resize(size_t(N));
+        for (int i = 0; i < N; ++i) {
+            if (ping_of_beam(s.sonar, i) != slot.ping) continue;
+            for (Cell& cell : r.cells[size_t(i)])
+                if (keep(cell)) out.cells[size_t(i)].push_back(cell);
+            if (size_t(i) < r.ghosts.size())
+                for (GhostCell& gc : r.ghosts[size_t(i)])
+                    if (keep(gc.cell)) out.ghosts[size_t(i)].push_back(gc);
+        }
+        out.rays_traced += r.rays_traced;
+        out.multipath_rays += r.multipath_rays;
+        out.preview = out.preview || r.preview;
+        merge_estimate(out.error_estimate, r.error_estimate, first);
+        first = false;
+    }
+    return out;
+}
+
+} // namespace sonarsim
