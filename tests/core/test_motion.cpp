@@ -2,6 +2,7 @@
 // the single ping's range-dependent receive time, each against its closed form.
 #include "core/base/errors.hpp"
 #include "core/base/pose.hpp"
+#include "core/dataset/batch.hpp"
 #include "core/dataset/trajectory.hpp"
 #include "core/pipeline/simulator.hpp"
 #include "core/sampling/acquisition.hpp"
@@ -178,6 +179,11 @@ TEST_CASE("batch takes each frame's velocity and rates from its trajectory", "[m
     CHECK(s.velocity_mps[2] == Approx(0).margin(1e-9));
     set_motion_from_trajectory(s, tr, 9); // the last frame takes the step before it
     CHECK(s.angular_rate_dps[2] == Approx(72).margin(1e-9));
+    // batch's frames take them only when the scene asks.
+    SceneDesc base;
+    CHECK(!moving(frame_scene(base, tr, 3).sonar));
+    base.sonar.motion_from_trajectory = true;
+    CHECK(frame_scene(base, tr, 3).sonar.angular_rate_dps[2] == Approx(72).margin(1e-9));
 }
 
 TEST_CASE("pings per frame must divide the beams", "[motion]") {
