@@ -1,5 +1,6 @@
-// `sonarsim compare A B`: realism statistics of two sonar images (an .aris frame or a level .npy each),
-// printed as a table and written as JSON plus a plot (core/analysis/compare.hpp says what each number is).
+// `sonarsim compare A B`: realism statistics of two sonar images (an .aris frame, a level .npy or a gray fan
+// PNG each), printed as a table and written as JSON plus a plot (core/analysis/compare.hpp says what each
+// number is).
 #include "commands.hpp"
 #include "plot.hpp"
 
@@ -16,6 +17,7 @@ namespace {
 struct CompareArgs {
     std::string a, b, out;
     std::size_t frame_a = 0, frame_b = 0;
+    std::string fan_a, fan_b;
 };
 
 std::string cell(const nlohmann::json& v, const char* fmt = "%.3f") {
@@ -90,18 +92,26 @@ Image8 plot(const nlohmann::json& r, const CompareOptions& o) {
 void register_compare(CLI::App& app, std::function<int()>& run) {
     auto c = std::make_shared<CompareArgs>();
     CLI::App* cmd = app.add_subcommand(
-        "compare", "Realism statistics of two sonar images (an .aris frame or a level .npy each): mean level "
+        "compare", "Realism statistics of two sonar images (an .aris frame, a level .npy or a gray fan PNG "
+                   "each): mean level "
                    "against range, speckle contrast and grain, dB quantiles, floor, histogram distance");
-    cmd->add_option("a", c->a, "First image: FILE.aris or FILE.npy (e.g. a real recording)")->required();
-    cmd->add_option("b", c->b, "Second image: FILE.aris or FILE.npy (e.g. a simulated frame)")->required();
+    cmd->add_option("a", c->a, "First image: FILE.aris, FILE.npy or FILE.png (e.g. a real recording)")
+        ->required();
+    cmd->add_option("b", c->b, "Second image: FILE.aris, FILE.npy or FILE.png (e.g. a simulated frame)")
+        ->required();
     cmd->add_option("--frame-a", c->frame_a, "Frame of A when it is an .aris recording (from 0)");
     cmd->add_option("--frame-b", c->frame_b, "Frame of B when it is an .aris recording (from 0)");
+    const char* fan = "Geometry of a fan PNG: apex_x_px,apex_y_px,px_per_m,azimuth_fov_deg,range_min_m,"
+                      "range_max_m,lo_db,hi_db,beams,bins (apex pixel, scale, fan, the levels of gray 0 and "
+                      "255, the grid to sample onto); default: the metadata render wrote beside the PNG";
+    cmd->add_option("--fan-a", c->fan_a, fan);
+    cmd->add_option("--fan-b", c->fan_b, fan);
     cmd->add_option("--out", c->out, "Also write PREFIX.json (every number) and PREFIX.png (the plots)");
     cmd->callback([&run, c] {
         run = [c] {
             const CompareOptions o;
-            const PolarImage a = load_compare_image(c->a, c->frame_a),
-                             b = load_compare_image(c->b, c->frame_b);
+            const PolarImage a = load_compare_image(c->a, c->frame_a, c->fan_a),
+                             b = load_compare_image(c->b, c->frame_b, c->fan_b);
             nlohmann::json r = compare_images_report(a, b, o);
             r["a"]["file"] = c->a, r["a"]["frame"] = c->frame_a;
             r["b"]["file"] = c->b, r["b"]["frame"] = c->frame_b;

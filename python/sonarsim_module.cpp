@@ -39,9 +39,9 @@ SceneDesc scene_from(const py::object& scene) {
 }
 
 /// An image for compare(): a path (.aris frame or .npy), or a 2-D array of levels [dB] (range bins x beams).
-PolarImage compare_input(const py::object& x, std::size_t frame, const char* name) {
+PolarImage compare_input(const py::object& x, std::size_t frame, const std::string& fan, const char* name) {
     if (py::isinstance<py::str>(x) || py::hasattr(x, "__fspath__"))
-        return load_compare_image(py::str(x).cast<std::string>(), frame);
+        return load_compare_image(py::str(x).cast<std::string>(), frame, fan);
     const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(x);
     if (!a || a.ndim() != 2)
         throw InputError(name, "", "expected a file path (.aris, .npy) or a 2-D array of levels in dB");
@@ -219,8 +219,10 @@ PYBIND11_MODULE(sonarsim, m) {
         "render these frames of a prepared dataset (one Simulator for all); returns how many were rendered");
     m.def(
         "compare",
-        [](const py::object& a, const py::object& b, std::size_t frame_a, std::size_t frame_b) {
-            const PolarImage ia = compare_input(a, frame_a, "a"), ib = compare_input(b, frame_b, "b");
+        [](const py::object& a, const py::object& b, std::size_t frame_a, std::size_t frame_b,
+           const std::string& fan_a, const std::string& fan_b) {
+            const PolarImage ia = compare_input(a, frame_a, fan_a, "a"),
+                             ib = compare_input(b, frame_b, fan_b, "b");
             nlohmann::json r;
             {
                 py::gil_scoped_release release;
@@ -228,9 +230,12 @@ PYBIND11_MODULE(sonarsim, m) {
             }
             return to_python(r);
         },
-        py::arg("a"), py::arg("b"), py::arg("frame_a") = 0, py::arg("frame_b") = 0,
+        py::arg("a"), py::arg("b"), py::arg("frame_a") = 0, py::arg("frame_b") = 0, py::arg("fan_a") = "",
+        py::arg("fan_b") = "",
         "realism statistics of two images, as `sonarsim compare` writes them: each of a and b a path (.aris "
-        "recording, with frame_a/frame_b, or an .npy level image) or a 2-D array of levels [dB] (range bins "
+        "recording, with frame_a/frame_b, an .npy level image, or a gray fan .png with fan_a/fan_b its "
+        "geometry as `sonarsim compare --fan-a` takes it, by default the metadata render wrote beside it) or "
+        "a 2-D array of levels [dB] (range bins "
         "x "
         "beams). Returns {'a': ..., 'b': ..., 'pair': ...}: floor fraction, mean level, range profile, "
         "speckle "

@@ -2,6 +2,7 @@
 
 #include "core/base/errors.hpp"
 #include "core/base/file_io.hpp"
+#include "core/analysis/fan_image.hpp"
 #include "core/io/aris_read.hpp"
 #include "core/io/output.hpp"
 
@@ -40,9 +41,15 @@ nlohmann::json stats_json(const ImageStats& s) {
 
 } // namespace
 
-PolarImage load_compare_image(const std::string& path, std::size_t frame) {
+PolarImage load_compare_image(const std::string& path, std::size_t frame, const std::string& fan) {
     const std::string ext = std::filesystem::path(path).extension().string();
+    if (!fan.empty() && ext != ".png")
+        throw InputError(path, "fan", "a fan geometry is for .png images only");
     if (ext == ".aris") return read_aris_frame(path, frame).level_db;
+    if (ext == ".png") {
+        if (frame != 0) throw InputError(path, "frame", "a PNG holds one frame; allowed: 0");
+        return load_fan_png(path, fan);
+    }
     if (ext == ".npy") {
         if (frame != 0) throw InputError(path, "frame", "an .npy image holds one frame; allowed: 0");
         const std::string text = read_file_bytes(path);
@@ -51,7 +58,7 @@ PolarImage load_compare_image(const std::string& path, std::size_t frame) {
     throw InputError(path, "",
                      "unknown image file \"" + ext +
                          "\"; allowed: .aris (a recording), .npy (a level "
-                         "image as render writes it)");
+                         "image as render writes it), .png (a gray fan image)");
 }
 
 nlohmann::json compare_report(const ImageStats& a, const ImageStats& b, const PairStats& p) {
