@@ -14,7 +14,9 @@
 namespace sonarsim {
 
 /// Keys that choose a group of other values: sonar.device (a preset's values) and sensor.model (the sensor's
-/// effects). A scene applies them before all its other keys, so that explicit keys override what they chose.
+/// effects), in the order a scene applies them: before all its other keys, so that explicit keys override
+/// what they chose.
+const std::vector<std::string>& group_keys();
 bool is_group_key(const std::string& key);
 
 /// After `key` (a group key) was set in `scene`: the values it chooses (a preset's, the sensor model's).

@@ -5,6 +5,8 @@
 
 #include "core/devices/devices.hpp"
 
+#include <algorithm>
+
 namespace sonarsim {
 namespace {
 
@@ -37,8 +39,13 @@ void apply_device(SceneDesc& scene) {
 
 } // namespace
 
+const std::vector<std::string>& group_keys() {
+    static const std::vector<std::string> keys = {"sonar.device", "sensor.model"};
+    return keys;
+}
+
 bool is_group_key(const std::string& key) {
-    return key == "sonar.device" || key == "sensor.model";
+    return std::find(group_keys().begin(), group_keys().end(), key) != group_keys().end();
 }
 
 void apply_group_key(SceneDesc& scene, const std::string& key) {

@@ -8,9 +8,13 @@ import time
 
 from conftest import write_small_scene
 
-# Effect switches: a preset sets them only under sensor.model "device" (sensor rows with an ideal value).
-EFFECTS = {"sensor.azimuth_window", "sensor.elevation_pattern", "sensor.range_resolution_m", "sensor.speckle",
-           "sensor.noise", "sensor.tvg", "sensor.gain_db"}
+
+def effect_keys(exe, name):
+    """The preset's effect switches, which it sets only under sensor.model "device" (the table's rows with an
+    ideal value): the keys `sonarsim devices NAME` marks with *."""
+    r = subprocess.run([exe, "devices", name], capture_output=True, text=True, check=True)
+    rows = [line.split() for line in r.stdout.splitlines() if line.startswith("  ")]
+    return {row[0] for row in rows if row[2] == "*"}
 
 
 def preset_values(source_dir, name):
@@ -41,11 +45,14 @@ def scene_file(scratch, extra_sonar):
 
 def test_a_device_on_the_command_line_wins_over_the_scenes_sonar_keys(sonarsim_exe, scratch, source_dir):
     preset = preset_values(source_dir, "aris3000-hf")
+    effects = effect_keys(sonarsim_exe, "aris3000-hf")
+    assert {"sensor.tvg", "sensor.speckle", "sensor.noise"} <= effects
+    assert "sensor.beamformer" not in effects
     scene = scene_file(scratch, {})
     r, meta = render(sonarsim_exe, scratch, scene, "sonar.device=aris3000-hf", "sampling.elevation_rays=41")
     assert meta["sonar"]["device"] == "aris3000-hf"
     for key, value in preset.items():
-        if key not in EFFECTS:  # the ideal sensor: the preset's effect switches stay off
+        if key not in effects:  # the ideal sensor: the preset's effect switches stay off
             assert value_in(meta, key) == value, key
     assert meta["sonar"]["frequency_khz"] == 3000  # the scene said 1200
     assert meta["sonar"]["beams"] == 128  # the scene said 48

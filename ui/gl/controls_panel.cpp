@@ -1,5 +1,6 @@
 #include "ui/gl/controls_panel.hpp"
 
+#include "ui/model/bindings.hpp"
 #include "ui/model/scene_labels.hpp"
 
 #include "core/geometry/mesh_formats.hpp"
@@ -318,13 +319,14 @@ void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, Tra
     g_labels_above = label_w > 0.5f * avail;
     ImGui::PushItemWidth(g_labels_above ? -1.0f : -label_w);
     stats_section(session, ui);
+    const std::string snapshot = "Snapshot (" + shortcut_text(KeyAction::Snapshot) + ")"; // the bindings' key
     if (is_paper_fig9_scene(session.scene())) {
         if (ImGui::Button("Reset to paper values")) session.reset_to_paper();
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("Every parameter and material back to Tables I-II (the pose is kept)");
-        same_line_if_fits("Snapshot (S)");
+        same_line_if_fits(snapshot.c_str());
     }
-    if (ImGui::Button("Snapshot (S)")) ui.want_snapshot = true;
+    if (ImGui::Button(snapshot.c_str())) ui.want_snapshot = true;
 
     // The table's sections (param_spec.hpp), in the panel's order; the first ones open.
     const ImGuiTreeNodeFlags open = ImGuiTreeNodeFlags_DefaultOpen;
@@ -350,7 +352,8 @@ void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, Tra
     }
     if (ImGui::CollapsingHeader("View")) {
         ImGui::Checkbox("show traced hits", &ui.show_hits);
-        if (ImGui::Button("Reset camera (F)")) ui.want_reset_camera = true;
+        if (ImGui::Button(("Reset camera (" + shortcut_text(KeyAction::ResetCamera) + ")").c_str()))
+            ui.want_reset_camera = true;
         ImGui::SliderFloat(field_label("UI scale", "uiscale").c_str(), &ui.ui_scale, 0.75f, 2.5f, "%.2f");
     }
     ImGui::PopItemWidth();
