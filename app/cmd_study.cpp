@@ -8,6 +8,9 @@
 
 #include "core/io/output.hpp"
 #include "core/analysis/study.hpp"
+#include "core/scene/sampling_scheme.hpp"
+
+#include <array>
 
 #include <cstdio>
 #include <iostream>
@@ -66,10 +69,15 @@ int run_study(const StudyOptions& o) {
            "echoing_bins,estimated_rel_l1,estimated_median_db\n";
     std::printf("%-22s %10s %9s %10s %9s %9s %7s %10s\n", "sampling", "rays", "time_ms", "rel_L1_%", "med_dB",
                 "p95_dB", "holes", "est_L1_%");
-    std::vector<Series> series = {{"uniform (paper)", {214, 39, 40}, {}},
-                                  {"spread", {31, 119, 180}, {}},
-                                  {"adaptive", {44, 160, 44}, {}},
-                                  {"scene setting", {0, 0, 0}, {}}};
+    // One series per scheme (kSamplingSchemes order, the index of r.sampling.scheme), then the scene's own.
+    const std::array<std::array<unsigned char, 3>, kSamplingSchemes.size()> colours = {
+        {{214, 39, 40}, {31, 119, 180}, {44, 160, 44}}};
+    std::vector<Series> series;
+    for (const NamedSampling& n : kSamplingSchemes)
+        series.push_back({std::string(n.name) + (n.scheme == SamplingScheme::Uniform ? " (paper)" : ""),
+                          colours[size_t(n.scheme)],
+                          {}});
+    series.push_back({"scene setting", {0, 0, 0}, {}});
     for (size_t n = 0; n < ladder.size(); ++n) {
         const bool is_default = n + 1 == ladder.size();
         status.show("[" + std::to_string(n + 1) + "/" + std::to_string(ladder.size()) + "] " +

@@ -2,6 +2,7 @@
 #include "bench.hpp"
 
 #include "core/io/output.hpp"
+#include "core/scene/sampling_scheme.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -71,7 +72,7 @@ json summarise(const json& scene) {
     }
     std::vector<const json*> spread;
     for (const json& r : scene["rows"])
-        if (r["scheme"] == "spread") spread.push_back(&r);
+        if (r["scheme"] == scheme_name(SamplingScheme::Spread)) spread.push_back(&r);
     for (size_t k = 0; k < spread.size(); ++k) {
         const double e1 = (*spread[k])["error"]["rel_l1"], t1 = (*spread[k])["warm_ms"];
         if (e1 > target) continue;

@@ -94,15 +94,11 @@ struct PyFrame {
             py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
             return a;
         };
-        const std::vector<py::ssize_t> shape{gt->bins, gt->beams}, points{gt->bins, gt->beams, 3};
-        d["elevation_deg"] = view(gt->elevation_deg, shape);
-        d["elevation_min_deg"] = view(gt->elevation_min_deg, shape);
-        d["elevation_max_deg"] = view(gt->elevation_max_deg, shape);
-        d["point_m"] = view(gt->point_m, points);
-        d["object_id"] = view(gt->object_id, shape);
-        d["incidence_deg"] = view(gt->incidence_deg, shape);
-        d["surfaces"] = view(gt->surfaces, shape);
-        d["bounces"] = view(gt->bounces, shape);
+        for (const GroundTruthField& f : ground_truth_fields()) {
+            std::vector<py::ssize_t> shape{gt->bins, gt->beams};
+            if (f.components > 1) shape.push_back(f.components);
+            d[f.name] = f.f32 ? view((*gt).*f.f32, shape) : view((*gt).*f.i32, shape);
+        }
         return d;
     }
 };
@@ -146,6 +142,20 @@ class PySimulator {
     std::unique_ptr<Simulator> sim_;
 };
 
+/// The ground_truth property's help: the arrays' names from the one list (ground_truth_fields).
+const std::string& ground_truth_doc() {
+    static const std::string doc = [] {
+        std::string names;
+        for (const GroundTruthField& f : ground_truth_fields())
+            names += (names.empty() ? "" : ", ") + std::string(f.name) +
+                     (f.components > 1 ? " (bins, beams, " + std::to_string(f.components) + ")" : "");
+        return "with render(ground_truth=True): per (range bin, beam) arrays by name, as the files render "
+               "--ground-truth writes (" +
+               names + "); otherwise {}";
+    }();
+    return doc;
+}
+
 } // namespace
 
 PYBIND11_MODULE(sonarsim, m) {
@@ -157,11 +167,7 @@ PYBIND11_MODULE(sonarsim, m) {
                                "L_EN [dB], float32 (range_bins, beams): row 0 nearest, column 0 port-most; "
                                "-inf where nothing echoes. Read-only, shares the frame's memory")
         .def_property_readonly("sector", &PyFrame::sector, "the sector (fan) image, uint8 (H, W, 3)")
-        .def_property_readonly("ground_truth", &PyFrame::ground_truth,
-                               "with render(ground_truth=True): per (range bin, beam) arrays by name, as the "
-                               "files render --ground-truth writes (elevation_deg, elevation_min_deg, "
-                               "elevation_max_deg, point_m (bins, beams, 3), object_id, incidence_deg, "
-                               "surfaces, bounces); otherwise {}")
+        .def_property_readonly("ground_truth", &PyFrame::ground_truth, ground_truth_doc().c_str())
         .def_property_readonly("metadata", &PyFrame::metadata, "the metadata `render` writes as JSON");
 
     py::class_<PySimulator>(m, "Simulator")

@@ -119,7 +119,8 @@ StudyReference make_reference(const SceneGeometry& g, const SceneDesc& s, const 
     const double share = 9.0 / 10.0;
     ref.kind = "dense spread run, streamed";
     ref.description =
-        "spread, " + std::to_string(d.elevation_rays) + " x " + std::to_string(d.azimuth_rays) +
+        std::string(scheme_name(c.scheme)) + ", " + std::to_string(d.elevation_rays) + " x " +
+        std::to_string(d.azimuth_rays) +
         " rays per beam, true normals, traced and shaded a chunk of beams at a time; convergence "
         "against " +
         std::to_string(c.elevation_rays) + " x " + std::to_string(c.azimuth_rays);

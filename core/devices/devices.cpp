@@ -1,7 +1,10 @@
 #include "core/devices/devices.hpp"
 
+#include "core/base/errors.hpp"
+#include "core/scene/params.hpp"
+
 #include <algorithm>
-#include <stdexcept>
+#include <filesystem>
 
 namespace sonarsim {
 namespace detail {
@@ -10,36 +13,44 @@ extern const char* const kDeviceFiles[][2];
 extern const int kDeviceFileCount;
 } // namespace detail
 
-namespace {
-
-DevicePreset parse_preset(const std::string& file_name, const char* text) {
-    const std::string file = "assets/devices/" + file_name;
-    auto fail = [&](const std::string& what) { throw std::logic_error(file + ": " + what); };
+DevicePreset parse_device_preset(const std::string& file, const std::string& text) {
     const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
-    if (j.is_discarded() || !j.is_object()) fail("not a JSON object");
+    if (j.is_discarded() || !j.is_object()) throw InputError(file, "", "not a JSON object");
     DevicePreset p;
     p.file = file;
-    p.name = file_name.substr(0, file_name.size() - 5);
-    if (j.value("name", "") != p.name) fail("\"name\" must equal the file name");
-    if (!j.contains("title") || !j["title"].is_string()) fail("\"title\" must be a string");
+    const std::string base = std::filesystem::path(file).filename().string();
+    p.name = base.size() > 5 && base.compare(base.size() - 5, 5, ".json") == 0
+                 ? base.substr(0, base.size() - 5)
+                 : base;
+    if (j.value("name", "") != p.name)
+        throw InputError(file, "name", "must be \"" + p.name + "\", the file's name without .json");
+    if (!j.contains("title") || !j["title"].is_string()) throw InputError(file, "title", "expected a string");
     p.title = j["title"].get<std::string>();
-    if (!j.contains("values") || !j["values"].is_object()) fail("\"values\" must be an object");
+    if (!j.contains("values") || !j["values"].is_object())
+        throw InputError(file, "values", "expected an object of parameter keys");
     for (auto& [key, v] : j["values"].items()) {
+        const std::string where = "values." + key;
+        const ParamSpec* spec = find_param(key);
+        if (!spec || !spec->preset_may_set)
+            throw InputError(file, where,
+                             std::string(spec ? "a device preset may not set this key" : "not a parameter") +
+                                 "; presets may set: " + preset_keys_text());
         if (!v.is_object() || !v.contains("value") || !v.contains("sure") || !v["sure"].is_boolean() ||
             !v.contains("source") || !v["source"].is_string())
-            fail("values." + key + " must be {\"value\": ..., \"sure\": true|false, \"source\": \"...\"}");
+            throw InputError(file, where,
+                             "expected {\"value\": ..., \"sure\": true|false, \"source\": \"...\"}");
+        validate_value(*spec, v["value"], file, where + ".value");
         p.values.push_back({key, v["value"], v["sure"].get<bool>(), v["source"].get<std::string>()});
     }
     return p;
 }
 
-} // namespace
-
 const std::vector<DevicePreset>& device_presets() {
     static const std::vector<DevicePreset> presets = [] {
         std::vector<DevicePreset> out;
         for (int i = 0; i < detail::kDeviceFileCount; ++i)
-            out.push_back(parse_preset(detail::kDeviceFiles[i][0], detail::kDeviceFiles[i][1]));
+            out.push_back(parse_device_preset(std::string("assets/devices/") + detail::kDeviceFiles[i][0],
+                                              detail::kDeviceFiles[i][1]));
         std::sort(out.begin(), out.end(), [](auto& a, auto& b) { return a.name < b.name; });
         return out;
     }();
@@ -53,9 +64,16 @@ const DevicePreset* find_device(const std::string& name) {
 }
 
 std::vector<std::string> device_choices() {
-    std::vector<std::string> out{"none"};
-    for (auto& p : device_presets()) out.push_back(p.name);
-    return out;
+    // From the embedded files' names, not their contents: the parameter table's sonar.device row lists
+    // them, and reading a preset checks it against that table.
+    std::vector<std::string> names;
+    for (int i = 0; i < detail::kDeviceFileCount; ++i) {
+        const std::string file = detail::kDeviceFiles[i][0];
+        names.push_back(file.substr(0, file.size() - 5));
+    }
+    std::sort(names.begin(), names.end());
+    names.insert(names.begin(), "none");
+    return names;
 }
 
 } // namespace sonarsim

@@ -23,14 +23,19 @@ struct DevicePreset {
     std::vector<DeviceValue> values; ///< in file order
 };
 
-/// All presets, sorted by name. Parsed once; a malformed embedded file throws std::logic_error (a build
-/// defect, caught by the tests), not an InputError.
+/// Reads a preset from its text: `file` (".../NAME.json") names it in errors and gives its name. Every value
+/// must be a row a preset may set (ValueSpec::preset_may_set) with a valid value; otherwise throws
+/// InputError naming the file, the key and what presets may set.
+DevicePreset parse_device_preset(const std::string& file, const std::string& text);
+
+/// All presets, sorted by name, read once (parse_device_preset: a malformed one throws InputError).
 const std::vector<DevicePreset>& device_presets();
 
 /// The preset called `name`, or nullptr.
 const DevicePreset* find_device(const std::string& name);
 
-/// "none" followed by every preset's name: the values sonar.device allows.
+/// "none" followed by every preset's name: the values sonar.device allows (from the embedded files' names,
+/// without reading them).
 std::vector<std::string> device_choices();
 
 } // namespace sonarsim

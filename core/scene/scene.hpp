@@ -30,10 +30,14 @@ struct Material {
     bool is_mirror() const { return reflection_db < std::numeric_limits<double>::infinity(); }
 };
 
+/// A sonar pose; the default is the paper's Fig. 9 pose 1.
 struct Pose {
     Vec3d position_m{0.34, 2.42, 0.90};          ///< [m]
     Vec3d orientation_deg{-0.97, 29.79, -38.96}; ///< roll, pitch, yaw [deg]; R = Rz(yaw) Ry(pitch) Rx(roll)
 };
+
+/// The paper's Fig. 9 pose 2 (the viewer's button; assets/scenes/fig9_pose2.json holds it, tested).
+inline const Pose kFig9Pose2{{0.84, 2.42, 0.90}, {6.88, 28.07, -41.25}};
 
 struct SonarParams {
     std::string device = "none"; ///< device preset (assets/devices/NAME.json) its values came from

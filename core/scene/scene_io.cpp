@@ -112,6 +112,30 @@ ObjectDesc parse_object(const json& v, const std::string& file, const std::strin
     return o;
 }
 
+/// The sections of a scene file that hold the table's scene rows ("sonar", "water", ...), in table order.
+const std::vector<std::string>& table_sections() {
+    static const std::vector<std::string> sections = [] {
+        std::vector<std::string> out;
+        for (auto& p : scene_params()) {
+            const std::string head = p.key.substr(0, p.key.find('.'));
+            if (std::find(out.begin(), out.end(), head) == out.end()) out.push_back(head);
+        }
+        return out;
+    }();
+    return sections;
+}
+
+bool is_table_section(const std::string& name) {
+    const auto& all = table_sections();
+    return std::find(all.begin(), all.end(), name) != all.end();
+}
+
+std::string table_sections_text() {
+    std::string text;
+    for (auto& s : table_sections()) text += (text.empty() ? "" : ", ") + s;
+    return text;
+}
+
 } // namespace
 
 SceneDesc default_scene() {
@@ -152,8 +176,8 @@ SceneDesc parse_scene(const std::string& text, const std::string& file, const st
     SceneDesc scene;
     scene.source_file = file;
     // Group keys first (a device preset, then the sensor model), so that every other key overrides them.
-    for (const char* key : {"sonar.device", "sensor.model"}) {
-        const std::string k(key), section = k.substr(0, k.find('.')), name = k.substr(k.find('.') + 1);
+    for (const std::string& k : group_keys()) {
+        const std::string section = k.substr(0, k.find('.')), name = k.substr(k.find('.') + 1);
         auto over = std::find_if(group_overrides.begin(), group_overrides.end(),
                                  [&](auto& o) { return o.first == k; });
         if (over != group_overrides.end())
@@ -162,8 +186,7 @@ SceneDesc parse_scene(const std::string& text, const std::string& file, const st
             apply_setting(scene, k, root[section][name], file);
     }
     for (auto& [section, body] : root.items()) {
-        if (section == "sonar" || section == "water" || section == "sampling" || section == "display" ||
-            section == "sensor" || section == "export") {
+        if (is_table_section(section)) {
             require_object(body, file, section);
             for (auto& [k, val] : body.items()) {
                 const std::string key = section + "." + k;
@@ -208,9 +231,8 @@ SceneDesc parse_scene(const std::string& text, const std::string& file, const st
                 scene.objects.push_back(
                     parse_object(body[i], file, "objects[" + std::to_string(i) + "]", base_dir));
         } else {
-            throw InputError(
-                file, section,
-                "unknown key; allowed: sonar, water, sampling, display, sensor, export, seafloor, objects");
+            throw InputError(file, section,
+                             "unknown key; allowed: " + table_sections_text() + ", seafloor, objects");
         }
     }
     if (!root.contains("seafloor")) scene.seafloor.reset(); // omit the seafloor key: no floor

@@ -2,6 +2,7 @@
 
 #include "core/base/fast_math.hpp"
 #include "core/base/pose.hpp"
+#include "core/scene/params.hpp"
 #include "core/sensor/sensor_patterns.hpp"
 #include "core/sensor/speckle_field.hpp"
 
@@ -109,9 +110,11 @@ double tvg_db(Tvg law, double r, double alpha) {
 }
 
 bool sensor_is_ideal(const SceneDesc& s) {
-    const SensorParams& p = s.sensor;
-    return p.azimuth_window == AzimuthWindow::None && !(p.range_resolution_m > 0) &&
-           p.speckle == Speckle::Off && !p.noise && p.tvg == Tvg::Off && p.gain_db == 0;
+    // The effect switches are the table's rows with an ideal value (ParamSpec::ideal_value); the elevation
+    // pattern, the one acting in the trace, is in the ideal image already.
+    for (const ParamSpec& p : scene_params())
+        if (!p.ideal_value.is_null() && p.stage != Stage::Trace && p.get(s) != p.ideal_value) return false;
+    return true;
 }
 
 PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, const SceneDesc& s,

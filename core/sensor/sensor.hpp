@@ -12,7 +12,8 @@
 
 namespace sonarsim {
 
-/// True when every effect of the sensor stage is off (the elevation pattern acts in the trace).
+/// True when every effect of the sensor stage is off: each row of the parameter table with an ideal value
+/// holds it (the elevation pattern, acting in the trace, aside).
 bool sensor_is_ideal(const SceneDesc& scene);
 
 /// The device's image [dB]: L_EN after the receive pattern, range response, speckle and noise, plus TVG

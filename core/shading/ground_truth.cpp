@@ -10,24 +10,40 @@
 #include <limits>
 
 namespace sonarsim {
+const std::vector<GroundTruthField>& ground_truth_fields() {
+    using G = GroundTruth;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    static const std::vector<GroundTruthField> fields = {
+        {"elevation_deg", &G::elevation_deg, nullptr, 1, nan},
+        {"elevation_min_deg", &G::elevation_min_deg, nullptr, 1, nan},
+        {"elevation_max_deg", &G::elevation_max_deg, nullptr, 1, nan},
+        {"point_m", &G::point_m, nullptr, 3, nan},
+        {"object_id", nullptr, &G::object_id, 1, -1},
+        {"incidence_deg", &G::incidence_deg, nullptr, 1, nan},
+        {"surfaces", nullptr, &G::surfaces, 1, 0},
+        {"bounces", nullptr, &G::bounces, 1, 0},
+    };
+    return fields;
+}
+
 const std::vector<std::string>& ground_truth_names() {
-    static const std::vector<std::string> names = {
-        "elevation_deg", "elevation_min_deg", "elevation_max_deg", "point_m",
-        "object_id",     "incidence_deg",     "surfaces",          "bounces"};
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> out;
+        for (const GroundTruthField& f : ground_truth_fields()) out.push_back(f.name);
+        return out;
+    }();
     return names;
 }
 
 GroundTruth empty_ground_truth(int bins, int beams) {
-    const float nan = std::numeric_limits<float>::quiet_NaN();
     const size_t cells = size_t(bins) * size_t(beams);
     GroundTruth gt;
     gt.bins = bins, gt.beams = beams;
-    for (auto* v : {&gt.elevation_deg, &gt.elevation_min_deg, &gt.elevation_max_deg, &gt.incidence_deg})
-        v->assign(cells, nan);
-    gt.point_m.assign(cells * 3, nan);
-    gt.object_id.assign(cells, -1);
-    gt.surfaces.assign(cells, 0);
-    gt.bounces.assign(cells, 0);
+    for (const GroundTruthField& f : ground_truth_fields()) {
+        const size_t n = cells * size_t(f.components);
+        if (f.f32) (gt.*f.f32).assign(n, f.empty);
+        if (f.i32) (gt.*f.i32).assign(n, std::int32_t(f.empty));
+    }
     return gt;
 }
 
@@ -54,22 +70,19 @@ EchoPath echo_path(const TraceResult& hits, const SceneDesc& s, int beam, std::i
 
 std::vector<std::pair<std::string, Bytes>> ground_truth_files(const std::string& prefix,
                                                               const GroundTruth& gt) {
-    const std::vector<std::size_t> shape{std::size_t(gt.bins), std::size_t(gt.beams)};
-    auto f32 = [&](const std::vector<float>& v, std::vector<std::size_t> sh) {
-        return encode_npy_array(v.data(), v.size() * 4, "<f4", sh);
-    };
-    auto i32 = [&](const std::vector<std::int32_t>& v) {
-        return encode_npy_array(v.data(), v.size() * 4, "<i4", shape);
-    };
-    const std::string p = prefix + "_gt_";
-    return {{p + "elevation_deg.npy", f32(gt.elevation_deg, shape)},
-            {p + "elevation_min_deg.npy", f32(gt.elevation_min_deg, shape)},
-            {p + "elevation_max_deg.npy", f32(gt.elevation_max_deg, shape)},
-            {p + "point_m.npy", f32(gt.point_m, {shape[0], shape[1], 3})},
-            {p + "object_id.npy", i32(gt.object_id)},
-            {p + "incidence_deg.npy", f32(gt.incidence_deg, shape)},
-            {p + "surfaces.npy", i32(gt.surfaces)},
-            {p + "bounces.npy", i32(gt.bounces)}};
+    std::vector<std::pair<std::string, Bytes>> files;
+    for (const GroundTruthField& f : ground_truth_fields()) {
+        std::vector<std::size_t> shape{std::size_t(gt.bins), std::size_t(gt.beams)};
+        if (f.components > 1) shape.push_back(std::size_t(f.components));
+        const std::string name = prefix + "_gt_" + f.name + ".npy";
+        if (f.f32)
+            files.emplace_back(name,
+                               encode_npy_array((gt.*f.f32).data(), (gt.*f.f32).size() * 4, "<f4", shape));
+        else
+            files.emplace_back(name,
+                               encode_npy_array((gt.*f.i32).data(), (gt.*f.i32).size() * 4, "<i4", shape));
+    }
+    return files;
 }
 
 } // namespace sonarsim

@@ -32,6 +32,20 @@ struct GroundTruth {
     std::vector<std::int32_t> bounces;
 };
 
+/// One array of the ground truth: its name (the file PREFIX_gt_NAME.npy, the Python module's key), its
+/// member (float32 or int32), values per cell and the value of a cell where nothing echoes.
+struct GroundTruthField {
+    const char* name;
+    std::vector<float> GroundTruth::*f32;        ///< a float32 array, or null
+    std::vector<std::int32_t> GroundTruth::*i32; ///< an int32 array, or null
+    int components;                              ///< values per cell: 3 for point_m (x y z), else 1
+    float empty;                                 ///< where nothing echoes: NaN, -1 (object_id) or 0
+};
+
+/// The arrays in file order: elevation_deg, elevation_min_deg, elevation_max_deg, point_m, object_id,
+/// incidence_deg, surfaces, bounces.
+const std::vector<GroundTruthField>& ground_truth_fields();
+
 /// Ground truth of the stored hits alone (accumulate() with the ground-truth channel); a Simulator asked for
 /// it (Simulator::request) makes it in the same pass as the image.
 GroundTruth compute_ground_truth(const TraceResult& hits, const SceneDesc& scene);
@@ -54,7 +68,7 @@ EchoPath echo_path(const TraceResult& hits, const SceneDesc& scene, int beam, st
 std::vector<std::pair<std::string, Bytes>> ground_truth_files(const std::string& prefix,
                                                               const GroundTruth& gt);
 
-/// The names of the arrays, in file order: elevation_deg, elevation_min_deg, ... surfaces.
+/// The names of the arrays (ground_truth_fields), in file order.
 const std::vector<std::string>& ground_truth_names();
 
 } // namespace sonarsim

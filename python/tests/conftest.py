@@ -1,4 +1,5 @@
 """Shared fixtures: the sonarsim executable, the source tree and a scratch directory per test."""
+import json
 import os
 import pathlib
 import shutil
@@ -33,3 +34,13 @@ def small_scene_dict():
     """The small scene as a scene-file dict: the built-in scene's floor and prism (paper Fig. 9)."""
     return {"sonar": {"beams": 48, "range_bins": 96}, "sampling": {"scheme": "spread", "elevation_rays": 41},
             "seafloor": {"height_m": 0}, "objects": [{"box": [0.07, 0.12, 0.22], "position": [1.5, 1.5, 0.11]}]}
+
+
+def write_small_scene(directory, sonar=None, sampling=None, name="scene.json"):
+    """The small scene with SONAR and SAMPLING keys replaced, written to DIRECTORY/NAME; returns its path."""
+    scene = small_scene_dict()
+    scene["sonar"].update(sonar or {})
+    scene["sampling"].update(sampling or {})
+    path = directory / name
+    path.write_text(json.dumps(scene))
+    return path

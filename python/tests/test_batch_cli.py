@@ -1,5 +1,4 @@
 """`sonarsim batch` from the command line: bad input, a real kill then --resume, ARIS and MCAP output."""
-import json
 import os
 import signal
 import subprocess
@@ -7,19 +6,13 @@ import time
 
 import numpy as np
 
-from conftest import small_scene_dict
+from conftest import write_small_scene
 
 
 def write_scene(d, beams=48, rays=41):
-    scene = small_scene_dict()
-    scene["sonar"]["beams"] = beams
     # As an ARIS file holds it: 48 beams at 1200 kHz (ARIS 1200 HF), samples from 1 m (SampleStartDelay >= 930 us).
-    scene["sonar"]["frequency_khz"] = 1200
-    scene["sonar"]["range_min_m"] = 1.0
-    scene["sampling"]["elevation_rays"] = rays
-    p = d / "scene.json"
-    p.write_text(json.dumps(scene))
-    return p
+    return write_small_scene(d, sonar={"beams": beams, "frequency_khz": 1200, "range_min_m": 1.0},
+                             sampling={"elevation_rays": rays})
 
 
 def test_bad_trajectory_is_one_line_naming_file_line_and_column(sonarsim_exe, scratch):

@@ -6,11 +6,15 @@ import signal
 import subprocess
 import time
 
-from conftest import small_scene_dict
+from conftest import write_small_scene
 
-# Effect switches: a preset sets them only under sensor.model "device" (sensor rows with an ideal value).
-EFFECTS = {"sensor.azimuth_window", "sensor.elevation_pattern", "sensor.range_resolution_m", "sensor.speckle",
-           "sensor.noise", "sensor.tvg", "sensor.gain_db"}
+
+def effect_keys(exe, name):
+    """The preset's effect switches, which it sets only under sensor.model "device" (the table's rows with an
+    ideal value): the keys `sonarsim devices NAME` marks with *."""
+    r = subprocess.run([exe, "devices", name], capture_output=True, text=True, check=True)
+    rows = [line.split() for line in r.stdout.splitlines() if line.startswith("  ")]
+    return {row[0] for row in rows if row[2] == "*"}
 
 
 def preset_values(source_dir, name):
@@ -35,20 +39,20 @@ def render(exe, scratch, scene, *sets, name="img"):
 
 
 def scene_file(scratch, extra_sonar):
-    scene = small_scene_dict()
-    scene["sonar"].update({"frequency_khz": 1200, "azimuth_fov_deg": 60, "range_max_m": 4.5}, **extra_sonar)
-    p = scratch / "scene.json"
-    p.write_text(json.dumps(scene))
-    return p
+    return write_small_scene(scratch, sonar={"frequency_khz": 1200, "azimuth_fov_deg": 60, "range_max_m": 4.5,
+                                             **extra_sonar})
 
 
 def test_a_device_on_the_command_line_wins_over_the_scenes_sonar_keys(sonarsim_exe, scratch, source_dir):
     preset = preset_values(source_dir, "aris3000-hf")
+    effects = effect_keys(sonarsim_exe, "aris3000-hf")
+    assert {"sensor.tvg", "sensor.speckle", "sensor.noise"} <= effects
+    assert "sensor.beamformer" not in effects
     scene = scene_file(scratch, {})
     r, meta = render(sonarsim_exe, scratch, scene, "sonar.device=aris3000-hf", "sampling.elevation_rays=41")
     assert meta["sonar"]["device"] == "aris3000-hf"
     for key, value in preset.items():
-        if key not in EFFECTS:  # the ideal sensor: the preset's effect switches stay off
+        if key not in effects:  # the ideal sensor: the preset's effect switches stay off
             assert value_in(meta, key) == value, key
     assert meta["sonar"]["frequency_khz"] == 3000  # the scene said 1200
     assert meta["sonar"]["beams"] == 128  # the scene said 48
@@ -104,17 +108,9 @@ def test_the_ideal_render_says_what_it_wrote(sonarsim_exe, scratch):
     assert "L_EN (the ideal sensor)" in r.stdout
 
 
-def write_small_scene(scratch, rays):
-    scene = small_scene_dict()
-    scene["sampling"]["elevation_rays"] = rays
-    p = scratch / "small.json"
-    p.write_text(json.dumps(scene))
-    return p
-
-
 def test_index_lists_the_ground_truth_files(sonarsim_exe, scratch):
     out = scratch / "o"
-    subprocess.run([sonarsim_exe, "batch", "--scene", str(write_small_scene(scratch, 41)), "--line",
+    subprocess.run([sonarsim_exe, "batch", "--scene", str(write_small_scene(scratch, sampling={"elevation_rays": 41})), "--line",
                     "0.3,2.4,0.9,0.4,2.4,0.9,2", "--out", str(out), "--ground-truth"], check=True, capture_output=True)
     rows = (out / "index.csv").read_text().splitlines()
     files = rows[1].split(",")[rows[0].split(",").index("files")].split(";")
@@ -125,7 +121,7 @@ def test_index_lists_the_ground_truth_files(sonarsim_exe, scratch):
 
 def test_ctrl_c_says_what_it_finished_and_writes_the_index(sonarsim_exe, scratch):
     out = scratch / "o"
-    args = [sonarsim_exe, "batch", "--scene", str(write_small_scene(scratch, 4001)), "--circle",
+    args = [sonarsim_exe, "batch", "--scene", str(write_small_scene(scratch, sampling={"elevation_rays": 4001})), "--circle",
             "1.5,1.5,0,1.2,0.8,40", "--out", str(out)]
     proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 120

@@ -6,7 +6,7 @@ import sys
 
 import pytest
 
-from conftest import small_scene_dict
+from conftest import write_small_scene
 
 
 def frame_files(d):
@@ -15,8 +15,7 @@ def frame_files(d):
 
 def test_dask_frames_equal_a_single_process_batch(sonarsim_exe, source_dir, scratch):
     pytest.importorskip("distributed")
-    scene = scratch / "scene.json"
-    scene.write_text(json.dumps(small_scene_dict()))
+    scene = write_small_scene(scratch)
     traj = scratch / "t.csv"
     rows = ["t,x,y,z,roll_deg,pitch_deg,yaw_deg"]
     rows += [f"{0.1 * k:g},{0.2 + 0.05 * k:g},2.3,0.9,0,30,{-40 + 2 * k}" for k in range(6)]

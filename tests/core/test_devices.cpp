@@ -3,6 +3,7 @@
 #include "core/devices/devices.hpp"
 #include "core/scene/sampling_scheme.hpp"
 #include "core/base/errors.hpp"
+#include "core/base/file_io.hpp"
 #include "core/display/image.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/scene_io.hpp"
@@ -104,14 +105,7 @@ TEST_CASE("devices: every preset value is a table key with a valid value and a s
             REQUIRE(spec);
             CHECK_NOTHROW(validate_value(*spec, v.value, p.file, v.key));
             CHECK(v.source.size() >= 10);
-            // What a preset must leave to the scene: the pose, the choice of device and sensor, the sampler,
-            // the water.
-            CHECK(!is_group_key(v.key));
-            CHECK(v.key != "sonar.position");
-            CHECK(v.key != "sonar.orientation_deg");
-            CHECK(v.key != "sensor.seed");
-            CHECK(!starts_with(v.key, "sampling."));
-            CHECK(!starts_with(v.key, "water."));
+            CHECK(spec->preset_may_set); // parse_device_preset rejects any other
         }
         INFO(p.file);
         // The main figures every preset gives, and the display that never renders black.
@@ -137,6 +131,54 @@ TEST_CASE("devices: every preset value is a table key with a valid value and a s
             CHECK(value_of(p, "sensor.speckle")->value == "k");
         }
     }
+}
+
+TEST_CASE("devices: the keys a preset may set are the device's, one column of the table", "[devices]") {
+    // What a preset must leave to the scene: the pose and its motion, the choice of device and sensor, the
+    // seed, the sampler, the water, the exports.
+    for (const ParamSpec& p : scene_params()) {
+        INFO(p.key);
+        const bool scene_choice = is_group_key(p.key) || p.type == ParamType::Vec3 ||
+                                  p.key == "sonar.motion_from_trajectory" || p.key == "sensor.seed" ||
+                                  starts_with(p.key, "sampling.") || starts_with(p.key, "water.") ||
+                                  starts_with(p.key, "export.");
+        CHECK(p.preset_may_set == !scene_choice);
+    }
+    for (const ParamSpec& p : input_params()) CHECK_FALSE(p.preset_may_set);
+    CHECK(starts_with(preset_keys_text(), "sonar.frequency_khz, sonar.azimuth_fov_deg, "));
+}
+
+TEST_CASE("devices: a preset setting a key presets may not set is an error naming file, key and the allowed",
+          "[devices]") {
+    const std::string file = SONARSIM_TEST_DATA "/devices/seeded.json";
+    const std::string text = read_file_bytes(file);
+    try {
+        parse_device_preset(file, text);
+        FAIL("no error");
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        CHECK(what.rfind(file +
+                             ": values.sensor.seed: a device preset may not set this key; presets may set: "
+                             "sonar.frequency_khz, ",
+                         0) == 0);
+        CHECK(what.find("sensor.gain_db") != std::string::npos);
+        CHECK(what.find("sensor.seed", what.find("presets may set")) == std::string::npos);
+    }
+    // The same file without the seed is a preset named after its file.
+    json j = json::parse(text);
+    j["values"].erase("sensor.seed");
+    const DevicePreset ok = parse_device_preset(file, j.dump());
+    CHECK(ok.name == "seeded");
+    REQUIRE(ok.values.size() == 1);
+    CHECK(ok.values[0].value == 64);
+    // A key of no row, and a value out of its row's bounds, are errors too.
+    j["values"]["sonar.nonsense"] = {{"value", 1}, {"sure", true}, {"source", "nowhere at all"}};
+    CHECK_THROWS_WITH(parse_device_preset(file, j.dump()),
+                      Catch::Contains("values.sonar.nonsense: not a parameter"));
+    j["values"].erase("sonar.nonsense");
+    j["values"]["sonar.beams"]["value"] = 0;
+    CHECK_THROWS_WITH(parse_device_preset(file, j.dump()),
+                      Catch::Contains("values.sonar.beams.value: value 0"));
 }
 
 TEST_CASE("devices: sonar.device sets the preset values and scene keys override them", "[devices]") {

@@ -176,3 +176,58 @@ TEST_CASE("an edit of any row recomputes exactly its effective stage and re-uses
         CHECK(edited > scene_params().size());
     }
 }
+
+TEST_CASE("each row's slider range holds its default and lies within the row's bounds", "[params]") {
+    SceneDesc s = default_scene();
+    s.water.surface_height_m = 3.0; // so that the surface's material is a key
+    int numeric = 0;
+    for (const Key& k : all_keys(s)) {
+        const ValueSpec& spec = *k.spec;
+        if (spec.type != ParamType::Number && spec.type != ParamType::Integer && spec.type != ParamType::Vec3)
+            continue;
+        ++numeric;
+        INFO(k.path);
+        const SliderRange r = spec.slider_range();
+        CHECK(r.lo < r.hi);
+        if (r.logarithmic) CHECK(r.lo > 0);
+        // Both ends are values the row accepts (exclusive bounds included).
+        ValueSpec one = spec;
+        one.type = spec.type == ParamType::Integer ? ParamType::Integer : ParamType::Number;
+        CHECK_NOTHROW(validate_value(one, json(r.lo), "test", k.path));
+        CHECK_NOTHROW(validate_value(one, json(r.hi), "test", k.path));
+        // The default is on the slider (an absent value, such as a box's size on a mesh, has none).
+        const json& v = k.value;
+        const std::vector<double> xs = v.is_null()    ? std::vector<double>{}
+                                       : v.is_array() ? v.get<std::vector<double>>()
+                                                      : std::vector<double>{v.get<double>()};
+        for (double x : xs) {
+            CHECK(x >= r.lo);
+            CHECK(x <= r.hi);
+        }
+    }
+    CHECK(numeric > 50);
+    // A range worth sweeping where one was chosen: the frequency's, logarithmic in [100, 5000] kHz.
+    const SliderRange f = find_param("sonar.frequency_khz")->slider_range();
+    CHECK(f.lo == 100);
+    CHECK(f.hi == 5000);
+    CHECK(f.logarithmic);
+    // Without one, the row's bounds.
+    const SliderRange b = find_param("sampling.bounces")->slider_range();
+    CHECK(b.lo == 0);
+    CHECK(b.hi == 2);
+}
+
+TEST_CASE("labels and sections of the viewer's controls come from the table", "[params]") {
+    CHECK(find_param("sonar.frequency_khz")->label_text() == "f frequency [kHz]");
+    CHECK(find_param("sonar.range_max_m")->label_text() == "range max [m]");
+    CHECK(find_param("sampling.bounces")->label_text() == "bounces");
+    CHECK(find_material_param("nu_db")->label_text() == "10 log nu [dB]");
+    CHECK(find_param("sonar.position")->section == Section::Pose);
+    CHECK(find_param("sonar.beams")->section == Section::Sonar);
+    CHECK(find_param("water.depth_m")->section == Section::Water);
+    CHECK(find_param("sensor.gain_db")->section == Section::Sensor);
+    CHECK(find_param("export.lo_db")->section == Section::None);
+    CHECK(find_material_param("q")->section == Section::Material);
+    CHECK(find_object_param("scale")->section == Section::Object);
+    CHECK(std::string(section_title(Section::Material)) == "Object / material");
+}

@@ -36,17 +36,14 @@ void product_zyx(double roll_deg, double pitch_deg, double yaw_deg, double m[3][
         }
 }
 
-const Vec3d kOrientations[] = {
-    {-0.97, 29.79, -38.96}, {6.88, 28.07, -41.25}, {0, 0, 0}, {90, 0, 0}, {0, 90, 0}, {0, 0, 90},
-    {-170, 45, 135},        {33, -60, -250}};
-
-/// Paper Fig. 9 pose 2.
-Pose pose2() {
-    Pose p;
-    p.position_m = {0.84, 2.42, 0.90};
-    p.orientation_deg = {6.88, 28.07, -41.25};
-    return p;
-}
+const Vec3d kOrientations[] = {Pose{}.orientation_deg,
+                               kFig9Pose2.orientation_deg,
+                               {0, 0, 0},
+                               {90, 0, 0},
+                               {0, 90, 0},
+                               {0, 0, 90},
+                               {-170, 45, 135},
+                               {33, -60, -250}};
 
 /// Azimuth and range of a world point computed here, without world_to_sonar_polar.
 void own_polar(const Pose& pose, const Vec3d& pt, double& az_deg, double& range) {
@@ -175,12 +172,12 @@ TEST_CASE("Fig. 9 pose 1 sees the prism centre at +0.45 deg, 1.68 m", "[pose]") 
 
 TEST_CASE("Fig. 9 pose 2 sees the prism centre at -11.6 deg, 1.32-1.45 m", "[pose]") {
     const SceneDesc s = default_scene();
-    const Polar p = world_to_sonar_polar(pose2(), to_glm(s.objects[0].position_m));
+    const Polar p = world_to_sonar_polar(kFig9Pose2, to_glm(s.objects[0].position_m));
     CHECK(p.azimuth_deg == Approx(-11.6).margin(0.1));
     CHECK(p.range_m >= 1.32);
     CHECK(p.range_m <= 1.45);
     double az, r;
-    own_polar(pose2(), s.objects[0].position_m, az, r);
+    own_polar(kFig9Pose2, s.objects[0].position_m, az, r);
     CHECK(p.azimuth_deg == Approx(az).margin(1e-9));
     CHECK(p.range_m == Approx(r).epsilon(1e-12));
 }

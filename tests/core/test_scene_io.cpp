@@ -43,10 +43,11 @@ TEST_CASE("assets/scenes/fig9.json is the built-in default scene", "[scene]") {
     CHECK(def.sampling.elevation_rays == 101);
 }
 
-TEST_CASE("fig9_pose2.json differs from the default only in the pose", "[scene]") {
+TEST_CASE("fig9_pose2.json differs from the default only in the pose, kFig9Pose2", "[scene]") {
     SceneDesc p2 = load_scene(SONARSIM_ASSETS "/scenes/fig9_pose2.json");
-    CHECK(p2.sonar.pose.position_m == Vec3d{0.84, 2.42, 0.90});
-    CHECK(p2.sonar.pose.orientation_deg == Vec3d{6.88, 28.07, -41.25});
+    CHECK(p2.sonar.pose.position_m == kFig9Pose2.position_m);
+    CHECK(p2.sonar.pose.orientation_deg == kFig9Pose2.orientation_deg);
+    CHECK(kFig9Pose2.position_m != default_scene().sonar.pose.position_m);
     p2.sonar.pose = default_scene().sonar.pose;
     CHECK(scene_to_json(p2).dump() == scene_to_json(default_scene()).dump());
 }

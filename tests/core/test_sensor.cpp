@@ -337,6 +337,33 @@ TEST_CASE("the device model turns every effect on and the ideal model every effe
     CHECK(g.sensor.speckle == Speckle::Rayleigh);
 }
 
+TEST_CASE("each effect of the sensor stage alone makes the sensor non-ideal", "[sensor]") {
+    const SceneDesc ideal = default_scene();
+    REQUIRE(sensor_is_ideal(ideal));
+    const std::vector<std::pair<const char*, json>> effects = {
+        {"sensor.azimuth_window", "hann"}, {"sensor.range_resolution_m", 0.01},
+        {"sensor.speckle", "k"},           {"sensor.noise", true},
+        {"sensor.tvg", "20log"},           {"sensor.gain_db", -3.0}};
+    for (const auto& [key, value] : effects) {
+        INFO(key);
+        SceneDesc s = ideal;
+        apply_setting(s, key, value, "test");
+        CHECK_FALSE(sensor_is_ideal(s));
+    }
+    // Not effects of the sensor stage: the elevation pattern (the trace's), the shape of an effect that is
+    // off.
+    for (const auto& [key, value] :
+         std::vector<std::pair<const char*, json>>{{"sensor.elevation_pattern", "sinc"},
+                                                   {"sensor.taylor_sidelobe_db", -40.0},
+                                                   {"sensor.pulse", "chirp"},
+                                                   {"sensor.seed", 9}}) {
+        INFO(key);
+        SceneDesc s = ideal;
+        apply_setting(s, key, value, "test");
+        CHECK(sensor_is_ideal(s));
+    }
+}
+
 TEST_CASE("the automatic display range spans the fan's 5th to 99.5th percentile", "[sensor][display]") {
     // One beam, 1001 bins over 100 ... 101 m (range weights within 1 % of each other): levels 0 ... 39.96 dB.
     SonarParams sonar;

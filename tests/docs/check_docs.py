@@ -16,7 +16,7 @@ import sys
 
 HEADER = """# Parameters
 
-Generated from the one parameter table (`core/scene/params.cpp`) by `sonarsim params`; do not edit by hand.
+Generated from the one parameter table (`core/scene/rows/*.cpp`) by `sonarsim params`; do not edit by hand.
 Every key works in a scene file (nested: `{"sonar": {"beams": 64}}`), with `--set sonar.beams=64` and in
 Python (`sim.set("sonar.beams", 64)`). `material.*` keys belong to a material: the seafloor's
 (`seafloor.material.nu_db`), the water surface's (`water.surface_material.q`) or an object's

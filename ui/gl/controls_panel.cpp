@@ -1,6 +1,6 @@
 #include "ui/gl/controls_panel.hpp"
 
-#include "ui/model/param_ranges.hpp"
+#include "ui/model/bindings.hpp"
 #include "ui/model/scene_labels.hpp"
 
 #include "core/geometry/mesh_formats.hpp"
@@ -78,16 +78,16 @@ std::string field_label(const std::string& text, const std::string& key) {
 float widest_label() {
     float w = 0;
     for (const ParamSpec& p : scene_params())
-        if (p.type != ParamType::Vec3) w = std::max(w, ImGui::CalcTextSize(param_label(p).c_str()).x);
+        if (p.type != ParamType::Vec3) w = std::max(w, ImGui::CalcTextSize(p.label_text().c_str()).x);
     for (const MaterialSpec& m : material_params())
-        w = std::max(w, ImGui::CalcTextSize(param_label(m).c_str()).x);
+        w = std::max(w, ImGui::CalcTextSize(m.label_text().c_str()).x);
     return w + ImGui::GetStyle().ItemInnerSpacing.x + 2;
 }
 
 /// One slider for a number or integer spec. Returns true with `value` set when edited.
 bool slider(const ValueSpec& spec, double current, double& value) {
-    const SliderRange r = slider_range(spec);
-    const std::string label = field_label(param_label(spec), spec.key);
+    const SliderRange r = spec.slider_range();
+    const std::string label = field_label(spec.label_text(), spec.key);
     ImGuiSliderFlags flags = r.logarithmic ? ImGuiSliderFlags_Logarithmic : 0;
     bool changed = false;
     if (spec.type == ParamType::Integer) {
@@ -119,13 +119,13 @@ double optional_default(const SceneDesc& s, const ParamSpec& p) {
     return std::max(p.min, 0.0);
 }
 
-void section_params(Session& session, const std::string& section) {
+void section_params(Session& session, Section section) {
     for (const ParamSpec& p : scene_params()) {
-        if (param_section(p) != section) continue;
+        if (p.section != section) continue;
         const json cur = p.get(session.scene());
         if (p.type == ParamType::Enum) {
             const std::string now = cur.get<std::string>();
-            const std::string label = field_label(param_label(p), p.key);
+            const std::string label = field_label(p.label_text(), p.key);
             if (ImGui::BeginCombo(label.c_str(), now.c_str())) {
                 for (auto& c : p.choices)
                     if (ImGui::Selectable(c.c_str(), c == now)) session.set(p.key, c);
@@ -136,13 +136,13 @@ void section_params(Session& session, const std::string& section) {
         }
         if (p.type == ParamType::Bool) {
             bool on = cur.get<bool>();
-            if (ImGui::Checkbox((param_label(p) + "##" + p.key).c_str(), &on)) session.set(p.key, on);
+            if (ImGui::Checkbox((p.label_text() + "##" + p.key).c_str(), &on)) session.set(p.key, on);
             help_tooltip(p);
             continue;
         }
         if (p.optional) { // absent (null) or a value: a checkbox, then the slider when present
             bool on = !cur.is_null();
-            if (ImGui::Checkbox((param_label(p) + "##on_" + p.key).c_str(), &on))
+            if (ImGui::Checkbox((p.label_text() + "##on_" + p.key).c_str(), &on))
                 session.set(p.key, on ? json(optional_default(session.scene(), p)) : json(nullptr));
             help_tooltip(p);
             if (cur.is_null()) continue;
@@ -153,32 +153,31 @@ void section_params(Session& session, const std::string& section) {
     }
 }
 
-void pose_section(Session& session) {
-    Pose pose = session.scene().sonar.pose;
-    ImGui::TextUnformatted("position x y z [m]");
+/// A Vec3 row as three dragged numbers under its label; bounds from the row's slider range. Returns true
+/// with `v` set when edited.
+bool drag3(const ValueSpec& spec, Vec3d& v) {
+    const SliderRange r = spec.slider_range();
+    const bool degrees = spec.unit == "deg";
+    ImGui::TextUnformatted(spec.label_text().c_str());
     ImGui::SetNextItemWidth(-1);
-    bool changed = ImGui::DragScalarN("##position", ImGuiDataType_Double, pose.position_m.data(), 3, 0.005f,
-                                      nullptr, nullptr, "%.3f");
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("x, y, z of the sonar (world, z up); drag or Ctrl+click");
-    ImGui::TextUnformatted("roll pitch yaw [deg]");
-    ImGui::SetNextItemWidth(-1);
-    changed |= ImGui::DragScalarN("##orientation", ImGuiDataType_Double, pose.orientation_deg.data(), 3, 0.2f,
-                                  nullptr, nullptr, "%.2f");
+    const bool changed = ImGui::DragScalarN(("##" + spec.key).c_str(), ImGuiDataType_Double, v.data(), 3,
+                                            degrees ? 0.2f : 0.005f, &r.lo, &r.hi, degrees ? "%.2f" : "%.3f");
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("R = Rz(yaw) Ry(pitch) Rx(roll); positive pitch looks down");
-    if (changed)
-        session.edit([&](SceneDesc& s) {
-            apply_setting(s, "sonar.position", pose.position_m, "pose");
-            apply_setting(s, "sonar.orientation_deg", pose.orientation_deg, "pose");
-        });
+        ImGui::SetTooltip("%s\n%s: %s\nDrag, or Ctrl+click to type a value", spec.help.c_str(),
+                          spec.key.c_str(), allowed_text(spec).c_str());
+    return changed;
+}
+
+void pose_section(Session& session) {
+    for (const ParamSpec& p : scene_params()) {
+        if (p.section != Section::Pose) continue;
+        Vec3d v = p.get(session.scene()).get<Vec3d>();
+        if (drag3(p, v)) session.set(p.key, v);
+    }
     if (is_paper_fig9_scene(session.scene())) { // the paper's poses mean nothing in other scenes
         if (ImGui::Button("Fig. 9 pose 1")) session.edit([](SceneDesc& s) { s.sonar.pose = Pose{}; });
         same_line_if_fits("Fig. 9 pose 2");
-        if (ImGui::Button("Fig. 9 pose 2"))
-            session.edit([](SceneDesc& s) {
-                s.sonar.pose.position_m = {0.84, 2.42, 0.90};
-                s.sonar.pose.orientation_deg = {6.88, 28.07, -41.25};
-            });
+        if (ImGui::Button("Fig. 9 pose 2")) session.edit([](SceneDesc& s) { s.sonar.pose = kFig9Pose2; });
     }
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
     ImGui::TextWrapped("In 3D, drag the sonar's housing or its yellow handle to move it; Shift: up/down, "
@@ -225,7 +224,7 @@ void material_section(Session& session, ControlsUi& ui) {
         const bool present = std::isfinite(m.*(spec.field));
         if (spec.optional) { // reflection_db: a checkbox (a mirror or not), then its slider
             bool on = present;
-            if (ImGui::Checkbox((param_label(spec) + "##on").c_str(), &on))
+            if (ImGui::Checkbox((spec.label_text() + "##on").c_str(), &on))
                 session.set(prefix + spec.key, on ? json(3.0) : json(nullptr));
             help_tooltip(spec);
         }
@@ -235,25 +234,19 @@ void material_section(Session& session, ControlsUi& ui) {
     }
     if (ui.selected >= 0) {
         const ObjectDesc& o = s.objects[size_t(ui.selected)];
-        const std::string key = "objects." + std::to_string(ui.selected);
-        Vec3d pos = o.position_m, rot = o.orientation_deg, scale = o.scale;
-        ImGui::TextUnformatted("object position [m]");
-        ImGui::SetNextItemWidth(-1);
-        if (ImGui::DragScalarN("##objpos", ImGuiDataType_Double, pos.data(), 3, 0.005f, nullptr, nullptr,
-                               "%.3f"))
-            session.set(key + ".position", pos);
-        ImGui::TextUnformatted("object roll pitch yaw [deg]");
-        ImGui::SetNextItemWidth(-1);
-        if (ImGui::DragScalarN("##objrot", ImGuiDataType_Double, rot.data(), 3, 0.5f, nullptr, nullptr,
-                               "%.1f"))
-            session.set(key + ".orientation_deg", rot);
-        ImGui::TextUnformatted("object scale x y z");
-        ImGui::SetNextItemWidth(-1);
-        const double smin = 1e-3, smax = 1e3;
-        if (ImGui::DragScalarN("##objscale", ImGuiDataType_Double, scale.data(), 3, 0.005f, &smin, &smax,
-                               "%.3f"))
-            session.set(key + ".scale", scale);
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("In 3D: Alt+drag the object scales it");
+        const std::string key = "objects." + std::to_string(ui.selected) + ".";
+        for (const ObjectSpec& p : object_params()) {
+            if (p.section != Section::Object) continue;
+            const json cur = p.get(o);
+            if (p.type == ParamType::Vec3) {
+                Vec3d v = cur.get<Vec3d>();
+                if (drag3(p, v)) session.set(key + p.key, v);
+                if (p.key == "scale" && ImGui::IsItemHovered())
+                    ImGui::SetTooltip("In 3D: Alt+drag the object scales it");
+            } else if (double v = 0; slider(p, cur.get<double>(), v)) {
+                session.set(key + p.key, v);
+            }
+        }
         if (ImGui::Button("Remove object")) {
             const int i = ui.selected;
             session.edit([i](SceneDesc& sc) { sc.objects.erase(sc.objects.begin() + i); });
@@ -326,23 +319,25 @@ void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, Tra
     g_labels_above = label_w > 0.5f * avail;
     ImGui::PushItemWidth(g_labels_above ? -1.0f : -label_w);
     stats_section(session, ui);
+    const std::string snapshot = "Snapshot (" + shortcut_text(KeyAction::Snapshot) + ")"; // the bindings' key
     if (is_paper_fig9_scene(session.scene())) {
         if (ImGui::Button("Reset to paper values")) session.reset_to_paper();
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("Every parameter and material back to Tables I-II (the pose is kept)");
-        same_line_if_fits("Snapshot (S)");
+        same_line_if_fits(snapshot.c_str());
     }
-    if (ImGui::Button("Snapshot (S)")) ui.want_snapshot = true;
+    if (ImGui::Button(snapshot.c_str())) ui.want_snapshot = true;
 
-    if (ImGui::CollapsingHeader("Pose", ImGuiTreeNodeFlags_DefaultOpen)) pose_section(session);
-    if (ImGui::CollapsingHeader("Sonar", ImGuiTreeNodeFlags_DefaultOpen)) section_params(session, "Sonar");
-    if (ImGui::CollapsingHeader("Water", ImGuiTreeNodeFlags_DefaultOpen)) section_params(session, "Water");
-    if (ImGui::CollapsingHeader("Object / material", ImGuiTreeNodeFlags_DefaultOpen))
-        material_section(session, ui);
-    if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen))
-        section_params(session, "Display");
-    if (ImGui::CollapsingHeader("Sensor")) section_params(session, "Sensor");
-    if (ImGui::CollapsingHeader("Sampling")) section_params(session, "Sampling");
+    // The table's sections (param_spec.hpp), in the panel's order; the first ones open.
+    const ImGuiTreeNodeFlags open = ImGuiTreeNodeFlags_DefaultOpen;
+    if (ImGui::CollapsingHeader(section_title(Section::Pose), open)) pose_section(session);
+    for (Section sec : {Section::Sonar, Section::Water})
+        if (ImGui::CollapsingHeader(section_title(sec), open)) section_params(session, sec);
+    if (ImGui::CollapsingHeader(section_title(Section::Material), open)) material_section(session, ui);
+    if (ImGui::CollapsingHeader(section_title(Section::Display), open))
+        section_params(session, Section::Display);
+    for (Section sec : {Section::Sensor, Section::Sampling})
+        if (ImGui::CollapsingHeader(section_title(sec))) section_params(session, sec);
     if (ImGui::CollapsingHeader("Trajectory"))
         if (auto p = trajectory.draw(session)) session.edit([&](SceneDesc& s) { s.sonar.pose = *p; });
     if (ImGui::CollapsingHeader("Files")) {
@@ -357,7 +352,8 @@ void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, Tra
     }
     if (ImGui::CollapsingHeader("View")) {
         ImGui::Checkbox("show traced hits", &ui.show_hits);
-        if (ImGui::Button("Reset camera (F)")) ui.want_reset_camera = true;
+        if (ImGui::Button(("Reset camera (" + shortcut_text(KeyAction::ResetCamera) + ")").c_str()))
+            ui.want_reset_camera = true;
         ImGui::SliderFloat(field_label("UI scale", "uiscale").c_str(), &ui.ui_scale, 0.75f, 2.5f, "%.2f");
     }
     ImGui::PopItemWidth();

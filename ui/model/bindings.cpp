@@ -15,11 +15,20 @@ KeyMatch ctrl(int k, int excluded = 0) {
     return {k, mods::Control, excluded};
 }
 
+std::vector<Binding> with_key_inputs(std::vector<Binding> rows) {
+    for (Binding& b : rows)
+        if (b.input.empty())
+            for (const KeyMatch& k : b.keys) b.input += (b.input.empty() ? "" : " or ") + key_text(k);
+    return rows;
+}
+
 } // namespace
 
 const std::vector<Binding>& bindings() {
     using A = KeyAction;
-    static const std::vector<Binding> table = {
+    // A key row's input is its key presses as menus show them ("Ctrl+Shift+Z or Ctrl+Y"), filled in below
+    // where the row leaves it empty.
+    static const std::vector<Binding> table = with_key_inputs({
         {"3D view", "left-drag (anywhere but the sonar or the selected object)", "orbit the camera"},
         {"3D view", "right- or middle-drag", "pan the camera"},
         {"3D view", "wheel", "zoom"},
@@ -42,31 +51,27 @@ const std::vector<Binding>& bindings() {
          "measure: distance between two points, dB statistics of the box",
          A::StartMeasure,
          {plain(key::M)}},
-        {"Keys", "S", "snapshot", A::Snapshot, {plain(key::S)}},
-        {"Keys", "Ctrl+Z", "undo the last scene edit", A::Undo, {ctrl(key::Z, mods::Shift)}},
+        {"Keys", "", "snapshot", A::Snapshot, {plain(key::S)}},
+        {"Keys", "", "undo the last scene edit", A::Undo, {ctrl(key::Z, mods::Shift)}},
+        {"Keys", "", "redo", A::Redo, {{key::Z, mods::Control | mods::Shift}, ctrl(key::Y)}},
+        {"Keys", "", "raw polar image / fan", A::TogglePolar, {plain(key::P)}},
+        {"Keys", "", "show the traced hits", A::ToggleHits, {plain(key::H)}},
         {"Keys",
-         "Ctrl+Shift+Z or Ctrl+Y",
-         "redo",
-         A::Redo,
-         {{key::Z, mods::Control | mods::Shift}, ctrl(key::Y)}},
-        {"Keys", "P", "raw polar image / fan", A::TogglePolar, {plain(key::P)}},
-        {"Keys", "H", "show the traced hits", A::ToggleHits, {plain(key::H)}},
-        {"Keys",
-         "B",
+         "",
          "multipath on / off: sampling.bounces 0 or its last non-zero value",
          A::ToggleMultipath,
          {plain(key::B)}},
-        {"Keys", "F", "frame the scene from above, behind the sonar", A::ResetCamera, {plain(key::F)}},
-        {"Keys", "O", "open a scene", A::OpenScene, {plain(key::O)}},
-        {"Keys", "R", "start / stop recording the sonar's trajectory", A::ToggleRecord, {plain(key::R)}},
-        {"Keys", "Space", "play / pause the trajectory", A::TogglePlay, {plain(key::Space)}},
-        {"Keys", "Escape", "close menus and dialogs, cancel a measurement", A::Cancel, {{key::Escape}}, true},
-        {"Keys", "Ctrl+Q", "quit", A::Quit, {ctrl(key::Q)}},
+        {"Keys", "", "frame the scene from above, behind the sonar", A::ResetCamera, {plain(key::F)}},
+        {"Keys", "", "open a scene", A::OpenScene, {plain(key::O)}},
+        {"Keys", "", "start / stop recording the sonar's trajectory", A::ToggleRecord, {plain(key::R)}},
+        {"Keys", "", "play / pause the trajectory", A::TogglePlay, {plain(key::Space)}},
+        {"Keys", "", "close menus and dialogs, cancel a measurement", A::Cancel, {{key::Escape}}, true},
+        {"Keys", "", "quit", A::Quit, {ctrl(key::Q)}},
         {"Sliders", "drag", "change the value"},
         {"Sliders", "Shift+drag", "fine: a tenth of the speed"},
         {"Sliders", "Ctrl+click", "type a value"},
         {"Window", "drop a .json scene or a mesh (" + mesh_extensions_text(" ") + ")", "open it / add it"},
-    };
+    });
     return table;
 }
 

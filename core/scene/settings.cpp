@@ -1,0 +1,105 @@
+// Key routing: `key.path=value` from `--set`, the viewer and Python applied to a scene through the table
+// (scene rows, materials of the water surface, the seafloor and the objects, object and seafloor rows),
+// and the parsing of `--set`'s text.
+#include "core/scene/params.hpp"
+
+#include "core/base/errors.hpp"
+
+#include <cctype>
+#include <filesystem>
+
+namespace sonarsim {
+namespace {
+
+void set_value(SceneDesc& scene, const std::string& key, const json& value, const std::string& file) {
+    if (auto* p = find_param(key)) {
+        p->put(scene, validate_value(*p, value, file, key));
+        apply_group_key(scene, key);
+        return;
+    }
+    const std::string surface_prefix = "water.surface_material.";
+    if (key.rfind(surface_prefix, 0) == 0) {
+        set_material(scene.water.surface_material, key.substr(surface_prefix.size()), value, file, key);
+        return;
+    }
+    if (key.rfind("seafloor.material.", 0) == 0) {
+        if (!scene.seafloor) throw InputError(file, key, "the scene has no seafloor");
+        set_material(scene.seafloor->material, key.substr(18), value, file, key);
+        return;
+    }
+    if (key.rfind("seafloor.", 0) == 0)
+        if (const SeafloorSpec* p = find_seafloor_param(key.substr(9))) {
+            const json v = p->validated(value, file, key);
+            if (!scene.seafloor) scene.seafloor = Seafloor{};
+            p->put(*scene.seafloor, v, "");
+            return;
+        }
+    if (key.rfind("objects.", 0) == 0) {
+        const std::string rest = key.substr(8);
+        const size_t dot = rest.find('.');
+        size_t idx = 0;
+        const std::string idx_text = rest.substr(0, dot);
+        if (idx_text.empty() || idx_text.find_first_not_of("0123456789") != std::string::npos ||
+            idx_text.size() > 6 || (idx = std::stoul(idx_text)) >= scene.objects.size())
+            throw InputError(file, key,
+                             "object index must be in [0, " + std::to_string(scene.objects.size()) + ")");
+        const std::string field = dot == std::string::npos ? "" : rest.substr(dot + 1);
+        ObjectDesc& o = scene.objects[idx];
+        if (field.rfind("material.", 0) == 0) {
+            set_material(o.material, field.substr(9), value, file, key);
+            return;
+        }
+        const ObjectSpec* p = find_object_param(field);
+        if (!p)
+            throw InputError(file, key, "unknown key; allowed: " + part_keys_text(object_params()) + ".*");
+        // A mesh path given on the command line or in the viewer is relative to the working directory.
+        std::error_code ec;
+        p->put(o, p->validated(value, file, key), std::filesystem::current_path(ec).string());
+        return;
+    }
+    std::string known;
+    for (const auto* list : {&scene_params(), &input_params()})
+        for (auto& p : *list) known += (known.empty() ? "" : ", ") + p.key;
+    for (auto& p : seafloor_params()) known += ", seafloor." + p.key;
+    throw InputError(file, key,
+                     "unknown key; allowed: " + known +
+                         ", seafloor.material.*, water.surface_material.*, objects.N.*");
+}
+
+} // namespace
+
+Stage apply_setting(SceneDesc& scene, const std::string& key, const json& value, const std::string& file) {
+    const SceneDesc before = scene;
+    set_value(scene, key, value, file);
+    return changed_stage(before, scene);
+}
+std::pair<std::string, json> parse_setting_text(const std::string& text, const std::string& origin) {
+    const size_t eq = text.find('=');
+    if (eq == std::string::npos || eq == 0)
+        throw InputError(origin, text, "expected key.path=value, e.g. sonar.range_max_m=8");
+    const std::string key = text.substr(0, eq), raw = text.substr(eq + 1);
+    json value = json::parse(raw, nullptr, false);
+    if (value.is_discarded()) {
+        // A bare word: enum names such as paper, viridis. Anything else that is not JSON is an error (a
+        // number out of double range such as 1e400 must not turn into a string or an infinity).
+        const bool word = !raw.empty() && std::isalpha(static_cast<unsigned char>(raw[0])) &&
+                          raw.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                "0123456789_-") == std::string::npos;
+        if (!word) {
+            std::string allowed;
+            if (const ParamSpec* p = find_param(key)) allowed = "; allowed: " + allowed_text(*p);
+            throw InputError(origin, key,
+                             raw.empty() ? "missing value after '='" + allowed
+                                         : "cannot read value \"" + raw + "\"" + allowed);
+        }
+        value = json(raw);
+    }
+    return {key, value};
+}
+
+Stage apply_setting_text(SceneDesc& scene, const std::string& text, const std::string& origin) {
+    const auto [key, value] = parse_setting_text(text, origin);
+    return apply_setting(scene, key, value, origin);
+}
+
+} // namespace sonarsim

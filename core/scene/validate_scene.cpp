@@ -1,0 +1,120 @@
+// Cross-field checks of a whole scene: the range window, the sampler's combinations and ray budget, image
+// and fan sizes, the elevation pattern's extent, the water surface above the sonar and the floor, display
+// and export ranges.
+#include "core/scene/params.hpp"
+
+#include "core/base/errors.hpp"
+#include "core/base/pose.hpp"
+#include "core/sensor/sensor_patterns.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace sonarsim {
+
+void validate_scene(const SceneDesc& s, const std::string& file, const std::vector<std::string>& just_set) {
+    // Whether `b`, not `a`, is the key to name: the caller has just set b and not a.
+    auto second = [&](const char* a, const char* b) {
+        auto set = [&](const char* k) {
+            return std::find(just_set.begin(), just_set.end(), k) != just_set.end();
+        };
+        return set(b) && !set(a);
+    };
+    // "KEY (value) must be below OTHER (value)", said of the key the caller set.
+    auto order = [&](const char* lo_key, double lo, const char* hi_key, double hi) {
+        auto name = [](const char* k) { return std::string(std::strrchr(k, '.') + 1); };
+        if (second(lo_key, hi_key))
+            throw InputError(file, hi_key,
+                             name(hi_key) + " (" + number_text(hi) + ") must be above " + name(lo_key) +
+                                 " (" + number_text(lo) + ")");
+        throw InputError(file, lo_key,
+                         name(lo_key) + " (" + number_text(lo) + ") must be below " + name(hi_key) + " (" +
+                             number_text(hi) + ")");
+    };
+    if (!(s.sonar.range_min_m < s.sonar.range_max_m))
+        order("sonar.range_min_m", s.sonar.range_min_m, "sonar.range_max_m", s.sonar.range_max_m);
+    if (s.sonar.beams % s.sonar.pings_per_frame != 0)
+        throw InputError(file, "sonar.pings_per_frame",
+                         "value " + std::to_string(s.sonar.pings_per_frame) +
+                             " does not divide sonar.beams (" + std::to_string(s.sonar.beams) +
+                             "): each ping fires every P-th beam");
+    if (s.sampling.placement == RayPlacement::Adaptive && s.sampling.binning == EchoBinning::Point)
+        throw InputError(file, "sampling.binning",
+                         "adaptive placement needs \"footprint\" binning (its refinement and error estimate "
+                         "assume each cell's echo spread over its range footprint): use sampling.placement "
+                         "\"grid\" with \"point\" binning (sampling.scheme \"uniform\")");
+    if (s.sampling.normals == NormalSource::Paper && s.sampling.placement == RayPlacement::Adaptive)
+        throw InputError(file, "sampling.normals",
+                         "\"paper\" normals need the regular ray grid: use sampling.scheme \"uniform\" or "
+                         "\"spread\" with them");
+    const double rays = double(s.sonar.beams) * s.sampling.azimuth_rays * s.sampling.elevation_rays;
+    if (rays > kMaxRaysPerImage)
+        throw InputError(file, "sampling.elevation_rays",
+                         "beams x azimuth_rays x elevation_rays = " + number_text(rays) +
+                             " exceeds the limit of " + number_text(kMaxRaysPerImage) + " rays per image");
+    // Ranges are carried in single precision; a bin narrower than 1 um resolves nothing.
+    const double bin_m = (s.sonar.range_max_m - s.sonar.range_min_m) / s.sonar.range_bins;
+    if (!(bin_m >= kMinRangeBinM))
+        throw InputError(file, "sonar.range_bins",
+                         "range bins of " + number_text(bin_m) +
+                             " m ((range_max_m - range_min_m) / range_bins) are below " + "the minimum of " +
+                             number_text(kMinRangeBinM) + " m; use fewer bins or a wider window");
+    const double cells = double(s.sonar.range_bins) * s.sonar.beams;
+    if (cells > kMaxImageCells)
+        throw InputError(file, "sonar.range_bins",
+                         "range_bins x beams = " + number_text(cells) + " exceeds the limit of " +
+                             number_text(kMaxImageCells) + " cells per image");
+    const double sector_px = sector_image_pixels(s.sonar);
+    if (!(sector_px <= kMaxImageCells))
+        throw InputError(file,
+                         second("sonar.range_min_m", "sonar.range_max_m") ? "sonar.range_max_m"
+                                                                          : "sonar.range_min_m",
+                         "the sector image would have " + number_text(sector_px) + " pixels (limit " +
+                             number_text(kMaxImageCells) +
+                             "): range_min_m is too close to range_max_m for this field of view");
+    const ElevationWeight elevation(s);
+    if (!(rad2deg(elevation.traced_fov_rad()) < 180))
+        throw InputError(
+            file, "sensor.elevation_beamwidth_deg",
+            "the elevation pattern would be traced over " + number_text(rad2deg(elevation.traced_fov_rad())) +
+                " deg; it must stay below 180 deg (gaussian: 3.16 x, sinc: 4.5 x the -3 dB width)");
+    if (s.sensor.range_resolution_m > (s.sonar.range_max_m - s.sonar.range_min_m) / 4)
+        throw InputError(file, "sensor.range_resolution_m",
+                         "value " + number_text(s.sensor.range_resolution_m) +
+                             " m is coarser than a quarter of the range window; allowed: [0, " +
+                             number_text((s.sonar.range_max_m - s.sonar.range_min_m) / 4) + "] m");
+    if (const auto& h = s.water.surface_height_m) {
+        if (!(s.sonar.pose.position_m[2] < *h))
+            throw InputError(file, "water.surface_height_m",
+                             "the sonar (z = " + number_text(s.sonar.pose.position_m[2]) +
+                                 " m) must be below the water surface (z = " + number_text(*h) + " m)");
+        if (s.seafloor && !(s.seafloor->height_m < *h))
+            throw InputError(file, "water.surface_height_m",
+                             "the seafloor (z = " + number_text(s.seafloor->height_m) +
+                                 " m) must be below the water surface (z = " + number_text(*h) + " m)");
+    }
+    if (!(s.display.lo_db < s.display.hi_db))
+        order("display.lo_db", s.display.lo_db, "display.hi_db", s.display.hi_db);
+    if (!s.exports.auto_range && !(s.exports.lo_db < s.exports.hi_db))
+        order("export.lo_db", s.exports.lo_db, "export.hi_db", s.exports.hi_db);
+    for (size_t i = 0; i < s.objects.size(); ++i) {
+        const auto& o = s.objects[i];
+        for (double c : o.scale)
+            if (!(c > 0) || !std::isfinite(c))
+                throw InputError(file, "objects[" + std::to_string(i) + "].scale",
+                                 "scale must be finite and > 0");
+    }
+}
+
+double sector_image_pixels(const SonarParams& s) {
+    // The fan's geometry as SectorLayout (image.cpp) lays it out at its default height, in double
+    // precision so that absurd windows give a large number instead of an int overflow.
+    const double height = std::clamp(s.range_bins, 256, 2048);
+    const double half = s.azimuth_fov_deg / 2 * 3.14159265358979323846 / 180;
+    const double m_per_px = (s.range_max_m - s.range_min_m * std::cos(half)) / height;
+    const double width = std::max(16.0, std::ceil(2 * s.range_max_m * std::sin(half) / m_per_px));
+    return width * height;
+}
+
+} // namespace sonarsim
