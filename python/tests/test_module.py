@@ -134,3 +134,23 @@ def test_compare_closed_forms_and_files(scratch):
     assert r["a"]["floor_fraction"] == r["b"]["floor_fraction"] > 0
     with pytest.raises(ValueError, match="unknown image file"):
         sonarsim.compare(str(scratch / "a.txt"), speckle)
+
+
+def test_compare_reads_a_gray_fan_png(sonarsim_exe, scratch):
+    """A fan PNG that render wrote reads back (geometry from its metadata) onto the .npy's grid: the same
+    image against itself correlates exactly, and against the levels it shows (clipped to its display range)
+    closely; a geometry given by hand must fit the image."""
+    sets = [a for k, v in {**SMALL, "display.auto": "false", "display.lo_db": 60, "display.hi_db": 110}.items()
+            for a in ("--set", f"{k}={v}")]
+    subprocess.run([sonarsim_exe, "render", *sets, "--out", str(scratch / "fan")], check=True,
+                   capture_output=True)
+    png, npy = str(scratch / "fan.png"), np.load(scratch / "fan.npy")
+    r = sonarsim.compare(png, png)
+    assert r["a"]["bins"] == npy.shape[0] and r["a"]["beams"] == npy.shape[1]
+    assert r["pair"]["aligned"] and abs(r["pair"]["correlation"] - 1) < 1e-9
+    shown = np.where(npy < 60, -np.inf, np.minimum(npy, 110)).astype(np.float32)
+    r = sonarsim.compare(png, shown)
+    assert r["pair"]["correlation"] > 0.75  # 0.84: the fan interpolates across beams and bins (48 x 96 here)
+    assert abs(r["a"]["floor_fraction"] - r["b"]["floor_fraction"]) < 0.05
+    with pytest.raises(ValueError, match="outside"):
+        sonarsim.compare(png, shown, fan_a="10,10,1000,32,0.5,5,60,110,48,96")
