@@ -1,4 +1,4 @@
-#include "core/display/image.hpp"
+#include "core/display/sector.hpp"
 
 #include "core/base/pose.hpp"
 
