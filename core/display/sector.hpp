@@ -1,49 +1,27 @@
-// Display: gray mapping of L_EN, colour maps, and the sector-formed (fan) image with its pixel <-> (r, a)
-// map.
+// The sector-formed (fan) image: its pixel <-> (r, a) map over the sonar's grid (the grid lays the fan out)
+// and the resampler that forms it.
 #pragma once
-#include "core/scene/scene.hpp"
+#include "core/display/colormap.hpp"
+#include "core/scene/sonar_grid.hpp"
 #include "core/shading/shade.hpp"
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace sonarsim {
 
-struct Image8 {
-    int width = 0, height = 0, channels = 0;
-    std::vector<std::uint8_t> pixels; ///< row-major, top row first
-};
-
-/// gray = 255 clamp((L_EN - lo) / (hi - lo), 0, 1); -inf maps to 0. Returned as a float in [0, 255].
-float gray_level(float level_db, double lo_db, double hi_db);
-
-/// The display range an image is shown with: `display` itself, or with display.auto its lo/hi replaced by
-/// the 5th and 99.5th percentiles of the image's finite levels as the fan shows them (each sample weighted
-/// by its range, as the fan's area is; a histogram of 4096 bins, interpolated), at most kAutoDisplaySpanDb
-/// and at least 1 dB apart. An image with no finite level keeps lo_db and hi_db.
-DisplayParams effective_display(const PolarImage& img, const DisplayParams& display,
-                                const SonarParams& sonar);
-
-/// Widest automatic display range [dB]: a scene whose echoes stand 100 dB above its noise still shows the
-/// texture of its echoes (speckle spans about 20 dB).
-constexpr double kAutoDisplaySpanDb = 50;
-
-/// RGB of a colour map at t in [0, 1].
-std::array<std::uint8_t, 3> colormap_rgb(Colormap map, double t);
-/// The colour a viewer shows for cells where nothing echoes (L_EN = -inf), distinct from the map's low end.
-std::array<std::uint8_t, 3> no_echo_rgb(Colormap map);
-
-/// The raw image as gray: range grows upward (row 0 of the data at the bottom), beam 0 (port) on the left.
-Image8 polar_gray_image(const PolarImage& img, const DisplayParams& display);
-
 /// Geometry of the sector-formed image: apex at the bottom centre, range up, port (positive azimuth) left.
 class SectorLayout {
   public:
-    SectorLayout(const SonarParams& sonar, int height_px);
-    int width() const { return width_; }
-    int height() const { return height_; }
-    double metres_per_pixel() const { return m_per_px_; }
+    SectorLayout(std::shared_ptr<const SonarGrid> grid, int height_px);
+    SectorLayout(const SonarParams& sonar, int height_px) : SectorLayout(sonar_grid(sonar), height_px) {}
+    int width() const { return fan_.width_px; }
+    int height() const { return fan_.height_px; }
+    double metres_per_pixel() const { return fan_.m_per_px; }
+    const SonarGrid& grid() const { return *grid_; }
+    const std::shared_ptr<const SonarGrid>& grid_ptr() const { return grid_; }
     /// Pixel centre (px + 0.5, py + 0.5) -> range [m], azimuth [deg]; false outside the fan.
     bool pixel_to_polar(double px, double py, double& range_m, double& azimuth_deg) const;
     /// Range and azimuth -> continuous pixel coordinates.
@@ -52,27 +30,33 @@ class SectorLayout {
     void polar_to_index(double range_m, double azimuth_deg, double& bin, double& beam) const;
 
   private:
-    SonarParams s_;
-    int width_ = 0, height_ = 0;
-    double m_per_px_ = 0, y0_m_ = 0;
+    std::shared_ptr<const SonarGrid> grid_;
+    FanLayout fan_;
 };
 
 /// Default height of the sector image [px]: the number of range bins, kept within [256, 2048] (one pixel row
 /// per bin up to 2048 bins), and lowered where needed so that the width stays within kMaxSectorWidth. A
 /// 130 deg fan is about 1.8x as wide as high: 512 beams x 1500 bins give 2729 x 1500 px, where the beams at
 /// r_max are 5 px apart.
-int default_sector_height(const SonarParams& sonar);
+inline int default_sector_height(const SonarParams& sonar) {
+    return sonar_grid(sonar)->default_fan_height_px();
+}
 
 /// Widest default sector image [px]: a texture width every OpenGL implementation takes.
-constexpr int kMaxSectorWidth = 4096;
+constexpr int kMaxSectorWidth = kMaxFanWidthPx;
 
 /// Precomputed pixel -> (bin, beam) bilinear weights of a sector layout: forming an image is then a gather,
 /// parallel over rows (TBB), that visits only the pixels inside the fan. Building it is parallel too.
 class SectorResampler {
   public:
-    SectorResampler(const SonarParams& sonar, int height_px);
-    /// True when it was built for the same image geometry.
-    bool matches(const SonarParams& sonar, int height_px) const;
+    /// height_px 0: the grid's default fan height.
+    SectorResampler(std::shared_ptr<const SonarGrid> grid, int height_px);
+    SectorResampler(const SonarParams& sonar, int height_px)
+        : SectorResampler(sonar_grid(sonar), height_px) {}
+    /// True when it was built for the same grid (the same image geometry).
+    bool matches(const SonarGrid& grid, int height_px) const {
+        return &grid == grid_.get() && height_px == height_px_;
+    }
     /// The RGB fan: per pixel inside it, the bilinear interpolation in (bin, beam) of the gray levels
     /// (gray_level) of its four nearest samples, rounded, through the colour map; kFanBackground outside.
     /// The interpolation weights are kept to 1/kWeightOne (15 bits).
@@ -95,7 +79,7 @@ class SectorResampler {
         std::int32_t x0, x1;
         std::uint32_t first;
     };
-    SonarParams sonar_;
+    std::shared_ptr<const SonarGrid> grid_;
     int height_px_;
     SectorLayout layout_;
     // The taps, one array per field (apply reads four at a time).

@@ -1,6 +1,7 @@
 #include "core/scene/params.hpp"
 
 #include "core/scene/sampling_scheme.hpp"
+#include "core/scene/sonar_grid.hpp"
 
 #include "core/devices/devices.hpp"
 #include "core/geometry/mesh_formats.hpp"
@@ -906,13 +907,8 @@ void validate_scene(const SceneDesc& s, const std::string& file, const std::vect
 }
 
 double sector_image_pixels(const SonarParams& s) {
-    // The fan's geometry as SectorLayout (image.cpp) lays it out at its default height, in double
-    // precision so that absurd windows give a large number instead of an int overflow.
-    const double height = std::clamp(s.range_bins, 256, 2048);
-    const double half = s.azimuth_fov_deg / 2 * 3.14159265358979323846 / 180;
-    const double m_per_px = (s.range_max_m - s.range_min_m * std::cos(half)) / height;
-    const double width = std::max(16.0, std::ceil(2 * s.range_max_m * std::sin(half) / m_per_px));
-    return width * height;
+    // The fan as the sonar's grid lays it out, in double precision (absurd windows give a large number).
+    return SonarGrid(s).fan_pixels_unbounded();
 }
 
 std::string params_markdown() {
