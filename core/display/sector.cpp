@@ -112,6 +112,7 @@ SectorResampler::SectorResampler(std::shared_ptr<const SonarGrid> grid, int heig
         struct Inside {
             int px;
             double bin, a;
+            bool port, starboard; ///< the pixel, and its mirror image, lie in the fan
         };
         std::vector<Inside> left;
         for (int py = rows.begin(); py < rows.end(); ++py) {
@@ -122,9 +123,11 @@ SectorResampler::SectorResampler(std::shared_ptr<const SonarGrid> grid, int heig
             const int px_begin = std::max(0, int(std::floor(W / 2.0 - 0.5 - x_max / m)) - 2);
             left.clear();
             double r, a;
-            for (int px = px_begin; px < (W + 1) / 2; ++px)
-                if (layout_.pixel_to_polar(px + 0.5, py + 0.5, r, a))
-                    left.push_back({px, (r - r0) / dr - 0.5, a});
+            for (int px = px_begin; px < (W + 1) / 2; ++px) {
+                const bool port = layout_.pixel_to_polar(px + 0.5, py + 0.5, r, a),
+                           starboard = g.inside(r, -a);
+                if (port || starboard) left.push_back({px, (r - r0) / dr - 0.5, a, port, starboard});
+            }
             std::vector<Tap>& taps = row_taps[size_t(py)];
             std::vector<Run>& runs = row_runs[size_t(py)];
             auto add = [&](int px, const Tap& t) {
@@ -134,9 +137,10 @@ SectorResampler::SectorResampler(std::shared_ptr<const SonarGrid> grid, int heig
                 taps.push_back(t);
             };
             taps.reserve(2 * left.size());
-            for (const Inside& p : left) add(p.px, tap(p.bin, p.a));
+            for (const Inside& p : left)
+                if (p.port) add(p.px, tap(p.bin, p.a));
             for (auto p = left.rbegin(); p != left.rend(); ++p)
-                if (W - 1 - p->px != p->px) add(W - 1 - p->px, tap(p->bin, -p->a));
+                if (p->starboard && W - 1 - p->px != p->px) add(W - 1 - p->px, tap(p->bin, -p->a));
         }
     });
     row_runs_.assign(size_t(H) + 1, 0);

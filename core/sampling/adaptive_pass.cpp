@@ -129,6 +129,8 @@ TraceResult::ErrorEstimate estimate_error(const SceneDesc& s, const PolarImage& 
     // depend on the others).
     SceneDesc sampled_scene = s;
     sampled_scene.sonar.beams = sampled;
+    sampled_scene.sonar.beam_table =
+        kUniformBeams; // a sample of the beams: the image channel needs no angles
     PolarImage fine_sampled;
     fine_sampled.bins = fine_image.bins, fine_sampled.beams = sampled;
     fine_sampled.level_db.resize(size_t(fine_image.bins) * size_t(sampled));

@@ -16,7 +16,7 @@ bool multipath_active(const SceneDesc& s) {
 }
 
 Multipath::Multipath(const SceneGeometry& g, const SceneDesc& s, const RayFrame& f)
-    : g_(g), s_(s), f_(f), half_azimuth_rad_(f.grid->fov_rad / 2),
+    : g_(g), s_(s), f_(f), half_azimuth_rad_(f.grid->half_aperture_rad()),
       half_elevation_rad_(f.elevation_weight.traced_fov_rad() / 2) {}
 
 bool Multipath::is_mirror(unsigned m) const {

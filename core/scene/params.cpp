@@ -246,6 +246,17 @@ std::vector<ParamSpec> build_scene_params() {
                        "Elevation aperture Phi", [](S s) -> double& { return s.sonar.elevation_fov_deg; }));
     t.push_back(integer("sonar.beams", 1, 4096, Stage::Trace, "Number of beams N (eq. 10)",
                         [](S s) -> int& { return s.sonar.beams; }));
+    ParamSpec table;
+    table.key = "sonar.beam_table";
+    table.type = ParamType::Enum;
+    table.choices = {kUniformBeams};
+    for (const std::string& n : beam_table_names()) table.choices.push_back(n);
+    table.stage = Stage::Trace;
+    table.help = "Beam angles: uniform (eq. 10), or a device's per-beam centres and edges "
+                 "(assets/devices/beam_tables/NAME.csv, its beam count; the fan spans its edges)";
+    table.get = [](const SceneDesc& s) { return json(s.sonar.beam_table); };
+    table.put = [](SceneDesc& s, const json& v) { s.sonar.beam_table = v.get<std::string>(); };
+    t.push_back(table);
     t.push_back(number("sonar.range_min_m", "m", 0, 1000, false, true, Stage::Trace,
                        "Start of the range window r_min",
                        [](S s) -> double& { return s.sonar.range_min_m; }));
@@ -837,6 +848,17 @@ void validate_scene(const SceneDesc& s, const std::string& file, const std::vect
                          name(lo_key) + " (" + fmt(lo) + ") must be below " + name(hi_key) + " (" + fmt(hi) +
                              ")");
     };
+    if (const std::string problem = beam_table_problem(s.sonar); !problem.empty())
+        throw InputError(file, "sonar.beam_table", problem);
+    if (const BeamTable* t = find_beam_table(s.sonar.beam_table)) { // the table's fan, not another
+        const double span = t->port_edge_deg.front() - t->starboard_edge_deg.back();
+        if (!(std::abs(s.sonar.azimuth_fov_deg - span) <= 0.01 * span))
+            throw InputError(file, "sonar.azimuth_fov_deg",
+                             "value " + fmt(s.sonar.azimuth_fov_deg) + " deg is not the fan of beam table " +
+                                 t->name + " (" + fmt(span) +
+                                 " deg); allowed: within 1 % of it, or another "
+                                 "field of view with sonar.beam_table \"uniform\"");
+    }
     if (!(s.sonar.range_min_m < s.sonar.range_max_m))
         order("sonar.range_min_m", s.sonar.range_min_m, "sonar.range_max_m", s.sonar.range_max_m);
     if (s.sampling.placement == RayPlacement::Adaptive && s.sampling.binning == EchoBinning::Point)

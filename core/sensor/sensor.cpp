@@ -147,6 +147,9 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
     const double spacing = sg->spacing_rad;
     std::vector<glm::dvec3> ahead(static_cast<size_t>(N));
     for (int b = 0; b < N; ++b) ahead[size_t(b)] = frame.ahead(sg->beam_azimuth_rad(b));
+    std::vector<double> beam_gain; // a table's relative response per beam (none: every beam 1)
+    if (sg->table())
+        for (int b = 0; b < N; ++b) beam_gain.push_back(sg->beam_gain(b));
     const std::uint64_t texture_seed = mix64(std::uint64_t(p.seed) ^ 0x737065636b6c65ULL); // "speckle"
     const std::uint64_t noise_seed = pose_key(s);
     PolarImage out;
@@ -160,6 +163,7 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
         for (int b = 0; b < N; ++b) {
             const size_t c = size_t(k) * N + b;
             double v = I[c];
+            if (!beam_gain.empty()) v *= beam_gain[size_t(b)];
             if (k_dist && v > 0) {
                 const std::uint64_t key = grid(frame.point(ahead[size_t(b)], r, inputs->elevation_rad[c]));
                 v *= KeyedRandom(key).gamma(p.speckle_k_shape) / p.speckle_k_shape;

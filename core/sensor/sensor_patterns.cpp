@@ -171,7 +171,10 @@ AzimuthBeamforming make_azimuth_beamforming(const SceneDesc& s, bool amplitudes)
     for (int b = 0; b < N; ++b) {
         centre[size_t(b)] = grid.beam_azimuth_rad(b);
         // A flat array steered to theta_b: the beam widens as 1 / cos theta_b (held below 10x, at 84 deg).
-        width[size_t(b)] = array ? bw / std::max(0.1, std::cos(centre[size_t(b)])) : bw;
+        // A lens beam from a table: its -3 dB width scales with its own width (the preset gives the mean).
+        width[size_t(b)] = array          ? bw / std::max(0.1, std::cos(centre[size_t(b)]))
+                           : grid.table() ? bw * grid.beam_width_rad(b) / grid.spacing_rad
+                                          : bw;
         widest = std::max(widest, width[size_t(b)]);
     }
     const double extent = pattern.extent(kAzimuthPatternFloorDb);
