@@ -1,5 +1,6 @@
 #include "core/analysis/reference.hpp"
 
+#include "core/scene/sonar_grid.hpp"
 #include "core/sensor/sensor_patterns.hpp"
 
 #include "core/shading/physics.hpp"
@@ -27,10 +28,11 @@ bool has_floor_reference(const SceneDesc& s) {
 }
 
 PolarImage floor_reference(const SceneDesc& s, int panels) {
-    const int N = s.sonar.beams, K = s.sonar.range_bins;
+    const std::shared_ptr<const SonarGrid> grid = sonar_grid(s.sonar);
+    const int N = grid->beams, K = grid->bins;
     const ElevationWeight pattern(s);
-    const double theta = deg2rad(s.sonar.azimuth_fov_deg), phi = pattern.traced_fov_rad();
-    const double r_min = s.sonar.range_min_m, r_max = s.sonar.range_max_m, dr = (r_max - r_min) / K;
+    const double phi = pattern.traced_fov_rad();
+    const double r_min = grid->range_min_m, r_max = grid->range_max_m, dr = grid->bin_m;
     const glm::dmat3 R = rotation_matrix(s.sonar.pose.orientation_deg);
     const double H = s.seafloor->height_m - s.sonar.pose.position_m[2]; // r = H / d_z, needs H / d_z > 0
     const ShadeConstants c = shade_constants(s);
@@ -44,7 +46,7 @@ PolarImage floor_reference(const SceneDesc& s, int panels) {
 
     std::vector<double> E(size_t(N) * K, 0.0);
     tbb::parallel_for(0, N, [&](int i) {
-        const double a_lo = theta / 2 - (i + 1.0) * theta / N, pw = theta / N / panels;
+        const double a_lo = grid->beam_starboard_edge_rad(i), pw = grid->beam_width_rad(i) / panels;
         std::vector<double> cuts;
         for (int p = 0; p < panels; ++p)
             for (int g = 0; g < 8; ++g) {

@@ -1,6 +1,8 @@
 #include "core/analysis/study.hpp"
 
+#include "core/base/errors.hpp"
 #include "core/base/pose.hpp"
+#include "core/devices/beam_tables.hpp"
 #include "core/shading/accumulate.hpp"
 #include "core/base/timing.hpp"
 #include "core/sampling/trace.hpp"
@@ -49,6 +51,11 @@ Vec3d orientation_deg_of(const glm::dmat3& m) {
 SceneDesc beam_subscene(const SceneDesc& scene, int first, int last) {
     const int N = scene.sonar.beams;
     if (first < 0 || last > N || first >= last) throw std::invalid_argument("beam_subscene: bad beam range");
+    if (scene.sonar.beam_table != kUniformBeams)
+        throw InputError(
+            scene.source_file, "sonar.beam_table",
+            "the dense reference renders the fan in chunks of evenly spaced beams; allowed here: " +
+                std::string(kUniformBeams));
     const double theta = scene.sonar.azimuth_fov_deg;
     // Beam i sits at a_i = Theta/2 - (i + 1/2) Theta/N; the chunk's beams j = i - first at a_c + a'_j with
     // a'_j = Theta'/2 - (j + 1/2) Theta'/N', Theta' = Theta (last - first)/N, N' = last - first.

@@ -1,5 +1,7 @@
 #include "core/base/pose.hpp"
 
+#include "core/scene/sonar_grid.hpp"
+
 namespace sonarsim {
 
 glm::dmat3 rotation_matrix(const Vec3d& o) {
@@ -15,18 +17,11 @@ glm::dmat3 rotation_matrix(const Vec3d& o) {
 }
 
 std::vector<double> beam_azimuths_deg(const SonarParams& s) {
-    std::vector<double> a(size_t(s.beams));
-    for (int i = 0; i < s.beams; ++i)
-        a[size_t(i)] = s.azimuth_fov_deg / 2 - (i + 0.5) * s.azimuth_fov_deg / s.beams;
-    return a;
+    return sonar_grid(s)->beam_azimuths_deg();
 }
 
 std::vector<double> range_bin_edges_m(const SonarParams& s) {
-    std::vector<double> e(size_t(s.range_bins) + 1);
-    const double dr = (s.range_max_m - s.range_min_m) / s.range_bins;
-    for (int k = 0; k <= s.range_bins; ++k) e[size_t(k)] = s.range_min_m + k * dr;
-    e.back() = s.range_max_m;
-    return e;
+    return sonar_grid(s)->bin_edges_m();
 }
 
 Polar world_to_sonar_polar(const Pose& pose, const glm::dvec3& p) {

@@ -29,10 +29,10 @@ inline glm::dvec3 sonar_direction(double azimuth_rad, double elevation_rad) {
     return {ce * std::cos(azimuth_rad), ce * std::sin(azimuth_rad), std::sin(elevation_rad)};
 }
 
-/// Azimuth of beam i's centre [deg]: a_i = Theta/2 - (i + 1/2) Theta / N (eq. 10); beam 0 is port-most.
+/// Azimuth of each beam's centre [deg] (the sonar's grid, sonar_grid.hpp); beam 0 is port-most.
 std::vector<double> beam_azimuths_deg(const SonarParams& sonar);
 
-/// K + 1 range bin edges [m] over [r_min, r_max].
+/// K + 1 range bin edges [m] over [r_min, r_max] (the sonar's grid).
 std::vector<double> range_bin_edges_m(const SonarParams& sonar);
 
 /// Range and azimuth [deg] and elevation [deg] of a world point as seen by the sonar.

@@ -3,6 +3,7 @@
 #include "core/base/errors.hpp"
 #include "core/base/le_bytes.hpp"
 #include "core/io/output.hpp"
+#include "core/scene/sonar_grid.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -150,6 +151,10 @@ ExportReport write_aris(const std::string& path, const SceneDesc& s, const Traje
     AtomicFile out(path);
     out.write(file_header(mode, tm, trajectory.size(), s.exports.start_time_s));
     le::Bytes data(size_t(beams) * size_t(samples));
+    std::vector<int> device_beam(static_cast<size_t>(beams));
+    const BeamTable* table = sonar_grid(s.sonar)->table();
+    for (int b = 0; b < beams; ++b)
+        device_beam[size_t(b)] = table ? table->device_beam[size_t(b)] : beams - 1 - b;
     ExportReport report;
     report.mapping = mapping;
     for (size_t k = 0; k < trajectory.size(); ++k) {
@@ -160,10 +165,11 @@ ExportReport write_aris(const std::string& path, const SceneDesc& s, const Traje
         const PolarImage img = aris_resample(frame, s.sonar, tm);
         ClipCount count;
         const std::vector<std::uint8_t> bytes = image_bytes(img, mapping, count);
-        // Sample-major; ARIS beam 0 is the starboard-most, our column 0 the port-most.
+        // Sample-major; ARIS beam 0 is the starboard-most, our column 0 the port-most (a table numbers each
+        // beam as the device does).
         for (size_t r = 0; r < size_t(samples); ++r)
             for (size_t b = 0; b < size_t(beams); ++b)
-                data[r * size_t(beams) + b] = bytes[r * size_t(beams) + size_t(beams) - 1 - b];
+                data[r * size_t(beams) + size_t(device_beam[b])] = bytes[r * size_t(beams) + b];
         out.write(frame_header(s, mode, tm, mapping, trajectory, k));
         out.write(data);
         report.frames.push_back(count);

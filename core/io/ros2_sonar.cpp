@@ -3,6 +3,7 @@
 #include "core/base/le_bytes.hpp"
 #include "core/io/mcap.hpp"
 #include "core/base/pose.hpp"
+#include "core/scene/sonar_grid.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -77,15 +78,18 @@ Bytes encode_projected_sonar_image(const SceneDesc& s, const PolarImage& img, do
     c.put<float>(float(s.sonar.frequency_khz * 1e3)); // ping_info
     c.put<float>(float(sound_speed_m_s(s.water.temperature_c, s.water.depth_m)));
     c.put_sequence(std::vector<float>(beams, float(s.sonar.elevation_fov_deg * kPi / 180)));
-    c.put_sequence(std::vector<float>(beams, float(s.sonar.azimuth_fov_deg / s.sonar.beams * kPi / 180)));
+    const auto grid = sonar_grid(s.sonar);
+    std::vector<float> widths(beams);
+    for (size_t i = 0; i < beams; ++i) widths[i] = float(grid->beam_width_deg(int(i)) * kPi / 180);
+    c.put_sequence(widths);
 
     c.put<std::uint32_t>(std::uint32_t(beams)); // beam_directions
-    for (double az_deg : beam_azimuths_deg(s.sonar)) {
+    for (double az_deg : grid->beam_azimuths_deg()) {
         c.put<double>(0.0);
         c.put<double>(-std::sin(az_deg * kPi / 180));
         c.put<double>(std::cos(az_deg * kPi / 180));
     }
-    const std::vector<double> edges = range_bin_edges_m(s.sonar);
+    const std::vector<double> edges = grid->bin_edges_m();
     std::vector<float> ranges;
     for (size_t i = 0; i + 1 < edges.size(); ++i) ranges.push_back(float(0.5 * (edges[i] + edges[i + 1])));
     c.put_sequence(ranges);

@@ -40,6 +40,7 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
     // frame_ holds the newest stage results; a stage recomputed here gets a new object, the others are
     // shared.
     Frame next = frame_;
+    next.grid_ptr = sonar_grid(scene_.sonar); // the same object while the sonar's geometry stays
     const bool retrace = dirty_ <= Stage::Trace || !next.hits_ptr || (next.preview() && !control.preview);
     const Stage from = retrace ? Stage::Trace : dirty_;
     // One accumulation pass: every channel this frame needs that is not shared with the frame before.
@@ -85,9 +86,9 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
     }
     if (from <= Stage::Display) {
         const auto t0 = std::chrono::steady_clock::now();
-        if (!resampler_ || !resampler_->matches(scene_.sonar, 0))
-            resampler_ = std::make_unique<SectorResampler>(scene_.sonar, 0);
-        next.display = effective_display(*next.polar_ptr, scene_.display, scene_.sonar);
+        if (!resampler_ || !resampler_->matches(*next.grid_ptr, 0))
+            resampler_ = std::make_unique<SectorResampler>(next.grid_ptr, 0);
+        next.display = effective_display(*next.polar_ptr, scene_.display, *next.grid_ptr);
         next.sector_ptr = std::make_shared<const Image8>(resampler_->apply(*next.polar_ptr, next.display));
         next.image_ms = ms_since(t0);
     }
@@ -99,8 +100,9 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
 json frame_metadata(const SceneDesc& s, const Frame& f) {
     json j = scene_to_json(s);
     j["alpha_db_per_m"] = f.alpha_db_per_m;
-    j["beam_azimuths_deg"] = beam_azimuths_deg(s.sonar);
-    j["range_bin_edges_m"] = range_bin_edges_m(s.sonar);
+    const auto grid = f.grid_ptr ? f.grid_ptr : sonar_grid(s.sonar);
+    j["beam_azimuths_deg"] = grid->beam_azimuths_deg();
+    j["range_bin_edges_m"] = grid->bin_edges_m();
     j["rays_traced"] = f.hits().rays_traced;
     if (s.sampling.bounces > 0) { // multipath: its extra rays, and the echo of each path order
         size_t ghosts = 0;

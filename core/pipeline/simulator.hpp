@@ -22,6 +22,7 @@ namespace sonarsim {
 /// changed shares this one's trace and polar image, a re-shaded one shares its trace. Safe to read from any
 /// thread while the Simulator renders the next frame.
 struct Frame {
+    std::shared_ptr<const SonarGrid> grid_ptr; ///< the sonar's beams, bins and fan layout
     std::shared_ptr<const TraceResult> hits_ptr;
     std::shared_ptr<const PolarImage> ideal_ptr;    ///< L_EN [dB] as the sampler converges it
     std::shared_ptr<const SensorInputs> inputs_ptr; ///< what the sensor needs beyond it (or null)
@@ -36,6 +37,7 @@ struct Frame {
     double trace_ms = 0, shade_ms = 0, sensor_ms = 0, image_ms = 0; ///< each stage's latest run
 
     const TraceResult& hits() const { return *hits_ptr; }
+    const SonarGrid& grid() const { return *grid_ptr; }
     /// The image the device shows [dB]: L_EN through the sensor stage (with the ideal sensor, L_EN).
     const PolarImage& polar() const { return *polar_ptr; }
     const PolarImage& ideal() const { return *ideal_ptr; }

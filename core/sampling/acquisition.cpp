@@ -1,6 +1,7 @@
 #include "core/sampling/acquisition.hpp"
 
 #include "core/base/pose.hpp"
+#include "core/scene/sonar_grid.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -24,7 +25,7 @@ int slabs(const SonarParams& s, double c) {
     if (!moving(s)) return 1;
     const double T = window_s(s, c);
     const double bin_m = (s.range_max_m - s.range_min_m) / s.range_bins;
-    const double beam_rad = deg2rad(s.azimuth_fov_deg) / s.beams;
+    const double beam_rad = sonar_grid(s)->narrowest_beam_rad();
     const double need =
         std::max(2 * norm(s.velocity_mps) * T / bin_m, 2 * deg2rad(norm(s.angular_rate_dps)) * T / beam_rad);
     return std::clamp(int(std::ceil(need)), 1, std::min(kMaxMotionSlabs, s.range_bins));

@@ -14,21 +14,21 @@ namespace sonarsim::adaptive {
 namespace {
 
 /// Azimuth centre of column k of K in beam i (column 0 is the port-most).
-double column_azimuth(const SceneDesc& s, int i, int k, int K) {
-    const double theta = deg2rad(s.sonar.azimuth_fov_deg), w = theta / s.sonar.beams;
-    return theta / 2 - i * w - (k + 0.5) * w / K;
+double column_azimuth(const SonarGrid& grid, int i, int k, int K) {
+    return grid.beam_port_edge_rad(i) - (k + 0.5) * grid.beam_width_rad(i) / K;
 }
 
 /// The base grid: azimuth_rays columns of M0 cells per beam, sibling triples grouped.
 Beams trace_base_grid(const Sampler& sp, int M0) {
     const SceneDesc& s = sp.s;
-    const int N = s.sonar.beams, K0 = s.sampling.azimuth_rays;
-    const double w = deg2rad(s.sonar.azimuth_fov_deg) / N;
+    const SonarGrid& grid = *sp.frame.grid;
+    const int N = grid.beams, K0 = s.sampling.azimuth_rays;
     Beams beams(static_cast<size_t>(N));
     sp.rays.fetch_add(std::uint64_t(N) * K0 * M0); // the base grid is always traced
     tbb::parallel_for(0, N, [&](int i) {
         for (int k = 0; k < K0; ++k) {
-            beams[size_t(i)].push_back(sp.trace_column(column_azimuth(s, i, k, K0), w / K0, M0, i, 0, M0));
+            beams[size_t(i)].push_back(
+                sp.trace_column(column_azimuth(grid, i, k, K0), grid.beam_width_rad(i) / K0, M0, i, 0, M0));
             beams[size_t(i)].back().group = k / 3 + (K0 % 3 && k >= K0 - K0 % 3 ? K0 + k : 0);
         }
     });
@@ -129,6 +129,8 @@ TraceResult::ErrorEstimate estimate_error(const SceneDesc& s, const PolarImage& 
     // depend on the others).
     SceneDesc sampled_scene = s;
     sampled_scene.sonar.beams = sampled;
+    sampled_scene.sonar.beam_table =
+        kUniformBeams; // a sample of the beams: the image channel needs no angles
     PolarImage fine_sampled;
     fine_sampled.bins = fine_image.bins, fine_sampled.beams = sampled;
     fine_sampled.level_db.resize(size_t(fine_image.bins) * size_t(sampled));

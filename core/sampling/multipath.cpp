@@ -16,16 +16,15 @@ bool multipath_active(const SceneDesc& s) {
 }
 
 Multipath::Multipath(const SceneGeometry& g, const SceneDesc& s, const RayFrame& f)
-    : g_(g), s_(s), f_(f), half_azimuth_rad_(deg2rad(s.sonar.azimuth_fov_deg) / 2),
-      half_elevation_rad_(f.elevation_weight.traced_fov_rad() / 2),
-      beam_rad_(deg2rad(s.sonar.azimuth_fov_deg) / s.sonar.beams) {}
+    : g_(g), s_(s), f_(f), half_azimuth_rad_(f.grid->half_aperture_rad()),
+      half_elevation_rad_(f.elevation_weight.traced_fov_rad() / 2) {}
 
 bool Multipath::is_mirror(unsigned m) const {
     return m == kSurfaceMaterial || material_of(s_, m).is_mirror();
 }
 
 int Multipath::beam_of(double a) const {
-    return std::clamp(int(std::floor((half_azimuth_rad_ - a) / beam_rad_)), 0, s_.sonar.beams - 1);
+    return f_.grid->beam_of_azimuth_rad(a);
 }
 
 namespace {
@@ -148,19 +147,18 @@ std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, cons
 
 std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostCell>>& by_source,
                                                   const SceneDesc& s) {
-    const int beams = s.sonar.beams;
-    const double theta = deg2rad(s.sonar.azimuth_fov_deg), w = theta / beams;
+    const std::shared_ptr<const SonarGrid> grid = sonar_grid(s.sonar);
+    const int beams = grid->beams;
     std::vector<std::vector<GhostCell>> out(static_cast<size_t>(beams));
     // A ghost whose azimuth interval spans beams goes to each, with the share of its solid angle that
     // falls in it (the mixed path that arrives from the scatterer); the others lie in their ray's beam.
     auto for_each_share = [&](const GhostCell& g, auto&& add) {
         const double a0 = g.cell.azimuth_rad - 0.5 * g.cell.azimuth_width_rad,
                      a1 = a0 + g.cell.azimuth_width_rad;
-        const int i0 = std::clamp(int(std::floor((theta / 2 - a1) / w)), 0, beams - 1);
-        const int i1 = std::clamp(int(std::floor((theta / 2 - a0) / w)), 0, beams - 1);
+        const int i0 = grid->beam_of_azimuth_rad(a1), i1 = grid->beam_of_azimuth_rad(a0);
         if (i0 == i1 || !g.mixed() || g.rx_bounces != 0) return add(int(g.beam), g, 1.0);
         for (int i = i0; i <= i1; ++i) {
-            const double hi = theta / 2 - i * w, lo = hi - w;
+            const double hi = grid->beam_port_edge_rad(i), lo = hi - grid->beam_width_rad(i);
             const double f = (std::min(a1, hi) - std::max(a0, lo)) / g.cell.azimuth_width_rad;
             if (f > 0) add(i, g, f);
         }
@@ -174,7 +172,7 @@ std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostC
             for_each_share(g, [&](int i, const GhostCell& whole, double f) {
                 GhostCell part = whole;
                 if (f < 1) {
-                    const double hi = theta / 2 - i * w, lo = hi - w;
+                    const double hi = grid->beam_port_edge_rad(i), lo = hi - grid->beam_width_rad(i);
                     const double a0 =
                         std::max(lo, double(whole.cell.azimuth_rad) - 0.5 * whole.cell.azimuth_width_rad);
                     const double a1 =

@@ -53,7 +53,7 @@ class Multipath {
     const SceneGeometry& g_;
     const SceneDesc& s_;
     const RayFrame& f_;
-    double half_azimuth_rad_, half_elevation_rad_, beam_rad_;
+    double half_azimuth_rad_, half_elevation_rad_;
 };
 
 /// Moves ghosts collected per source beam to the beams they arrive in, in a fixed order (source beam, then

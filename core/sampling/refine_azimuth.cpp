@@ -138,7 +138,7 @@ void split_marked_columns(const Sampler& sp, std::vector<Column>& cols,
 
 void Sampler::refine_azimuth(Beams& beams, int M0) const {
     const int N = int(beams.size()), K0 = s.sampling.azimuth_rays;
-    const double w = deg2rad(s.sonar.azimuth_fov_deg) / N;
+    const double w = frame.grid->narrowest_beam_rad(); // columns split no finer than the narrowest beam's
     const double min_da = w / K0 / std::pow(3.0, kAzimuthLevels) * 1.0001;
     std::vector<int> next_group(static_cast<size_t>(N), 3 * K0 + 3); // above every base group id
     for (int lv = 0; lv < azimuth_levels; ++lv) {

@@ -10,8 +10,7 @@ namespace sonarsim::adaptive {
 RefineCriteria::RefineCriteria(const SceneDesc& scene, const detail::RayFrame& frame, bool multipath)
     : s_(scene), frame_(frame), multipath_(multipath), k_(shade_constants(scene)),
       jump_db_(10 * scene.sampling.tolerance_db), range_jump_db_(4 * scene.sampling.tolerance_db),
-      bin_m_((scene.sonar.range_max_m - scene.sonar.range_min_m) / scene.sonar.range_bins),
-      gap_m_(0.5 * bin_m_),
+      bin_m_(frame.grid->bin_m), gap_m_(0.5 * bin_m_),
       tol_rel_db_(10 * std::log10((std::pow(10.0, scene.sampling.tolerance_db / 10) - 1) / kErrorsPerBin)) {}
 
 bool RefineCriteria::discontinuous(const Node& x, const Column& cx, const Node& y, const Column& cy,

@@ -50,8 +50,8 @@ void apply_paper_normals(TraceResult& out, const SceneDesc& s, const std::vector
 TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control) {
     const int N = s.sonar.beams, K = s.sampling.azimuth_rays, M = s.sampling.elevation_rays;
     const detail::RayFrame frame(s);
-    const double theta = deg2rad(s.sonar.azimuth_fov_deg), phi = frame.elevation_weight.traced_fov_rad();
-    const double da = theta / N / K, de = phi / M;
+    const SonarGrid& grid = *frame.grid;
+    const double phi = frame.elevation_weight.traced_fov_rad(), de = phi / M;
 
     // Elevation centres and edges are shared by all beams.
     std::vector<Angle> e_mid(static_cast<size_t>(M)), e_edge(static_cast<size_t>(M) + 1);
@@ -74,7 +74,7 @@ TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s, const Trac
     tbb::parallel_for(0, N, [&](int i) {
         if (control.cancelled()) return;
         auto& cells = out.cells[size_t(i)];
-        const double a_beam_lo = theta / 2 - (i + 1.0) * theta / N;
+        const double a_beam_lo = grid.beam_starboard_edge_rad(i), da = grid.beam_width_rad(i) / K;
         for (int k = 0; k < K; ++k) {
             const double a_c = a_beam_lo + (K - k - 0.5) * da; // sub-ray 0 is the port-most
             const Angle a(a_c), a_lo(a_c - da / 2), a_hi(a_c + da / 2);

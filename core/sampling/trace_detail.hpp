@@ -2,6 +2,7 @@
 #pragma once
 #include "core/geometry/geometry.hpp"
 #include "core/base/pose.hpp"
+#include "core/scene/sonar_grid.hpp"
 #include "core/sensor/sensor_patterns.hpp"
 #include "core/sampling/trace.hpp"
 
@@ -25,10 +26,11 @@ struct RayFrame {
     glm::dmat3 R;
     glm::dvec3 origin;
     double t_max; ///< rays reaching past r_max can still spread part of their cell into the window
-    ElevationWeight elevation_weight; ///< the sensor's elevation pattern (1 for the hard aperture)
+    ElevationWeight elevation_weight;      ///< the sensor's elevation pattern (1 for the hard aperture)
+    std::shared_ptr<const SonarGrid> grid; ///< the beams' azimuths and edges
     explicit RayFrame(const SceneDesc& s)
         : R(rotation_matrix(s.sonar.pose.orientation_deg)), origin(to_glm(s.sonar.pose.position_m)),
-          t_max(s.sonar.range_max_m * 1.05), elevation_weight(s) {}
+          t_max(s.sonar.range_max_m * 1.05), elevation_weight(s), grid(sonar_grid(s.sonar)) {}
     glm::dvec3 dir(const Angle& a, const Angle& e) const { return R * glm::dvec3(e.c * a.c, e.c * a.s, e.s); }
 };
 

@@ -27,6 +27,8 @@ const char* section_title(Section section) {
         return "Sensor";
     case Section::Sampling:
         return "Sampling";
+    case Section::Motion:
+        return "Motion during a frame";
     }
     return "";
 }

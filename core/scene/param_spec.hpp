@@ -20,7 +20,7 @@ enum class ParamType { Number, Integer, Vec3, Enum, Bool, String };
 enum class Stage { Geometry = 0, Trace = 1, Shade = 2, Sensor = 3, Display = 4, None = 5 };
 
 /// Where the viewer's controls panel shows a row (None: not in the viewer).
-enum class Section { None, Pose, Sonar, Water, Material, Object, Display, Sensor, Sampling };
+enum class Section { None, Pose, Sonar, Water, Material, Object, Display, Sensor, Sampling, Motion };
 
 /// The panel's header of a section: "Sonar", "Object / material", ...
 const char* section_title(Section section);

@@ -46,6 +46,8 @@ struct SonarParams {
     double azimuth_fov_deg = 32.0;
     double elevation_fov_deg = 14.0;
     int beams = 128;
+    /// Beam angles: "uniform" (eq. 10) or a device's table (assets/devices/beam_tables/NAME.csv).
+    std::string beam_table = "uniform";
     double range_min_m = 0.5;
     double range_max_m = 5.0;
     int range_bins = 512;

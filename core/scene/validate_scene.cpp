@@ -5,6 +5,8 @@
 
 #include "core/base/errors.hpp"
 #include "core/base/pose.hpp"
+#include "core/devices/beam_tables.hpp"
+#include "core/scene/sonar_grid.hpp"
 #include "core/sensor/sensor_patterns.hpp"
 
 #include <algorithm>
@@ -32,6 +34,17 @@ void validate_scene(const SceneDesc& s, const std::string& file, const std::vect
                          name(lo_key) + " (" + number_text(lo) + ") must be below " + name(hi_key) + " (" +
                              number_text(hi) + ")");
     };
+    if (const std::string problem = beam_table_problem(s.sonar); !problem.empty())
+        throw InputError(file, "sonar.beam_table", problem);
+    if (const BeamTable* t = find_beam_table(s.sonar.beam_table)) { // the table's fan, not another
+        const double span = t->port_edge_deg.front() - t->starboard_edge_deg.back();
+        if (!(std::abs(s.sonar.azimuth_fov_deg - span) <= 0.01 * span))
+            throw InputError(file, "sonar.azimuth_fov_deg",
+                             "value " + number_text(s.sonar.azimuth_fov_deg) +
+                                 " deg is not the fan of beam table " + t->name + " (" + number_text(span) +
+                                 " deg); allowed: within 1 % of it, or another "
+                                 "field of view with sonar.beam_table \"uniform\"");
+    }
     if (!(s.sonar.range_min_m < s.sonar.range_max_m))
         order("sonar.range_min_m", s.sonar.range_min_m, "sonar.range_max_m", s.sonar.range_max_m);
     if (s.sonar.beams % s.sonar.pings_per_frame != 0)
@@ -108,13 +121,8 @@ void validate_scene(const SceneDesc& s, const std::string& file, const std::vect
 }
 
 double sector_image_pixels(const SonarParams& s) {
-    // The fan's geometry as SectorLayout (image.cpp) lays it out at its default height, in double
-    // precision so that absurd windows give a large number instead of an int overflow.
-    const double height = std::clamp(s.range_bins, 256, 2048);
-    const double half = s.azimuth_fov_deg / 2 * 3.14159265358979323846 / 180;
-    const double m_per_px = (s.range_max_m - s.range_min_m * std::cos(half)) / height;
-    const double width = std::max(16.0, std::ceil(2 * s.range_max_m * std::sin(half) / m_per_px));
-    return width * height;
+    // The fan as the sonar's grid lays it out, in double precision (absurd windows give a large number).
+    return SonarGrid(s).fan_pixels_unbounded();
 }
 
 } // namespace sonarsim

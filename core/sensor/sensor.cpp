@@ -3,6 +3,7 @@
 #include "core/base/fast_math.hpp"
 #include "core/base/pose.hpp"
 #include "core/scene/params.hpp"
+#include "core/scene/sonar_grid.hpp"
 #include "core/sensor/sensor_patterns.hpp"
 #include "core/sensor/speckle_field.hpp"
 
@@ -121,7 +122,8 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
                         double alpha) {
     const int K = ideal.bins, N = ideal.beams;
     const size_t cells = size_t(K) * size_t(N);
-    const double r_min = s.sonar.range_min_m, dr = (s.sonar.range_max_m - r_min) / K;
+    const std::shared_ptr<const SonarGrid> sg = sonar_grid(s.sonar);
+    const double r_min = sg->range_min_m, dr = sg->bin_m;
     const SensorParams& p = s.sensor;
 
     // 1-4. Linear intensity relative to the peak. With speckle, a complex field anchored to the scatterers
@@ -145,9 +147,12 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
     const double noise_power = p.noise ? std::pow(10.0, -peak / 10) : 0.0; // L_EN of noise is 0 dB
     const double sigma = std::sqrt(noise_power);
     const SonarFrame frame(s);
-    const double theta = deg2rad(s.sonar.azimuth_fov_deg), spacing = theta / N;
+    const double spacing = sg->spacing_rad;
     std::vector<glm::dvec3> ahead(static_cast<size_t>(N));
-    for (int b = 0; b < N; ++b) ahead[size_t(b)] = frame.ahead(theta / 2 - (b + 0.5) * spacing);
+    for (int b = 0; b < N; ++b) ahead[size_t(b)] = frame.ahead(sg->beam_azimuth_rad(b));
+    std::vector<double> beam_gain; // a table's relative response per beam (none: every beam 1)
+    if (sg->table())
+        for (int b = 0; b < N; ++b) beam_gain.push_back(sg->beam_gain(b));
     const std::uint64_t texture_seed = mix64(std::uint64_t(p.seed) ^ 0x737065636b6c65ULL); // "speckle"
     const std::uint64_t noise_seed = pose_key(s);
     PolarImage out;
@@ -161,6 +166,7 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
         for (int b = 0; b < N; ++b) {
             const size_t c = size_t(k) * N + b;
             double v = I[c];
+            if (!beam_gain.empty()) v *= beam_gain[size_t(b)];
             if (k_dist && v > 0) {
                 const std::uint64_t key = grid(frame.point(ahead[size_t(b)], r, inputs->elevation_rad[c]));
                 v *= KeyedRandom(key).gamma(p.speckle_k_shape) / p.speckle_k_shape;

@@ -1,6 +1,7 @@
 #include "core/sensor/sensor_patterns.hpp"
 
 #include "core/base/pose.hpp"
+#include "core/scene/sonar_grid.hpp"
 
 #include <algorithm>
 #include <memory>
@@ -151,32 +152,37 @@ double ArrayPattern::extent(double floor_db) const {
 
 int azimuth_subcolumns(const SceneDesc& s) {
     if (s.sensor.azimuth_window == AzimuthWindow::None) return 1;
-    const double spacing = s.sonar.azimuth_fov_deg / s.sonar.beams;
+    const SonarGrid& grid = *sonar_grid(s.sonar);
+    double spacing = 0; // the widest beam's [deg]: every beam gets four columns per -3 dB width
+    for (int b = 0; b < grid.beams; ++b) spacing = std::max(spacing, grid.beam_width_deg(b));
     return std::clamp(int(std::ceil(4 * spacing / azimuth_beamwidth_deg(s) - 1e-9)), 1, 8);
 }
 
 AzimuthBeamforming make_azimuth_beamforming(const SceneDesc& s, bool amplitudes) {
     AzimuthBeamforming f;
-    const int N = s.sonar.beams, S = azimuth_subcolumns(s);
+    const SonarGrid& grid = *sonar_grid(s.sonar);
+    const int N = grid.beams, S = azimuth_subcolumns(s);
     f.beams = N, f.sub = S;
     const ArrayPattern& pattern = array_pattern(s.sensor.azimuth_window, s.sensor.taylor_sidelobe_db);
-    const double theta = deg2rad(s.sonar.azimuth_fov_deg), spacing = theta / N;
     const double bw = deg2rad(azimuth_beamwidth_deg(s));
     const bool array = s.sensor.beamformer == Beamformer::Array;
     std::vector<double> centre(static_cast<size_t>(N)), width(static_cast<size_t>(N));
     double widest = 0;
     for (int b = 0; b < N; ++b) {
-        centre[size_t(b)] = theta / 2 - (b + 0.5) * spacing;
+        centre[size_t(b)] = grid.beam_azimuth_rad(b);
         // A flat array steered to theta_b: the beam widens as 1 / cos theta_b (held below 10x, at 84 deg).
-        width[size_t(b)] = array ? bw / std::max(0.1, std::cos(centre[size_t(b)])) : bw;
+        // A lens beam from a table: its -3 dB width scales with its own width (the preset gives the mean).
+        width[size_t(b)] = array          ? bw / std::max(0.1, std::cos(centre[size_t(b)]))
+                           : grid.table() ? bw * grid.beam_width_rad(b) / grid.spacing_rad
+                                          : bw;
         widest = std::max(widest, width[size_t(b)]);
     }
     const double extent = pattern.extent(kAzimuthPatternFloorDb);
-    const int reach = int(std::ceil(extent * widest / spacing)) + 1;
+    const int reach = int(std::ceil(extent * widest / grid.narrowest_beam_rad())) + 1;
     const int J = N * S;
     f.first.resize(size_t(J)), f.count.resize(size_t(J)), f.offset.resize(size_t(J) + 1);
     for (int j = 0; j < J; ++j) {
-        const double tj = theta / 2 - (j + 0.5) * spacing / S;
+        const double tj = grid.column_azimuth_rad(j, S);
         const int bc = j / S, b0 = std::max(0, bc - reach), b1 = std::min(N - 1, bc + reach);
         int first = -1, last = -2;
         for (int b = b0; b <= b1; ++b)

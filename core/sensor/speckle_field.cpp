@@ -2,6 +2,7 @@
 
 #include "core/base/fast_math.hpp"
 #include "core/sensor/sensor.hpp"
+#include "core/scene/sonar_grid.hpp"
 #include "core/sensor/sensor_patterns.hpp"
 
 #include <algorithm>
@@ -52,12 +53,13 @@ void convolve_range(std::vector<double>& rows, int K, int width, const std::vect
 
 std::vector<double> form_speckle(const std::vector<double>& I, int K, int J, const SensorInputs& in,
                                  const SceneDesc& s) {
-    const int N = s.sonar.beams, S = J / N;
-    const double r_min = s.sonar.range_min_m, dr = (s.sonar.range_max_m - r_min) / K;
-    const double theta = deg2rad(s.sonar.azimuth_fov_deg), column = theta / J;
+    const std::shared_ptr<const SonarGrid> sg = sonar_grid(s.sonar);
+    const int N = sg->beams, S = J / N;
+    const double r_min = sg->range_min_m, dr = sg->bin_m;
+    const double column = sg->fov_rad / J; // the mean column's width [rad]
     const SonarFrame frame(s);
     std::vector<glm::dvec3> ahead(static_cast<size_t>(J));
-    for (int j = 0; j < J; ++j) ahead[size_t(j)] = frame.ahead(theta / 2 - (j + 0.5) * column);
+    for (int j = 0; j < J; ++j) ahead[size_t(j)] = frame.ahead(sg->column_azimuth_rad(j, S));
     const bool formed = s.sensor.azimuth_window != AzimuthWindow::None;
     const AzimuthBeamforming bf = formed ? make_azimuth_beamforming(s, true) : AzimuthBeamforming{};
     std::vector<double> w2(2 * bf.amplitude.size()); // each weight twice: (re, im) pairs in one step

@@ -63,7 +63,7 @@ template <bool Img, bool Sens, bool Gt, bool Ord, bool Str> class BeamPass {
         if constexpr (Gt) truth_.assign(K, TruthAccumulator{});
         if constexpr (Str) best_.assign(K, 0.0), best_n_.assign(K, -1);
         std::vector<double> share(size_t(p_.S), 1.0);
-        const double a_top = p_.grid.beam_port_edge_rad(i_), spacing = p_.grid.spacing_rad;
+        const double a_top = p_.grid.beam_port_edge_rad(i_), spacing = p_.grid.beam_width_rad(i_);
         for (size_t n = 0; n < cells_.size(); ++n) {
             if (x_[n] == kNegInf) continue;
             const Cell& c = cells_[n];

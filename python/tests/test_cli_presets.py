@@ -62,25 +62,30 @@ def test_a_device_on_the_command_line_wins_over_the_scenes_sonar_keys(sonarsim_e
     assert meta["sampling"]["elevation_rays"] == 41
     assert meta["objects"][0]["box"] == [0.07, 0.12, 0.22]
 
-    # A --set of a preset key after it wins, and is listed with both values, once on stderr.
+    # A --set of a preset key after it wins, and is listed with both values, once on stderr (another beam
+    # count needs a beam table of that count: the 128-beam table's 64-beam sibling).
     r, meta = render(sonarsim_exe, scratch, scene, "sonar.device=aris3000-hf", "sonar.beams=64",
-                     "sensor.model=device", "sampling.elevation_rays=41", name="img64")
+                     "sonar.beam_table=aris3000_64", "sensor.model=device", "sampling.elevation_rays=41",
+                     name="img64")
     assert meta["sonar"]["beams"] == 64
     assert meta["sensor"]["tvg"] == preset["sensor.tvg"]  # under the device sensor its effects too
-    assert meta["device_overrides"] == [{"key": "sonar.beams", "preset": 128, "value": 64}]
+    assert meta["device_overrides"] == [{"key": "sonar.beam_table", "preset": "aris3000_128",
+                                         "value": "aris3000_64"},
+                                        {"key": "sonar.beams", "preset": 128, "value": 64}]
     notes = [line for line in r.stderr.splitlines() if "device preset aris3000-hf" in line]
     assert len(notes) == 1
     assert "sonar.beams 64 (preset 128, from --set)" in notes[0]
 
 
 def test_a_scene_naming_a_device_keeps_its_own_keys_and_lists_them(sonarsim_exe, scratch, source_dir):
-    scene = scene_file(scratch, {"device": "aris3000-hf", "beams": 64, "range_bins": 96})
+    scene = scene_file(scratch, {"device": "aris3000-hf", "beams": 64, "beam_table": "uniform", "range_bins": 96})
     r, meta = render(sonarsim_exe, scratch, scene)
     assert meta["sonar"]["beams"] == 64
     assert meta["sonar"]["range_bins"] == 96
     assert meta["sonar"]["frequency_khz"] == 1200
     overrides = {o["key"]: (o["preset"], o["value"]) for o in meta["device_overrides"]}
-    assert overrides == {"sonar.beams": (128, 64), "sonar.range_bins": (1024, 96),
+    assert overrides == {"sonar.beams": (128, 64), "sonar.beam_table": ("aris3000_128", "uniform"),
+                         "sonar.range_bins": (1024, 96),
                          "sonar.frequency_khz": (3000, 1200), "sonar.azimuth_fov_deg": (30.25, 60),
                          "sonar.range_max_m": (5.0, 4.5)}
     notes = [line for line in r.stderr.splitlines() if "device preset aris3000-hf" in line]

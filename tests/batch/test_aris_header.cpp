@@ -5,6 +5,7 @@
 #include "support.hpp"
 
 #include "core/base/errors.hpp"
+#include "core/devices/beam_tables.hpp"
 #include "core/dataset/batch.hpp"
 #include "core/dataset/export.hpp"
 #include "core/dataset/trajectory.hpp"
@@ -221,4 +222,41 @@ TEST_CASE("ARIS FrameTime is the dataset's start plus t, the start kept when a r
     const std::string dir2 = batch_out("aris_start_time_given");
     prepare_dataset(dir2, later, t);
     CHECK(dataset_start_time_s(dir2) == 1.7e9);
+}
+
+TEST_CASE("an ARIS file holds each beam of a table at the device's number of it", "[aris][beam_table]") {
+    // aris3000-hf: the vendor's 128-beam table; sonarsim beam k is ARIS beam 127 - k (ARIS numbers from
+    // starboard). One beam lit: its bytes must sit in the device's column, and read back in ours.
+    const SceneDesc s = with(small_scene(), {"sonar.device=aris3000-hf", "sensor.model=device"});
+    REQUIRE(s.sonar.beam_table == "aris3000_128");
+    const BeamTable& table = *find_beam_table("aris3000_128");
+    const int N = s.sonar.beams, k = 10;
+    REQUIRE(table.device_beam[size_t(k)] == N - 1 - k);
+    PolarImage img;
+    img.beams = N, img.bins = s.sonar.range_bins;
+    img.level_db.assign(size_t(N) * size_t(img.bins), -std::numeric_limits<float>::infinity());
+    for (int i = 0; i < img.bins; ++i) img.level_db[size_t(i) * size_t(N) + size_t(k)] = 60.0f;
+    const std::string dir = batch_out("aris_beam_table");
+    std::filesystem::create_directories(dir);
+    const std::string path = dir + "/t.aris";
+    const Trajectory t = line_trajectory("0.3,2.4,0.9,0.4,2.3,0.9,1", {-1, 30, -39}, 5, "test");
+    write_aris(
+        path, s, t, [&](size_t) { return img; }, ByteMapping{0, 80, false}, "--aris");
+    const ArisFrame f = read_aris_frame(path, 0);
+    REQUIRE(f.info.beams == N);
+    const auto bytes = file_bytes(path);
+    const size_t data = 1024 + 1024, samples = size_t(f.info.samples);
+    std::vector<int> lit(static_cast<size_t>(N), 0);
+    for (size_t r = 0; r < samples; ++r)
+        for (int b = 0; b < N; ++b) lit[size_t(b)] += bytes[data + r * size_t(N) + size_t(b)] != 0;
+    for (int b = 0; b < N; ++b) {
+        INFO("ARIS beam " << b);
+        CHECK((lit[size_t(b)] > 0) == (b == table.device_beam[size_t(k)]));
+    }
+    int ours = 0, others = 0; // read back: only our beam k
+    for (int r = 0; r < f.level_db.bins; ++r)
+        for (int b = 0; b < N; ++b)
+            if (std::isfinite(f.level_db.at(r, b))) ++(b == k ? ours : others);
+    CHECK(ours == lit[size_t(table.device_beam[size_t(k)])]);
+    CHECK(others == 0);
 }

@@ -5,6 +5,7 @@
 #include "core/io/aris.hpp"
 #include "core/dataset/batch.hpp"
 #include "core/base/errors.hpp"
+#include "core/devices/beam_tables.hpp"
 #include "core/io/output.hpp"
 #include "core/base/pose.hpp"
 #include "core/io/ros2_sonar.hpp"
@@ -300,5 +301,36 @@ TEST_CASE("an MCAP bag read from its specification gives back the frames", "[mca
             }
             CHECK(c.p + n == msg.size());
         }
+    }
+}
+
+TEST_CASE("a ROS 2 sonar message carries each beam's bearing and width from its table",
+          "[mcap][beam_table]") {
+    // ARIS 1200 / 1800 LF: 48 beams, 0.43 deg wide at the fan's edges, 0.69 deg at its centre.
+    SceneDesc s;
+    apply_setting_text(s, "sonar.beams=48", "test");
+    apply_setting_text(s, "sonar.azimuth_fov_deg=27.58", "test");
+    apply_setting_text(s, "sonar.beam_table=aris1800_1200_48", "test");
+    const BeamTable& t = *find_beam_table("aris1800_1200_48");
+    PolarImage img;
+    img.beams = 48, img.bins = s.sonar.range_bins;
+    img.level_db.assign(size_t(img.beams) * size_t(img.bins), 30.0f);
+    ClipCount count;
+    const auto msg = encode_projected_sonar_image(s, img, 1.0, "sonar", SonarDataType::Float32,
+                                                  ByteMapping{0, 80, false}, count);
+    Reader c{msg, 4, 4};
+    c.get<std::int32_t>(true), c.get<std::uint32_t>(true), c.str(true);
+    c.get<float>(true), c.get<float>(true); // frequency, sound speed
+    const auto tx = c.get<std::uint32_t>(true);
+    for (size_t i = 0; i < tx; ++i) c.get<float>(true);
+    REQUIRE(c.get<std::uint32_t>(true) == 48); // rx widths
+    for (size_t i = 0; i < 48; ++i)
+        CHECK(c.get<float>(true) ==
+              Approx((t.port_edge_deg[i] - t.starboard_edge_deg[i]) * kPi / 180).epsilon(1e-6));
+    REQUIRE(c.get<std::uint32_t>(true) == 48);
+    for (size_t i = 0; i < 48; ++i) {
+        c.get<double>(true);
+        const double y = c.get<double>(true), z = c.get<double>(true);
+        CHECK(std::atan2(-y, z) * 180 / kPi == Approx(t.centre_deg[i]).margin(1e-9)); // positive to port
     }
 }

@@ -198,10 +198,15 @@ TEST_CASE("devices: sonar.device sets the preset values and scene keys override 
     }
     // In a scene file the preset comes first, whatever the order of the keys.
     const SceneDesc s =
-        parse_scene(R"({"sonar": {"beams": 64, "device": "oculus-m750d-lf"}})", "scene.json", ".");
+        parse_scene(R"({"sonar": {"beams": 64, "beam_table": "uniform", "device": "oculus-m750d-lf"}})",
+                    "scene.json", ".");
     CHECK(s.sonar.device == "oculus-m750d-lf");
     CHECK(s.sonar.beams == 64);
     CHECK(s.sonar.azimuth_fov_deg == 130);
+    // A preset's beam table does not fit another beam count: an input error naming the table.
+    CHECK_THROWS_WITH(
+        parse_scene(R"({"sonar": {"beams": 64, "device": "oculus-m750d-lf"}})", "scene.json", "."),
+        Catch::Contains("sonar.beam_table") && Catch::Contains("allowed for 64 beams: uniform"));
     SceneDesc t = default_scene();
     CHECK_THROWS_AS(apply_setting(t, "sonar.device", "no-such-sonar", "--set"), InputError);
 }

@@ -227,6 +227,8 @@ TEST_CASE("labels and sections of the viewer's controls come from the table", "[
     CHECK(find_param("water.depth_m")->section == Section::Water);
     CHECK(find_param("sensor.gain_db")->section == Section::Sensor);
     CHECK(find_param("export.lo_db")->section == Section::None);
+    CHECK(find_param("sonar.angular_rate_dps")->section == Section::Motion);
+    CHECK(find_param("sonar.motion_from_trajectory")->section == Section::None); // batch only
     CHECK(find_material_param("q")->section == Section::Material);
     CHECK(find_object_param("scale")->section == Section::Object);
     CHECK(std::string(section_title(Section::Material)) == "Object / material");

@@ -264,11 +264,16 @@ TEST_CASE("menu shortcut labels come from the bindings table", "[ui][bindings]")
 TEST_CASE("the A-scan keeps its azimuth when the beam count changes", "[ui][ascan]") {
     // +1.2 deg is in beam 59 of 128 over 32 deg (0.25 deg each), beam 29 of 64, beam 118 of 256.
     const double az = 1.2;
-    CHECK(beam_at_azimuth(az, 32, 128) == 59);
-    CHECK(beam_at_azimuth(az, 32, 64) == 29);
-    CHECK(beam_at_azimuth(az, 32, 256) == 118);
-    CHECK(beam_at_azimuth(40, 32, 64) == 0);   // beyond port: the nearest beam
-    CHECK(beam_at_azimuth(-40, 32, 64) == 63); // beyond starboard
+    auto grid = [](int beams) {
+        SonarParams s;
+        s.azimuth_fov_deg = 32, s.beams = beams;
+        return SonarGrid(s);
+    };
+    CHECK(beam_at_azimuth(az, grid(128)) == 59);
+    CHECK(beam_at_azimuth(az, grid(64)) == 29);
+    CHECK(beam_at_azimuth(az, grid(256)) == 118);
+    CHECK(beam_at_azimuth(40, grid(64)) == 0);   // beyond port: the nearest beam
+    CHECK(beam_at_azimuth(-40, grid(64)) == 63); // beyond starboard
 }
 
 TEST_CASE("the hover readout names a path direct or ghost and its scatterer", "[ui][multipath]") {

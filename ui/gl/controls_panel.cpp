@@ -119,10 +119,17 @@ double optional_default(const SceneDesc& s, const ParamSpec& p) {
     return std::max(p.min, 0.0);
 }
 
+bool drag3(const ValueSpec& spec, Vec3d& v);
+
 void section_params(Session& session, Section section) {
     for (const ParamSpec& p : scene_params()) {
         if (p.section != section) continue;
         const json cur = p.get(session.scene());
+        if (p.type == ParamType::Vec3) {
+            Vec3d v = cur.get<Vec3d>();
+            if (drag3(p, v)) session.set(p.key, v);
+            continue;
+        }
         if (p.type == ParamType::Enum) {
             const std::string now = cur.get<std::string>();
             const std::string label = field_label(p.label_text(), p.key);
@@ -336,7 +343,7 @@ void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, Tra
     if (ImGui::CollapsingHeader(section_title(Section::Material), open)) material_section(session, ui);
     if (ImGui::CollapsingHeader(section_title(Section::Display), open))
         section_params(session, Section::Display);
-    for (Section sec : {Section::Sensor, Section::Sampling})
+    for (Section sec : {Section::Sensor, Section::Sampling, Section::Motion})
         if (ImGui::CollapsingHeader(section_title(sec))) section_params(session, sec);
     if (ImGui::CollapsingHeader("Trajectory"))
         if (auto p = trajectory.draw(session)) session.edit([&](SceneDesc& s) { s.sonar.pose = *p; });

@@ -119,13 +119,13 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
         ImGui::TextColored(ImVec4(0.3f, 1, 0.65f, 1), "%s", last_measure_.c_str());
         ImGui::PopTextWrapPos();
     } else if (marker) {
-        const SectorLayout SL(s, f.sector().height);
+        const SectorLayout SL(f.grid_ptr, f.sector().height);
         const PointInImage p = locate_world_point(s, SL, *marker);
         ImVec2 q;
         if (polar) {
-            q = ImVec2(
-                L.image.x + float((s.azimuth_fov_deg / 2 - p.azimuth_deg) / s.azimuth_fov_deg) * L.image.w,
-                L.image.y + float((s.range_max_m - p.range_m) / (s.range_max_m - s.range_min_m)) * L.image.h);
+            q = ImVec2(L.image.x + float(f.grid().column_of_azimuth_deg(p.azimuth_deg) / s.beams) * L.image.w,
+                       L.image.y +
+                           float((s.range_max_m - p.range_m) / (s.range_max_m - s.range_min_m)) * L.image.h);
         } else {
             q = ImVec2(L.image.x + float(p.px / f.sector().width) * L.image.w,
                        L.image.y + float(p.py / f.sector().height) * L.image.h);
@@ -191,7 +191,8 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
 void SonarPanel::draw_fan_overlay(const Rect& r, const RenderResult& shown) {
     const SonarParams& s = shown.scene.sonar;
     const Frame& f = *shown.frame;
-    const SectorLayout L(s, f.sector().height);
+    const SectorLayout L(f.grid_ptr, f.sector().height);
+    const SonarGrid& grid = f.grid();
     ImDrawList* dl = ImGui::GetWindowDrawList();
     auto to_screen = [&](double range, double az) {
         double px, py;
@@ -210,8 +211,10 @@ void SonarPanel::draw_fan_overlay(const Rect& r, const RenderResult& shown) {
         dl->AddLine(to_screen(s.range_min_m, a), to_screen(s.range_max_m, a), kGridColor, 1.0f);
     if (hovered_) {
         // The hovered cell's outline: its range bin x beam.
-        const double dr = (s.range_max_m - s.range_min_m) / s.range_bins, da = s.azimuth_fov_deg / s.beams;
-        const double r0 = s.range_min_m + hovered_->bin * dr, a0 = half - hovered_->beam * da;
+        const double dr = grid.bin_m, r0 = s.range_min_m + hovered_->bin * dr;
+        const double a0 = grid.column_azimuth_deg(hovered_->beam),
+                     a1 = grid.column_azimuth_deg(hovered_->beam + 1);
+        const double da = a0 - a1;
         const ImVec2 q[4] = {to_screen(r0, a0), to_screen(r0, a0 - da), to_screen(r0 + dr, a0 - da),
                              to_screen(r0 + dr, a0)};
         dl->AddPolyline(q, 4, kHoverColor, ImDrawFlags_Closed, 1.5f);
@@ -231,19 +234,17 @@ void SonarPanel::draw_polar_overlay(const Rect& r, const RenderResult& shown) {
     auto y_of = [&](double range) {
         return r.y + float((s.range_max_m - range) / (s.range_max_m - s.range_min_m)) * r.h;
     };
-    auto x_of = [&](double az) {
-        return r.x + float((s.azimuth_fov_deg / 2 - az) / s.azimuth_fov_deg) * r.w;
-    };
+    const SonarGrid& grid = shown.frame->grid();
+    auto x_of = [&](double az) { return r.x + float(grid.column_of_azimuth_deg(az) / grid.beams) * r.w; };
     for (double rr : layout_.range_m)
         dl->AddLine(ImVec2(r.x, y_of(rr)), ImVec2(r.x + r.w, y_of(rr)), kGridColor);
     for (double a : layout_.bearing_deg)
         dl->AddLine(ImVec2(x_of(a), r.y), ImVec2(x_of(a), r.y + r.h), kGridColor);
     if (hovered_) {
-        const double half = s.azimuth_fov_deg / 2;
-        const double dr = (s.range_max_m - s.range_min_m) / s.range_bins, da = s.azimuth_fov_deg / s.beams;
-        const double r0 = s.range_min_m + hovered_->bin * dr, a0 = half - hovered_->beam * da;
-        dl->AddRect(ImVec2(x_of(a0) - 1, y_of(r0 + dr) - 1), ImVec2(x_of(a0 - da) + 1, y_of(r0) + 1),
-                    kHoverColor);
+        const double dr = grid.bin_m, r0 = s.range_min_m + hovered_->bin * dr;
+        const double a0 = grid.column_azimuth_deg(hovered_->beam),
+                     a1 = grid.column_azimuth_deg(hovered_->beam + 1);
+        dl->AddRect(ImVec2(x_of(a0) - 1, y_of(r0 + dr) - 1), ImVec2(x_of(a1) + 1, y_of(r0) + 1), kHoverColor);
     }
 }
 

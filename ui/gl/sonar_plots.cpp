@@ -20,17 +20,18 @@ std::optional<ImagePlace> SonarPanel::place_at(const Rect& r, const RenderResult
     const Image8& fan = shown.frame->sector();
     const double u = (q.x - r.x) / r.w, v = (q.y - r.y) / r.h;
     if (polar) return polar_pixel_place(s, u * s.beams, v * s.range_bins);
-    return sector_pixel_place(SectorLayout(s, fan.height), s, u * fan.width, v * fan.height);
+    return sector_pixel_place(SectorLayout(shown.frame->grid_ptr, fan.height), s, u * fan.width,
+                              v * fan.height);
 }
 
 ImVec2 SonarPanel::screen_of(const Rect& r, const RenderResult& shown, double range, double az) const {
     const SonarParams& s = shown.scene.sonar;
     if (polar)
-        return ImVec2(r.x + float((s.azimuth_fov_deg / 2 - az) / s.azimuth_fov_deg) * r.w,
+        return ImVec2(r.x + float(shown.frame->grid().column_of_azimuth_deg(az) / s.beams) * r.w,
                       r.y + float((s.range_max_m - range) / (s.range_max_m - s.range_min_m)) * r.h);
     const Image8& fan = shown.frame->sector();
     double px = 0, py = 0;
-    SectorLayout(s, fan.height).polar_to_pixel(range, az, px, py);
+    SectorLayout(shown.frame->grid_ptr, fan.height).polar_to_pixel(range, az, px, py);
     return ImVec2(r.x + float(px / fan.width) * r.w, r.y + float(py / fan.height) * r.h);
 }
 
@@ -96,16 +97,16 @@ void SonarPanel::draw_ascan(const Rect& r, const RenderResult& shown) {
     const PolarImage& img = shown.frame->polar();
     if (ascan_beam_ >= 0 && ascan_beams_ != img.beams) {
         // The beam count changed: the beam nearest the azimuth it showed.
-        ascan_beam_ = beam_at_azimuth(ascan_azimuth_deg_, s.azimuth_fov_deg, img.beams);
+        ascan_beam_ = beam_at_azimuth(ascan_azimuth_deg_, shown.frame->grid());
         ascan_beams_ = img.beams;
     }
     if (ascan_beam_ < 0 || ascan_beam_ >= img.beams) {
         ascan_beam_ = strongest_beam(img), ascan_beams_ = img.beams;
-        ascan_azimuth_deg_ = s.azimuth_fov_deg / 2 - (ascan_beam_ + 0.5) * s.azimuth_fov_deg / img.beams;
+        ascan_azimuth_deg_ = shown.frame->grid().beam_azimuth_deg(ascan_beam_);
     }
     const std::vector<float> lv = beam_levels(img, ascan_beam_);
     ImDrawList* dl = ImGui::GetWindowDrawList();
-    const double a = s.azimuth_fov_deg / 2 - (ascan_beam_ + 0.5) * s.azimuth_fov_deg / s.beams;
+    const double a = shown.frame->grid().beam_azimuth_deg(ascan_beam_);
     char buf[96];
     const char* level = shown.scene.sensor.model == SensorModel::Ideal ? "L_EN" : "device level";
     std::snprintf(buf, sizeof buf, "A-scan: beam %d (az %+.2f deg): %s [dB] vs range [m]", ascan_beam_, a,
@@ -142,7 +143,7 @@ void SonarPanel::draw_ascan(const Rect& r, const RenderResult& shown) {
         text_at(dl, ImVec2(X(rr), p.y + p.h + 2), kLabelColor, buf, 0.5f, 0.0f);
     }
     // The curve, broken where nothing echoes.
-    const double dr = (s.range_max_m - s.range_min_m) / s.range_bins;
+    const double dr = shown.frame->grid().bin_m;
     std::vector<ImVec2> run;
     auto flush = [&] {
         if (run.size() >= 2)

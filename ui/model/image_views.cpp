@@ -23,11 +23,10 @@ Image8 polar_color_image(const PolarImage& img, const DisplayParams& d) {
 }
 
 Image8 NoEchoPainter::paint(const Image8& fan, const PolarImage& img, const SonarParams& s, Colormap map) {
-    const bool same = w_ == fan.width && h_ == fan.height && key_.beams == s.beams &&
-                      key_.range_bins == s.range_bins && key_.range_min_m == s.range_min_m &&
-                      key_.range_max_m == s.range_max_m && key_.azimuth_fov_deg == s.azimuth_fov_deg;
+    std::shared_ptr<const SonarGrid> grid = sonar_grid(s);
+    const bool same = w_ == fan.width && h_ == fan.height && key_ == grid;
     if (!same) {
-        const SectorLayout L(s, fan.height);
+        const SectorLayout L(grid, fan.height);
         cell_.assign(size_t(fan.width) * size_t(fan.height), -1);
         for (int y = 0; y < fan.height; ++y)
             for (int x = 0; x < fan.width; ++x) {
@@ -37,7 +36,7 @@ Image8 NoEchoPainter::paint(const Image8& fan, const PolarImage& img, const Sona
                 if (polar_to_cell(s, r, a, bin, beam))
                     cell_[size_t(y) * size_t(fan.width) + size_t(x)] = bin * s.beams + beam;
             }
-        key_ = s, w_ = fan.width, h_ = fan.height;
+        key_ = std::move(grid), w_ = fan.width, h_ = fan.height;
     }
     Image8 out = fan;
     if (out.channels != 3 || img.beams != s.beams || img.bins != s.range_bins) return out;
@@ -48,9 +47,8 @@ Image8 NoEchoPainter::paint(const Image8& fan, const PolarImage& img, const Sona
     return out;
 }
 
-int beam_at_azimuth(double az, double fov, int beams) {
-    const double i = std::floor((fov / 2 - az) / (fov / beams));
-    return int(std::clamp(i, 0.0, double(beams - 1)));
+int beam_at_azimuth(double az, const SonarGrid& grid) {
+    return grid.beam_of_azimuth_deg(az);
 }
 
 double nice_step(double span, int count) {

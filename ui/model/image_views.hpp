@@ -5,6 +5,7 @@
 #include "core/shading/shade.hpp"
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace sonarsim::ui {
@@ -20,8 +21,8 @@ class NoEchoPainter {
     Image8 paint(const Image8& fan, const PolarImage& image, const SonarParams& sonar, Colormap map);
 
   private:
-    std::vector<std::int32_t> cell_; ///< per pixel: bin * beams + beam, or -1 outside the fan
-    SonarParams key_;
+    std::vector<std::int32_t> cell_;       ///< per pixel: bin * beams + beam, or -1 outside the fan
+    std::shared_ptr<const SonarGrid> key_; ///< the grid the map was built for
     int w_ = 0, h_ = 0;
 };
 
@@ -33,7 +34,7 @@ std::vector<float> beam_levels(const PolarImage& image, int beam);
 
 /// The beam whose azimuth sector holds `azimuth_deg` (the nearest beam outside the field of view): where the
 /// A-scan stays when the beam count changes.
-int beam_at_azimuth(double azimuth_deg, double azimuth_fov_deg, int beams);
+int beam_at_azimuth(double azimuth_deg, const SonarGrid& grid);
 
 /// The beam holding the highest echo level (the middle beam when nothing echoes).
 int strongest_beam(const PolarImage& image);

@@ -18,15 +18,16 @@ RegionStats region_stats(const PolarImage& img, const SonarParams& s, const Imag
                          const ImagePlace& b) {
     const double r0 = std::min(a.range_m, b.range_m), r1 = std::max(a.range_m, b.range_m);
     const double a0 = std::min(a.azimuth_deg, b.azimuth_deg), a1 = std::max(a.azimuth_deg, b.azimuth_deg);
-    const double dr = (s.range_max_m - s.range_min_m) / img.bins, da = s.azimuth_fov_deg / img.beams;
+    const std::shared_ptr<const SonarGrid> grid = sonar_grid(s);
     RegionStats st;
+    if (img.bins != grid->bins || img.beams != grid->beams) return st;
     std::vector<double> levels;
     double sum = 0;
     for (int bin = 0; bin < img.bins; ++bin) {
-        const double r = s.range_min_m + (bin + 0.5) * dr;
+        const double r = grid->bin_centre_m(bin);
         if (r < r0 || r > r1) continue;
         for (int beam = 0; beam < img.beams; ++beam) {
-            const double az = s.azimuth_fov_deg / 2 - (beam + 0.5) * da;
+            const double az = grid->beam_azimuth_deg(beam);
             if (az < a0 || az > a1) continue;
             ++st.cells;
             const float v = img.at(bin, beam);

@@ -81,7 +81,8 @@ Labels place_labels(const PanelContent& c, const SectorLayout& sector, float x, 
     for (double r = std::ceil(s.range_min_m / rstep - 1e-9) * rstep; r <= s.range_max_m + 1e-9; r += rstep)
         if (r > 0) rings.push_back(r);
     if (c.polar) {
-        auto x_of = [&](double a) { return x + float((half - a) / s.azimuth_fov_deg) * w; };
+        const SonarGrid& grid = sector.grid();
+        auto x_of = [&](double a) { return x + float(grid.column_of_azimuth_deg(a) / grid.beams) * w; };
         auto y_of = [&](double r) {
             return y + float((s.range_max_m - r) / (s.range_max_m - s.range_min_m)) * h;
         };
@@ -152,8 +153,8 @@ std::string colorbar_title(const SceneDesc& scene) {
 }
 
 double fan_aspect(const SonarParams& s) {
-    const SectorLayout sector(s, default_sector_height(s));
-    return double(sector.width()) / sector.height();
+    const FanLayout fan = sonar_grid(s)->fan_layout(default_sector_height(s));
+    return double(fan.width_px) / fan.height_px;
 }
 
 float sonar_panel_width_wanted(int window_h, double aspect, float k) {

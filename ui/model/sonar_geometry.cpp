@@ -122,11 +122,9 @@ std::vector<glm::dvec3> elevation_arc(const SonarParams& s, double r, double a_d
 }
 
 bool polar_to_cell(const SonarParams& s, double r, double a_deg, int& bin, int& beam) {
-    const double dr = (s.range_max_m - s.range_min_m) / s.range_bins;
-    const double da = s.azimuth_fov_deg / s.beams;
-    if (!(r >= s.range_min_m && r < s.range_max_m && std::abs(a_deg) <= s.azimuth_fov_deg / 2)) return false;
-    bin = std::clamp(int(std::floor((r - s.range_min_m) / dr)), 0, s.range_bins - 1);
-    beam = std::clamp(int(std::floor((s.azimuth_fov_deg / 2 - a_deg) / da)), 0, s.beams - 1);
+    const std::shared_ptr<const SonarGrid> grid = sonar_grid(s);
+    if (!grid->inside(r, a_deg)) return false;
+    bin = grid->bin_of(r), beam = grid->beam_of_azimuth_deg(a_deg);
     return true;
 }
 
@@ -141,9 +139,9 @@ std::optional<ImagePlace> sector_pixel_place(const SectorLayout& L, const SonarP
 std::optional<ImagePlace> polar_pixel_place(const SonarParams& s, double col, double row) {
     if (!(col >= 0 && col < s.beams && row >= 0 && row < s.range_bins)) return std::nullopt;
     ImagePlace p;
-    const double dr = (s.range_max_m - s.range_min_m) / s.range_bins;
-    p.range_m = s.range_max_m - row * dr;
-    p.azimuth_deg = s.azimuth_fov_deg / 2 - col * s.azimuth_fov_deg / s.beams;
+    const std::shared_ptr<const SonarGrid> grid = sonar_grid(s);
+    p.range_m = s.range_max_m - row * grid->bin_m;
+    p.azimuth_deg = grid->column_azimuth_deg(col);
     p.beam = std::min(int(col), s.beams - 1);
     p.bin = s.range_bins - 1 - std::min(int(row), s.range_bins - 1);
     return p;
@@ -162,7 +160,7 @@ PointInImage locate_world_point(const SonarParams& s, const SectorLayout& L, con
 std::vector<glm::vec3> echoing_points(const TraceResult& hits, const SceneDesc& s, int bin, int beam) {
     std::vector<glm::vec3> out;
     if (beam < 0 || beam >= hits.beams || size_t(beam) >= hits.cells.size()) return out;
-    const double dr = (s.sonar.range_max_m - s.sonar.range_min_m) / s.sonar.range_bins;
+    const double dr = sonar_grid(s.sonar)->bin_m;
     const double r0 = s.sonar.range_min_m + bin * dr, r1 = r0 + dr;
     for (const Cell& c : hits.cells[size_t(beam)])
         if (cell_fraction_in(c, s.sampling.binning, r0, r1) > 0) out.push_back(c.point);

@@ -2,6 +2,7 @@
 // range window and bins) and the levels (source, noise).
 #include "core/scene/param_rows.hpp"
 
+#include "core/devices/beam_tables.hpp"
 #include "core/devices/devices.hpp"
 
 namespace sonarsim::rows {
@@ -47,6 +48,16 @@ std::vector<ParamSpec> sonar_rows() {
                         [](S s) -> int& { return s.sonar.beams; })
                     .preset()
                     .with_log_slider(8, 512));
+    ParamSpec table =
+        blank<ParamSpec>("sonar.beam_table", "", ParamType::Enum, Stage::Trace,
+                         "Beam angles: uniform (eq. 10), or a device's per-beam centres and edges "
+                         "(assets/devices/beam_tables/NAME.csv, its beam count; the fan spans "
+                         "its edges)");
+    table.choices = {kUniformBeams};
+    for (const std::string& n : beam_table_names()) table.choices.push_back(n);
+    table.get = [](const SceneDesc& s) { return json(s.sonar.beam_table); };
+    table.put = [](SceneDesc& s, const json& v) { s.sonar.beam_table = v.get<std::string>(); };
+    t.push_back(table.preset().with_label("beam table"));
     t.push_back(number("sonar.range_min_m", "m", 0, 1000, false, true, Stage::Trace,
                        "Start of the range window r_min", [](S s) -> double& { return s.sonar.range_min_m; })
                     .preset()
@@ -79,20 +90,20 @@ std::vector<ParamSpec> motion_rows() {
                      "Motion during a frame: velocity in the sonar's frame (x forward, y port, z up) at the "
                      "frame's first transmit; each echo is traced from the pose of its receive time",
                      [](S s) -> Vec3d& { return s.sonar.velocity_mps; })
-                    .in_section(Section::Pose)
+                    .in_section(Section::Motion)
                     .with_label("velocity x y z"));
     t.push_back(vec3("sonar.angular_rate_dps", "deg/s", -1000, 1000, Stage::Trace,
                      "Motion during a frame: rates about the sonar's x, y, z axes (roll, pitch, yaw rate; "
                      "positive yaw turns to port)",
                      [](S s) -> Vec3d& { return s.sonar.angular_rate_dps; })
-                    .in_section(Section::Pose)
+                    .in_section(Section::Motion)
                     .with_label("turn rate roll pitch yaw"));
     t.push_back(integer("sonar.pings_per_frame", 1, 64, Stage::Trace,
                         "Pings that build one frame: ping k fires every P-th beam (ARIS: beams / 16); pings "
                         "follow each other every 2 r_max / c + 0.42 ms. Matters only with motion",
                         [](S s) -> int& { return s.sonar.pings_per_frame; })
                     .preset()
-                    .in_section(Section::Sonar)
+                    .in_section(Section::Motion)
                     .with_label("pings per frame")
                     .with_slider(1, 16));
     // batch only: not in the viewer.

@@ -1,4 +1,4 @@
-#include "core/display/image.hpp"
+#include "core/display/sector.hpp"
 
 #include "core/base/pose.hpp"
 
@@ -14,105 +14,6 @@
 #include <tbb/parallel_for.h>
 
 namespace sonarsim {
-
-float gray_level(float level_db, double lo, double hi) {
-    if (!(level_db > -INFINITY)) return 0.0f;
-    return float(255.0 * std::clamp((double(level_db) - lo) / (hi - lo), 0.0, 1.0));
-}
-
-namespace {
-/// A colour ramp through `n` evenly spaced key colours, interpolated linearly.
-template <int N> std::array<std::uint8_t, 3> ramp(const double (&v)[N][3], double t) {
-    const double x = t * (N - 1);
-    const int i = std::min(N - 2, int(x));
-    const double f = x - i;
-    std::array<std::uint8_t, 3> c{};
-    for (int k = 0; k < 3; ++k) c[size_t(k)] = std::uint8_t(std::lround(v[i][k] * (1 - f) + v[i + 1][k] * f));
-    return c;
-}
-} // namespace
-
-std::array<std::uint8_t, 3> colormap_rgb(Colormap map, double t) {
-    t = std::clamp(t, 0.0, 1.0);
-    switch (map) {
-    case Colormap::Gray: {
-        const auto g = std::uint8_t(std::lround(255 * t));
-        return {g, g, g};
-    }
-    case Colormap::Copper: { // ARIS-like: black, brown, copper, pale gold
-        static const double v[5][3] = {
-            {0, 0, 0}, {70, 34, 12}, {160, 86, 36}, {232, 160, 78}, {255, 236, 184}};
-        return ramp(v, t);
-    }
-    case Colormap::Hot: { // black, red, yellow, white
-        static const double v[4][3] = {{0, 0, 0}, {230, 0, 0}, {255, 210, 0}, {255, 255, 255}};
-        return ramp(v, t);
-    }
-    case Colormap::Viridis:
-        break;
-    }
-    // Viridis, sampled at nine evenly spaced points and interpolated linearly.
-    static const double v[9][3] = {{68, 1, 84},    {71, 44, 122},  {59, 81, 139},
-                                   {44, 113, 142}, {33, 144, 141}, {39, 173, 129},
-                                   {92, 200, 99},  {170, 220, 50}, {253, 231, 37}};
-    return ramp(v, t);
-}
-
-std::array<std::uint8_t, 3> no_echo_rgb(Colormap map) {
-    // Unlike the low end of every map: dark blue beside black, black beside viridis' purple.
-    return map == Colormap::Viridis ? std::array<std::uint8_t, 3>{0, 0, 0}
-                                    : std::array<std::uint8_t, 3>{18, 42, 78};
-}
-
-DisplayParams effective_display(const PolarImage& img, const DisplayParams& d, const SonarParams& sonar) {
-    if (!d.auto_range) return d;
-    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-    for (float v : img.level_db)
-        if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
-    if (!(lo <= hi)) return d;
-    constexpr int kBins = 4096;
-    std::vector<double> hist(kBins, 0.0);
-    const double width = std::max(double(hi) - lo, 1e-6) / kBins;
-    const double dr = (sonar.range_max_m - sonar.range_min_m) / img.bins;
-    double total = 0;
-    for (int k = 0; k < img.bins; ++k) {
-        const double weight = sonar.range_min_m + (k + 0.5) * dr; // the fan's area grows with range
-        for (int b = 0; b < img.beams; ++b)
-            if (const float v = img.level_db[size_t(k) * img.beams + b]; std::isfinite(v)) {
-                hist[size_t(std::min(double(kBins - 1), (v - lo) / width))] += weight;
-                total += weight;
-            }
-    }
-    auto percentile = [&](double p) {
-        const double want = p * total;
-        double below = 0;
-        for (int i = 0; i < kBins; ++i) {
-            if (below + hist[size_t(i)] >= want && hist[size_t(i)] > 0)
-                return lo + width * (i + (want - below) / hist[size_t(i)]);
-            below += hist[size_t(i)];
-        }
-        return double(hi);
-    };
-    DisplayParams out = d;
-    out.hi_db = percentile(0.995);
-    out.lo_db = std::max(percentile(0.05), out.hi_db - kAutoDisplaySpanDb);
-    if (out.hi_db < out.lo_db + 1) {
-        const double mid = 0.5 * (out.lo_db + out.hi_db);
-        out.lo_db = mid - 0.5, out.hi_db = mid + 0.5;
-    }
-    return out;
-}
-
-Image8 polar_gray_image(const PolarImage& img, const DisplayParams& d) {
-    Image8 out;
-    out.width = img.beams, out.height = img.bins, out.channels = 1;
-    out.pixels.resize(size_t(img.beams) * img.bins);
-    for (int b = 0; b < img.bins; ++b)
-        for (int i = 0; i < img.beams; ++i)
-            out.pixels[size_t(img.bins - 1 - b) * img.beams + i] =
-                std::uint8_t(std::lround(gray_level(img.at(b, i), d.lo_db, d.hi_db)));
-    return out;
-}
 
 namespace {
 
@@ -163,54 +64,41 @@ __attribute__((target("avx2"))) void fan_pixels8_avx2(const float* gray, std::pt
 
 } // namespace
 
-int default_sector_height(const SonarParams& s) {
-    int h = std::clamp(s.range_bins, 256, 2048);
-    // Width per height of the layout (see SectorLayout): 2 r_max sin(half) / (r_max - r_min cos(half)).
-    const double half = deg2rad(s.azimuth_fov_deg / 2);
-    const double ratio =
-        2 * s.range_max_m * std::sin(half) / (s.range_max_m - s.range_min_m * std::cos(half));
-    if (std::ceil(h * ratio) > kMaxSectorWidth) h = std::max(16, int(std::floor(kMaxSectorWidth / ratio)));
-    return h;
-}
-
-SectorLayout::SectorLayout(const SonarParams& s, int height_px) : s_(s) {
-    const double half = deg2rad(s.azimuth_fov_deg / 2);
-    y0_m_ = s.range_min_m * std::cos(half);
-    height_ = std::max(16, height_px);
-    m_per_px_ = (s.range_max_m - y0_m_) / height_;
-    width_ = std::max(16, int(std::ceil(2 * s.range_max_m * std::sin(half) / m_per_px_)));
-}
+SectorLayout::SectorLayout(std::shared_ptr<const SonarGrid> grid, int height_px)
+    : grid_(std::move(grid)), fan_(grid_->fan_layout(height_px)) {}
 
 bool SectorLayout::pixel_to_polar(double px, double py, double& r, double& a_deg) const {
-    const double x = (px - width_ / 2.0) * m_per_px_, y = (height_ - py) * m_per_px_ + y0_m_;
+    const double x = (px - fan_.width_px / 2.0) * fan_.m_per_px,
+                 y = (fan_.height_px - py) * fan_.m_per_px + fan_.y0_m;
     r = std::hypot(x, y);
     a_deg = rad2deg(std::atan2(-x, y));
-    return r >= s_.range_min_m && r < s_.range_max_m && std::abs(a_deg) <= s_.azimuth_fov_deg / 2;
+    return grid_->inside(r, a_deg);
 }
 
 void SectorLayout::polar_to_pixel(double r, double a_deg, double& px, double& py) const {
     const double a = deg2rad(a_deg);
-    px = width_ / 2.0 - r * std::sin(a) / m_per_px_;
-    py = height_ - (r * std::cos(a) - y0_m_) / m_per_px_;
+    px = fan_.width_px / 2.0 - r * std::sin(a) / fan_.m_per_px;
+    py = fan_.height_px - (r * std::cos(a) - fan_.y0_m) / fan_.m_per_px;
 }
 
 void SectorLayout::polar_to_index(double r, double a_deg, double& bin, double& beam) const {
-    bin = (r - s_.range_min_m) / ((s_.range_max_m - s_.range_min_m) / s_.range_bins) - 0.5;
-    beam = (s_.azimuth_fov_deg / 2 - a_deg) / (s_.azimuth_fov_deg / s_.beams) - 0.5;
+    bin = (r - grid_->range_min_m) / grid_->bin_m - 0.5;
+    beam = grid_->beam_index_of_azimuth_deg(a_deg);
 }
 
-SectorResampler::SectorResampler(const SonarParams& s, int height_px)
-    : sonar_(s), height_px_(height_px), layout_(s, height_px > 0 ? height_px : default_sector_height(s)) {
-    const int W = layout_.width(), H = layout_.height(), K = s.range_bins, N = s.beams;
-    const double m = layout_.metres_per_pixel(), half = deg2rad(s.azimuth_fov_deg / 2);
-    // SectorLayout::polar_to_index with its divisors computed once (the same operations, the same doubles).
-    const double dr = (s.range_max_m - s.range_min_m) / K, da = s.azimuth_fov_deg / N;
-    const double r0 = s.range_min_m, a0 = s.azimuth_fov_deg / 2;
+SectorResampler::SectorResampler(std::shared_ptr<const SonarGrid> grid, int height_px)
+    : grid_(std::move(grid)), height_px_(height_px),
+      layout_(grid_, height_px > 0 ? height_px : grid_->default_fan_height_px()) {
+    const SonarGrid& g = *grid_;
+    const int W = layout_.width(), H = layout_.height(), K = g.bins, N = g.beams;
+    const double m = layout_.metres_per_pixel(), half = g.fan_half_rad;
+    const double dr = g.bin_m, r0 = g.range_min_m, y0 = g.fan_layout(H).y0_m, r_max = g.range_max_m;
     // x >= 0: x * 2^15 + 1/2 is exact, so its floor is std::lround(x * 2^15) (no library call).
     auto weight = [](double x) { return std::uint16_t(x * kWeightOne + 0.5); };
     // `bin` is (r - r0) / dr - 0.5, the same for a pixel and its mirror image.
-    auto tap = [=](double bin, double a) {
-        const double fb = std::clamp(bin, 0.0, K - 1.0), fi = std::clamp((a0 - a) / da - 0.5, 0.0, N - 1.0);
+    auto tap = [&g, K, N, weight](double bin, double a) {
+        const double fb = std::clamp(bin, 0.0, K - 1.0),
+                     fi = std::clamp(g.beam_index_of_azimuth_deg(a), 0.0, N - 1.0);
         const int b0 = std::min(int(fb), K - 1), i0 = std::min(int(fi), N - 1);
         return Tap{b0 * (N + 1) + i0, weight(fb - b0), weight(fi - i0)};
     };
@@ -224,19 +112,22 @@ SectorResampler::SectorResampler(const SonarParams& s, int height_px)
         struct Inside {
             int px;
             double bin, a;
+            bool port, starboard; ///< the pixel, and its mirror image, lie in the fan
         };
         std::vector<Inside> left;
         for (int py = rows.begin(); py < rows.end(); ++py) {
-            const double y = (H - (py + 0.5)) * m + s.range_min_m * std::cos(half); // as in SectorLayout
-            if (y > s.range_max_m + m || (half < kPi / 2 && y < -m)) continue;
-            double x_max = std::sqrt(std::max(0.0, s.range_max_m * s.range_max_m - y * y));
+            const double y = (H - (py + 0.5)) * m + y0; // as in SectorLayout
+            if (y > r_max + m || (half < kPi / 2 && y < -m)) continue;
+            double x_max = std::sqrt(std::max(0.0, r_max * r_max - y * y));
             if (half < kPi / 2) x_max = std::min(x_max, std::max(0.0, y) * std::tan(half));
             const int px_begin = std::max(0, int(std::floor(W / 2.0 - 0.5 - x_max / m)) - 2);
             left.clear();
             double r, a;
-            for (int px = px_begin; px < (W + 1) / 2; ++px)
-                if (layout_.pixel_to_polar(px + 0.5, py + 0.5, r, a))
-                    left.push_back({px, (r - r0) / dr - 0.5, a});
+            for (int px = px_begin; px < (W + 1) / 2; ++px) {
+                const bool port = layout_.pixel_to_polar(px + 0.5, py + 0.5, r, a),
+                           starboard = g.inside(r, -a);
+                if (port || starboard) left.push_back({px, (r - r0) / dr - 0.5, a, port, starboard});
+            }
             std::vector<Tap>& taps = row_taps[size_t(py)];
             std::vector<Run>& runs = row_runs[size_t(py)];
             auto add = [&](int px, const Tap& t) {
@@ -246,9 +137,10 @@ SectorResampler::SectorResampler(const SonarParams& s, int height_px)
                 taps.push_back(t);
             };
             taps.reserve(2 * left.size());
-            for (const Inside& p : left) add(p.px, tap(p.bin, p.a));
+            for (const Inside& p : left)
+                if (p.port) add(p.px, tap(p.bin, p.a));
             for (auto p = left.rbegin(); p != left.rend(); ++p)
-                if (W - 1 - p->px != p->px) add(W - 1 - p->px, tap(p->bin, -p->a));
+                if (p->starboard && W - 1 - p->px != p->px) add(W - 1 - p->px, tap(p->bin, -p->a));
         }
     });
     row_runs_.assign(size_t(H) + 1, 0);
@@ -273,15 +165,9 @@ SectorResampler::SectorResampler(const SonarParams& s, int height_px)
     });
 }
 
-bool SectorResampler::matches(const SonarParams& s, int height_px) const {
-    return height_px == height_px_ && s.beams == sonar_.beams && s.range_bins == sonar_.range_bins &&
-           s.azimuth_fov_deg == sonar_.azimuth_fov_deg && s.range_min_m == sonar_.range_min_m &&
-           s.range_max_m == sonar_.range_max_m;
-}
-
 Image8 SectorResampler::apply(const PolarImage& img, const DisplayParams& d, Kernel kernel) const {
     const int K = img.bins, N = img.beams;
-    if (K != sonar_.range_bins || N != sonar_.beams)
+    if (K != grid_->bins || N != grid_->beams)
         throw std::invalid_argument("SectorResampler: the image is not of the sonar it was built for");
     // Gray level of every sample once, padded with a copy of the last bin and of the last beam.
     const double lo = d.lo_db, span = d.hi_db - d.lo_db;

@@ -1,0 +1,23 @@
+// The display range an image is shown with (display.auto).
+#pragma once
+#include "core/scene/sonar_grid.hpp"
+#include "core/display/polar_image.hpp"
+#include "core/shading/shade.hpp"
+
+namespace sonarsim {
+
+/// The display range an image is shown with: `display` itself, or with display.auto its lo/hi replaced by
+/// the 5th and 99.5th percentiles of the image's finite levels as the fan shows them (each sample weighted
+/// by its range, as the fan's area is; a histogram of 4096 bins, interpolated), at most kAutoDisplaySpanDb
+/// and at least 1 dB apart. An image with no finite level keeps lo_db and hi_db.
+DisplayParams effective_display(const PolarImage& img, const DisplayParams& display, const SonarGrid& grid);
+inline DisplayParams effective_display(const PolarImage& img, const DisplayParams& display,
+                                       const SonarParams& sonar) {
+    return effective_display(img, display, *sonar_grid(sonar));
+}
+
+/// Widest automatic display range [dB]: a scene whose echoes stand 100 dB above its noise still shows the
+/// texture of its echoes (speckle spans about 20 dB).
+constexpr double kAutoDisplaySpanDb = 50;
+
+} // namespace sonarsim
