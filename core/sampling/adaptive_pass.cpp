@@ -184,11 +184,52 @@ std::uint64_t Sampler::cells_of(const Column& c, bool coarse, double da, std::ve
     return rays;
 }
 
-TraceResult trace_pass(Sampler& sp, int M0, TraceResult::ErrorEstimate& est) {
+/// The base grid's own error, estimated as the refined image's is (against its sibling triples merged, on
+/// every stride-th beam): the error that refinement, which works only at discontinuities, starts from.
+TraceResult::ErrorEstimate base_error(const Sampler& sp, const Beams& beams, int stride) {
+    const SceneDesc& s = sp.s;
+    const int N = s.sonar.beams, sampled = (N + stride - 1) / stride;
+    TraceResult fine, coarse;
+    fine.beams = coarse.beams = sampled;
+    fine.cells.resize(size_t(sampled)), coarse.cells.resize(size_t(sampled));
+    tbb::parallel_for(0, sampled, [&](int k) {
+        std::vector<GhostCell> ghosts; // base_error is not used with multipath
+        for (const auto& c : beams[size_t(k * stride)]) {
+            sp.cells_of(c, false, c.da, fine.cells[size_t(k)], ghosts);
+            sp.cells_of(c, true, c.da, coarse.cells[size_t(k)], ghosts);
+        }
+    });
+    SceneDesc sampled_scene = s;
+    sampled_scene.sonar.beams = sampled;
+    const ImageError e = compare_images(shade(coarse, sampled_scene), shade(fine, sampled_scene));
+    TraceResult::ErrorEstimate est;
+    est.valid = true;
+    est.rel_l1 = e.rel_l1 / 2, est.median_abs_db = e.median_abs_db / 2, est.p95_abs_db = e.p95_abs_db / 2;
+    return est;
+}
+
+TraceResult trace_pass(Sampler& sp, int M0, TraceResult::ErrorEstimate& est, bool may_skip, bool& skipped) {
+    skipped = false;
     const SceneDesc& s = sp.s;
     const int N = s.sonar.beams;
     sp.set_base_grid(M0);
     Beams beams = trace_base_grid(sp, M0);
+    // A base grid whose own error is kSkipFactor x the tolerance or more is left unrefined when a denser
+    // one follows: refinement fixes edges, not the error of every smooth cell, and the denser grid's
+    // refinement would redo it.
+    if (may_skip && !sp.control.preview && !sp.multipath && M0 >= 9) {
+        const int stride = N >= 8 * kEstimateStride ? kEstimateStride : 1;
+        const TraceResult::ErrorEstimate base = base_error(sp, beams, stride);
+        if (base.rel_l1 > kSkipFactor * s.sampling.tolerance_rel_l1 ||
+            base.median_abs_db > kSkipFactor * s.sampling.tolerance_db) {
+            est = base;
+            skipped = true;
+            TraceResult out;
+            for (auto& b : beams)
+                for (auto& c : b) out.rays_traced += c.rays;
+            return out;
+        }
+    }
     set_base_image(sp, beams);
     tbb::parallel_for(0, N, [&](int i) {
         for (auto& c : beams[size_t(i)]) sp.refine_column(c, M0);

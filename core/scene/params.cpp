@@ -302,6 +302,10 @@ std::vector<ParamSpec> build_scene_params() {
                        "adaptive: target median |dB error| over echoing bins, as the sampler estimates it; "
                        "it refines until met",
                        [](S s) -> double& { return s.sampling.tolerance_db; }));
+    t.push_back(number("sampling.tolerance_rel_l1", "", 0, 1, true, false, Stage::Trace,
+                       "adaptive: target relative L1 error of the linear image (0.01: 1 %), as the sampler "
+                       "estimates it; it refines until both this and tolerance_db are met",
+                       [](S s) -> double& { return s.sampling.tolerance_rel_l1; }));
     t.push_back(integer("sampling.max_rays", 1000, kMaxRaysPerImage, Stage::Trace,
                         "adaptive: budget of rays per image, refinement and passes included; when reached, "
                         "refinement stops and the metadata says so (about 300 bytes of memory per ray)",
