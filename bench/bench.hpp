@@ -56,7 +56,7 @@ int run_multipath_bench(const std::string& repo, int repeats);
 /// `sonarsim_bench devices`: every device preset at its own window over the terrain and the wreck: warm
 /// image, rays, error against a reference, the floor and the device's own frame interval, as a Markdown
 /// table.
-int run_devices_bench(const Paths& paths, int repeats);
+int run_devices_bench(const Paths& paths, int repeats, const std::vector<std::string>& only = {});
 
 /// Peak resident set size of this process so far [MB] (getrusage ru_maxrss).
 double self_peak_rss_mb();

@@ -362,6 +362,8 @@ int main(int argc, char** argv) {
         "Every device preset at its own window over the terrain and the wreck: warm image against the "
         "device's frame interval (median)");
     devices->add_option("--repeats", devices_repeats, "Repeats")->capture_default_str();
+    std::vector<std::string> devices_only;
+    devices->add_option("--only", devices_only, "Only these presets (default: every one)");
     CLI::App* report = app.add_subcommand("report", "Rewrite RESULTS.md and results.csv from a results.json");
     report->add_option("results_json", report_in)->required();
     report->add_option("--out", report_out, "Directory (default: the JSON's)");
@@ -385,7 +387,7 @@ int main(int argc, char** argv) {
         }
         if (*sensor) return run_sensor_bench(sensor_repeats);
         if (*multipath) return run_multipath_bench(o.paths.repo, multipath_repeats);
-        if (*devices) return run_devices_bench(o.paths, devices_repeats);
+        if (*devices) return run_devices_bench(o.paths, devices_repeats, devices_only);
         if (*terrain) {
             write_terrain_ply(terrain_out, grid);
             std::cout << "wrote " << terrain_out << " (" << terrain_triangles(grid) << " triangles)\n";

@@ -138,7 +138,8 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
             {"passes", est.passes},
             {"budget_reached", est.budget_reached},
             {"max_rays", s.sampling.max_rays},
-            {"tolerance_met", est.median_abs_db <= s.sampling.tolerance_db},
+            {"tolerance_met",
+             est.median_abs_db <= s.sampling.tolerance_db && est.rel_l1 <= s.sampling.tolerance_rel_l1},
             {"method",
              "half the difference to the same cells one refinement level coarser (bins echoing in both)"}};
     else

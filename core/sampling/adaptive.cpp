@@ -11,14 +11,33 @@ namespace {
 
 using adaptive::Sampler;
 
+/// Both targets: the estimated median |dB| (tolerance_db) and the estimated rel L1 (tolerance_rel_l1).
+bool tolerance_met(const SceneDesc& s, const TraceResult::ErrorEstimate& est) {
+    return est.median_abs_db <= s.sampling.tolerance_db && est.rel_l1 <= s.sampling.tolerance_rel_l1;
+}
+
+/// Rays of the base grid of the pass after one at M0.
+double next_base_rays(const SceneDesc& s, int M0) {
+    return double(M0) * 3 * s.sonar.beams * s.sampling.azimuth_rays;
+}
+
+/// Whether a pass at M0 can be followed by a denser one (passes left, the budget and the image's limit).
+bool next_pass_fits(const Sampler& sp, int pass, int M0) {
+    const double next_base = next_base_rays(sp.s, M0);
+    // What this pass refines comes out of the budget too: keep the next base grid's rays free.
+    return pass < adaptive::kMaxPasses && next_base <= kMaxRaysPerImage / 9 &&
+           double(sp.rays.load()) + double(M0) * sp.s.sonar.beams * sp.s.sampling.azimuth_rays + next_base <=
+               double(sp.s.sampling.max_rays);
+}
+
 /// Whether another pass (base grid M0 x 3) is not to be made; sets est.budget_reached when only the budget
 /// stops it.
 bool last_pass(const Sampler& sp, const TraceResult& out, TraceResult::ErrorEstimate& est, int pass, int M0) {
     const SceneDesc& s = sp.s;
     // A denser base grid must fit in what is left of the budget.
-    const double next_base = double(M0) * 3 * s.sonar.beams * s.sampling.azimuth_rays;
+    const double next_base = next_base_rays(s, M0);
     const bool over_budget = double(sp.rays.load()) + next_base > double(s.sampling.max_rays);
-    const bool met = est.median_abs_db <= s.sampling.tolerance_db;
+    const bool met = tolerance_met(s, est);
     if (!(out.preview || met || pass == adaptive::kMaxPasses || est.budget_reached ||
           next_base > kMaxRaysPerImage / 9 || over_budget))
         return false;
@@ -36,9 +55,18 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
     TraceResult out;
     for (int pass = 1;; ++pass) {
         TraceResult::ErrorEstimate est;
-        out = adaptive::trace_pass(sp, M0, est);
-        rays += out.rays_traced;
-        multipath_rays += out.multipath_rays;
+        bool skipped = false;
+        // Asked before the pass traces: it counts this pass's base grid and the next one's.
+        const bool may_skip = next_pass_fits(sp, pass, M0);
+        TraceResult r = adaptive::trace_pass(sp, M0, est, may_skip, skipped);
+        rays += r.rays_traced;
+        multipath_rays += r.multipath_rays;
+        sp.edge_azimuth_levels = 1; // passes after the first: see Sampler::edge_azimuth_levels
+        if (skipped) {              // the base grid alone was far off: a denser one, unrefined here
+            M0 *= 3;
+            continue;
+        }
+        out = std::move(r);
         est.passes = pass;
         est.budget_reached = sp.budget_hit.load();
         const bool done = last_pass(sp, out, est, pass, M0);

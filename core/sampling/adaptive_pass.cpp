@@ -120,17 +120,21 @@ void collect_cells(const Sampler& sp, Beams& beams, int stride, TraceResult& fin
     beams.shrink_to_fit();
 }
 
+/// The scene of `sampled` of its beams as an image of their own (shade() sums beam by beam, so a beam's image
+/// does not depend on the others; the image channel needs no beam angles, so they are even).
+SceneDesc sampled_beams_scene(const SceneDesc& s, int sampled) {
+    SceneDesc out = s;
+    out.sonar.beams = sampled;
+    out.sonar.beam_table = kUniformBeams;
+    return out;
+}
+
 /// The error of the fine image, estimated from its difference to the coarse cells' image on the sampled
 /// beams (every stride-th).
 TraceResult::ErrorEstimate estimate_error(const SceneDesc& s, const PolarImage& fine_image,
                                           const TraceResult& coarse, int stride) {
     const int sampled = coarse.beams;
-    // The sampled beams as an image of their own (shade() sums beam by beam, so a beam's image does not
-    // depend on the others).
-    SceneDesc sampled_scene = s;
-    sampled_scene.sonar.beams = sampled;
-    sampled_scene.sonar.beam_table =
-        kUniformBeams; // a sample of the beams: the image channel needs no angles
+    const SceneDesc sampled_scene = sampled_beams_scene(s, sampled);
     PolarImage fine_sampled;
     fine_sampled.bins = fine_image.bins, fine_sampled.beams = sampled;
     fine_sampled.level_db.resize(size_t(fine_image.bins) * size_t(sampled));
@@ -186,11 +190,51 @@ std::uint64_t Sampler::cells_of(const Column& c, bool coarse, double da, std::ve
     return rays;
 }
 
-TraceResult trace_pass(Sampler& sp, int M0, TraceResult::ErrorEstimate& est) {
+/// The base grid's own error, estimated as the refined image's is (against its sibling triples merged, on
+/// every stride-th beam): the error that refinement, which works only at discontinuities, starts from.
+TraceResult::ErrorEstimate base_error(const Sampler& sp, const Beams& beams, int stride) {
+    const SceneDesc& s = sp.s;
+    const int N = s.sonar.beams, sampled = (N + stride - 1) / stride;
+    TraceResult fine, coarse;
+    fine.beams = coarse.beams = sampled;
+    fine.cells.resize(size_t(sampled)), coarse.cells.resize(size_t(sampled));
+    tbb::parallel_for(0, sampled, [&](int k) {
+        std::vector<GhostCell> ghosts; // base_error is not used with multipath
+        for (const auto& c : beams[size_t(k * stride)]) {
+            sp.cells_of(c, false, c.da, fine.cells[size_t(k)], ghosts);
+            sp.cells_of(c, true, c.da, coarse.cells[size_t(k)], ghosts);
+        }
+    });
+    const SceneDesc sampled_scene = sampled_beams_scene(s, sampled);
+    const ImageError e = compare_images(shade(coarse, sampled_scene), shade(fine, sampled_scene));
+    TraceResult::ErrorEstimate est;
+    est.valid = true;
+    est.rel_l1 = e.rel_l1 / 2, est.median_abs_db = e.median_abs_db / 2, est.p95_abs_db = e.p95_abs_db / 2;
+    return est;
+}
+
+TraceResult trace_pass(Sampler& sp, int M0, TraceResult::ErrorEstimate& est, bool may_skip, bool& skipped) {
+    skipped = false;
     const SceneDesc& s = sp.s;
     const int N = s.sonar.beams;
     sp.set_base_grid(M0);
     Beams beams = trace_base_grid(sp, M0);
+    // A base grid whose own error is kSkipFactor x the tolerance or more is left unrefined when a denser
+    // one follows: refinement fixes edges, not the error of every smooth cell, and the denser grid's
+    // refinement would redo it.
+    if (may_skip && !sp.control.preview && !sp.multipath && M0 >= 9) {
+        const int stride = N >= 8 * kEstimateStride ? kEstimateStride : 1;
+        const TraceResult::ErrorEstimate base = base_error(sp, beams, stride);
+        if (base.rel_l1 > kSkipFactor * s.sampling.tolerance_rel_l1 ||
+            base.median_abs_db > kSkipFactor * s.sampling.tolerance_db) {
+            est = base;
+            skipped = true;
+            TraceResult out;
+            for (auto& b : beams)
+                for (auto& c : b) out.rays_traced += c.rays;
+            return out;
+        }
+    }
     set_base_image(sp, beams);
     tbb::parallel_for(0, N, [&](int i) {
         for (auto& c : beams[size_t(i)]) sp.refine_column(c, M0);

@@ -25,6 +25,9 @@ struct Sampler {
     RefineCriteria criteria;
     double phi; ///< the traced elevation aperture [rad]
     int elevation_levels, azimuth_levels;
+    /// Azimuth levels split where neighbouring columns disagree: kEdgeAzimuthLevels in the first pass, one
+    /// in a denser pass (its columns cost the denser grid's rays; a specular lobe still splits to the end).
+    int edge_azimuth_levels = kEdgeAzimuthLevels;
     mutable std::atomic<std::uint64_t> rays{0}; ///< rays traced or reserved in this image, all passes
     mutable std::atomic<bool> budget_hit{false};
     std::vector<Angle> base_angles; ///< the base grid's elevations (set_base_grid)
@@ -66,7 +69,10 @@ struct Sampler {
 };
 
 /// One pass at base grid M0 elevation rays: traces, refines, shades and (unless previewing) estimates the
-/// error against the image one level coarser.
-TraceResult trace_pass(Sampler& sampler, int M0, TraceResult::ErrorEstimate& est);
+/// error against the image one level coarser. With `may_skip` (a denser pass can follow), a base grid whose
+/// own estimated error is kSkipFactor x a tolerance or more is not refined: `skipped`, `est` is the base
+/// grid's, and the result holds no cells.
+TraceResult trace_pass(Sampler& sampler, int M0, TraceResult::ErrorEstimate& est, bool may_skip,
+                       bool& skipped);
 
 } // namespace sonarsim::adaptive

@@ -138,7 +138,9 @@ void Sampler::split_marked(Column& col, const Angle& a, size_t marked, int& next
 
 void Sampler::refine_column(Column& col, int M0) const {
     const Angle a(col.a);
-    const double de0 = phi / M0, de_min = de0 / std::pow(3.0, kElevationLevels) * 1.0001;
+    // The finest cell has the same width in every pass: a denser base grid (a later pass) refines fewer
+    // levels, so that its rays go to the cells the first pass left coarse, not deeper into its edges.
+    const double de_min = phi / s.sampling.elevation_rays / std::pow(3.0, kElevationLevels) * 1.0001;
     int next_group = M0 + 3; // above every base group id (j / 3, then one per cell of a partial triple)
     for (int level = 0; level < elevation_levels; ++level) {
         if (control.cancelled()) return;

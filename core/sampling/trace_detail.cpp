@@ -73,12 +73,23 @@ Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, 
     // The footprint lies on the face the ray hit, where the neighbouring rays land too: a smooth object's
     // shading normal changes how strongly it echoes (the incidence above), not where it is.
     const glm::dvec3& n = h.face_normal;
-    const double re0 = plane_range(f.origin, p, n, f.dir(a, e_lo));
-    const double re1 = plane_range(f.origin, p, n, f.dir(a, e_hi));
-    const double ra0 = plane_range(f.origin, p, n, f.dir(a_lo, e));
-    const double ra1 = plane_range(f.origin, p, n, f.dir(a_hi, e));
-    // An edge that does not meet the plane (beyond its horizon): mirror the other edge about r.
-    auto edge = [r](double x, double other) { return float(x > 0 ? x : (other > 0 ? 2 * r - other : r)); };
+    auto edge_range = [&](const glm::dvec3& d) { return plane_range(f.origin, p, n, d); };
+    const double re0 = edge_range(f.dir(a, e_lo));
+    const double re1 = edge_range(f.dir(a, e_hi));
+    const double ra0 = edge_range(f.dir(a_lo, e));
+    const double ra1 = edge_range(f.dir(a_hi, e));
+    // An edge that does not meet the plane (beyond its horizon): mirror the other edge about r. An edge ray
+    // close to the plane's horizon meets it far away (the range grows as 1 / (n.d), without bound): the
+    // facet does not reach that far, and the echo spread there would land in bins no surface crosses (a
+    // cell 7 m away at grazing incidence spread from 4 to 19 m). Such an edge keeps at most kMaxAsymmetry
+    // times the other edge's offset from r (on a plane away from its horizon the two differ by a few %).
+    constexpr double kMaxAsymmetry = 2;
+    auto edge = [r](double x, double other) {
+        if (!(x > 0)) return float(other > 0 ? 2 * r - other : r);
+        if (!(other > 0)) return float(x);
+        const double lim = kMaxAsymmetry * std::abs(other - r);
+        return float(r + std::clamp(x - r, -lim, lim));
+    };
     c.range_e_lo_m = edge(re0, re1), c.range_e_hi_m = edge(re1, re0);
     c.range_a_lo_m = edge(ra0, ra1), c.range_a_hi_m = edge(ra1, ra0);
     c.material = h.material;

@@ -88,9 +88,10 @@ struct SamplingParams {
     NormalSource normals = NormalSource::Mesh;
     RayPlacement placement = RayPlacement::Adaptive;
     EchoBinning binning = EchoBinning::Footprint;
-    double tolerance_db = 0.1; ///< adaptive placement's target error [dB]
-    int max_rays = 2000000;    ///< adaptive placement's budget of rays per image, refinement included
-    int bounces = 0;           ///< specular reflections followed per leg (multipath); 0: direct paths only
+    double tolerance_db = 0.1;      ///< adaptive placement's target median |dB error|
+    double tolerance_rel_l1 = 0.01; ///< ... and its target relative L1 error of the linear image
+    int max_rays = 2000000;         ///< adaptive placement's budget of rays per image, refinement included
+    int bounces = 0; ///< specular reflections followed per leg (multipath); 0: direct paths only
 };
 
 enum class Colormap { Gray, Viridis, Copper, Hot };

@@ -39,6 +39,12 @@ std::vector<ParamSpec> sampling_rows() {
                        "it refines until met",
                        [](S s) -> double& { return s.sampling.tolerance_db; })
                     .with_log_slider(0.01, 3));
+    t.push_back(number("sampling.tolerance_rel_l1", "", 0, 1, true, false, Stage::Trace,
+                       "adaptive: target relative L1 error of the linear image (0.01: 1 %), as the sampler "
+                       "estimates it; it refines until both this and tolerance_db are met",
+                       [](S s) -> double& { return s.sampling.tolerance_rel_l1; })
+                    .with_log_slider(0.001, 0.2)
+                    .with_label("rel L1 tolerance"));
     t.push_back(integer("sampling.max_rays", 1000, kMaxRaysPerImage, Stage::Trace,
                         "adaptive: budget of rays per image, refinement and passes included; when reached, "
                         "refinement stops and the metadata says so (about 300 bytes of memory per ray)",
@@ -58,7 +64,7 @@ std::vector<ParamSpec> sampling_input_rows() {
         enumeration<RayPlacement>(
             "sampling.placement", {"grid", "adaptive"}, Stage::Trace,
             "Where rays go: grid: elevation_rays x azimuth_rays per beam; adaptive: that "
-            "grid refined until sampling.tolerance_db is met (needs footprint binning)",
+            "grid refined until sampling.tolerance_db and tolerance_rel_l1 are met (needs footprint binning)",
             [](S s) -> RayPlacement& { return s.sampling.placement; }),
         enumeration<EchoBinning>(
             "sampling.binning", {"point", "footprint"}, Stage::Trace,
