@@ -38,7 +38,8 @@ SceneDesc scene_from(const py::object& scene) {
     throw InputError("scene", "", "expected None, a scene file path or a dict of scene file keys");
 }
 
-/// An image for compare(): a path (.aris frame, .npy or fan .png), or a 2-D array of levels [dB] (range bins x beams).
+/// An image for compare(): a path (.aris frame, .npy or fan .png), or a 2-D array of levels [dB] (range bins
+/// x beams).
 PolarImage compare_input(const py::object& x, std::size_t frame, const std::string& fan, const char* name) {
     if (py::isinstance<py::str>(x) || py::hasattr(x, "__fspath__"))
         return load_compare_image(py::str(x).cast<std::string>(), frame, fan);
