@@ -17,17 +17,16 @@ bool tolerance_met(const SceneDesc& s, const TraceResult::ErrorEstimate& est) {
 }
 
 /// Rays of the base grid of the pass after one at M0.
-double next_base_rays(const SceneDesc& s, int M0) {
-    return double(M0) * 3 * s.sonar.beams * s.sampling.azimuth_rays;
+double next_base_rays(const Sampler& sp, int M0) {
+    return sp.base_rays(3 * M0);
 }
 
 /// Whether a pass at M0 can be followed by a denser one (passes left, the budget and the image's limit).
 bool next_pass_fits(const Sampler& sp, int pass, int M0) {
-    const double next_base = next_base_rays(sp.s, M0);
+    const double next_base = next_base_rays(sp, M0);
     // What this pass refines comes out of the budget too: keep the next base grid's rays free.
     return pass < adaptive::kMaxPasses && next_base <= kMaxRaysPerImage / 9 &&
-           double(sp.rays.load()) + double(M0) * sp.s.sonar.beams * sp.s.sampling.azimuth_rays + next_base <=
-               double(sp.s.sampling.max_rays);
+           double(sp.rays.load()) + sp.base_rays(M0) + next_base <= double(sp.s.sampling.max_rays);
 }
 
 /// Whether another pass (base grid M0 x 3) is not to be made; sets est.budget_reached when only the budget
@@ -35,7 +34,7 @@ bool next_pass_fits(const Sampler& sp, int pass, int M0) {
 bool last_pass(const Sampler& sp, const TraceResult& out, TraceResult::ErrorEstimate& est, int pass, int M0) {
     const SceneDesc& s = sp.s;
     // A denser base grid must fit in what is left of the budget.
-    const double next_base = next_base_rays(s, M0);
+    const double next_base = next_base_rays(sp, M0);
     const bool over_budget = double(sp.rays.load()) + next_base > double(s.sampling.max_rays);
     const bool met = tolerance_met(s, est);
     if (!(out.preview || met || pass == adaptive::kMaxPasses || est.budget_reached ||

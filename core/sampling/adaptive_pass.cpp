@@ -24,8 +24,9 @@ Beams trace_base_grid(const Sampler& sp, int M0) {
     const SonarGrid& grid = *sp.frame.grid;
     const int N = grid.beams, K0 = s.sampling.azimuth_rays;
     Beams beams(static_cast<size_t>(N));
-    sp.rays.fetch_add(std::uint64_t(N) * K0 * M0); // the base grid is always traced
+    sp.rays.fetch_add(std::uint64_t(sp.base_rays(M0))); // the base grid is always traced
     tbb::parallel_for(0, N, [&](int i) {
+        if (!sp.control.traces(i)) return; // left without columns, so without cells
         for (int k = 0; k < K0; ++k) {
             beams[size_t(i)].push_back(
                 sp.trace_column(column_azimuth(grid, i, k, K0), grid.beam_width_rad(i) / K0, M0, i, 0, M0));
@@ -75,12 +76,15 @@ void set_base_image(Sampler& sp, const Beams& beams) {
     });
 }
 
-/// The cells of the refined columns (fine) and, on every stride-th beam unless previewing, the same cells
+/// The cells of the refined columns (fine) and, on the `sampled` beams unless previewing, the same cells
 /// one level coarser: sibling column triples -> the middle column (3 da), and within each column sibling
 /// elevation triples -> the middle cell. Frees the columns.
-void collect_cells(const Sampler& sp, Beams& beams, int stride, TraceResult& fine, TraceResult& coarse) {
+void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& sampled_beams, TraceResult& fine,
+                   TraceResult& coarse) {
     const SceneDesc& s = sp.s;
-    const int N = s.sonar.beams, sampled = (N + stride - 1) / stride;
+    const int N = s.sonar.beams, sampled = int(sampled_beams.size());
+    std::vector<int> slot(static_cast<size_t>(N), -1); // beam -> its place among the sampled
+    for (int k = 0; k < sampled; ++k) slot[size_t(sampled_beams[size_t(k)])] = k;
     fine.beams = N, coarse.beams = sampled;
     coarse.cells.resize(size_t(sampled)), fine.cells.resize(size_t(N));
     std::vector<std::vector<GhostCell>> fine_ghosts(static_cast<size_t>(N)),
@@ -94,9 +98,9 @@ void collect_cells(const Sampler& sp, Beams& beams, int stride, TraceResult& fin
         for (auto& c : cols)
             ghost_rays[size_t(i)] +=
                 sp.cells_of(c, false, c.da, fine.cells[size_t(i)], fine_ghosts[size_t(i)]);
-        if (sp.control.preview || i % stride) return;
-        auto& coarse_cells = coarse.cells[size_t(i / stride)];
-        auto& coarse_ghost = coarse_ghosts[size_t(i / stride)];
+        if (sp.control.preview || slot[size_t(i)] < 0) return;
+        auto& coarse_cells = coarse.cells[size_t(slot[size_t(i)])];
+        auto& coarse_ghost = coarse_ghosts[size_t(slot[size_t(i)])];
         for (size_t k = 0; k < cols.size();) {
             if (k + 2 < cols.size() && cols[k].group == cols[k + 1].group &&
                 cols[k].group == cols[k + 2].group) {
@@ -132,7 +136,7 @@ SceneDesc sampled_beams_scene(const SceneDesc& s, int sampled) {
 /// The error of the fine image, estimated from its difference to the coarse cells' image on the sampled
 /// beams (every stride-th).
 TraceResult::ErrorEstimate estimate_error(const SceneDesc& s, const PolarImage& fine_image,
-                                          const TraceResult& coarse, int stride) {
+                                          const TraceResult& coarse, const std::vector<int>& sampled_beams) {
     const int sampled = coarse.beams;
     const SceneDesc sampled_scene = sampled_beams_scene(s, sampled);
     PolarImage fine_sampled;
@@ -140,7 +144,8 @@ TraceResult::ErrorEstimate estimate_error(const SceneDesc& s, const PolarImage& 
     fine_sampled.level_db.resize(size_t(fine_image.bins) * size_t(sampled));
     for (int b = 0; b < fine_image.bins; ++b)
         for (int i = 0; i < sampled; ++i)
-            fine_sampled.level_db[size_t(b) * size_t(sampled) + size_t(i)] = fine_image.at(b, i * stride);
+            fine_sampled.level_db[size_t(b) * size_t(sampled) + size_t(i)] =
+                fine_image.at(b, sampled_beams[size_t(i)]);
     const ImageError e = compare_images(shade(coarse, sampled_scene), fine_sampled);
     // The coarse image's error is taken as three times the fine one's (first order at discontinuities, the
     // slowest case): fine error ~ |fine - coarse| / 2.
@@ -192,15 +197,16 @@ std::uint64_t Sampler::cells_of(const Column& c, bool coarse, double da, std::ve
 
 /// The base grid's own error, estimated as the refined image's is (against its sibling triples merged, on
 /// every stride-th beam): the error that refinement, which works only at discontinuities, starts from.
-TraceResult::ErrorEstimate base_error(const Sampler& sp, const Beams& beams, int stride) {
+TraceResult::ErrorEstimate base_error(const Sampler& sp, const Beams& beams,
+                                      const std::vector<int>& sampled_beams) {
     const SceneDesc& s = sp.s;
-    const int N = s.sonar.beams, sampled = (N + stride - 1) / stride;
+    const int sampled = int(sampled_beams.size());
     TraceResult fine, coarse;
     fine.beams = coarse.beams = sampled;
     fine.cells.resize(size_t(sampled)), coarse.cells.resize(size_t(sampled));
     tbb::parallel_for(0, sampled, [&](int k) {
         std::vector<GhostCell> ghosts; // base_error is not used with multipath
-        for (const auto& c : beams[size_t(k * stride)]) {
+        for (const auto& c : beams[size_t(sampled_beams[size_t(k)])]) {
             sp.cells_of(c, false, c.da, fine.cells[size_t(k)], ghosts);
             sp.cells_of(c, true, c.da, coarse.cells[size_t(k)], ghosts);
         }
@@ -216,15 +222,15 @@ TraceResult::ErrorEstimate base_error(const Sampler& sp, const Beams& beams, int
 TraceResult trace_pass(Sampler& sp, int M0, TraceResult::ErrorEstimate& est, bool may_skip, bool& skipped) {
     skipped = false;
     const SceneDesc& s = sp.s;
-    const int N = s.sonar.beams;
+    const int N = s.sonar.beams, traced = int(sp.traced.size());
     sp.set_base_grid(M0);
     Beams beams = trace_base_grid(sp, M0);
     // A base grid whose own error is kSkipFactor x the tolerance or more is left unrefined when a denser
     // one follows: refinement fixes edges, not the error of every smooth cell, and the denser grid's
     // refinement would redo it.
     if (may_skip && !sp.control.preview && !sp.multipath && M0 >= 9) {
-        const int stride = N >= 8 * kEstimateStride ? kEstimateStride : 1;
-        const TraceResult::ErrorEstimate base = base_error(sp, beams, stride);
+        const int stride = traced >= 8 * kEstimateStride ? kEstimateStride : 1;
+        const TraceResult::ErrorEstimate base = base_error(sp, beams, sp.sampled_beams(stride));
         if (base.rel_l1 > kSkipFactor * s.sampling.tolerance_rel_l1 ||
             base.median_abs_db > kSkipFactor * s.sampling.tolerance_db) {
             est = base;
@@ -244,15 +250,16 @@ TraceResult trace_pass(Sampler& sp, int M0, TraceResult::ErrorEstimate& est, boo
     // The error estimate compares the image with the same cells one level coarser on every
     // kEstimateStride-th beam (all beams of narrow images): a sample of the image, at a quarter of the cost.
     // With multipath every beam: ghosts arrive in beams other than their rays'.
-    const int stride = N >= 8 * kEstimateStride && !sp.multipath ? kEstimateStride : 1;
+    const int stride = traced >= 8 * kEstimateStride && !sp.multipath ? kEstimateStride : 1;
+    const std::vector<int> sampled = sp.sampled_beams(stride);
     TraceResult fine, coarse;
-    collect_cells(sp, beams, stride, fine, coarse);
+    collect_cells(sp, beams, sampled, fine, coarse);
     // The accumulation pass on the fine cells: the image the estimate needs, with every channel the caller
     // asked for (TraceControl::channels), so that the caller need not shade these cells again.
     Channels channels = sp.control.channels;
     channels.image = true;
     auto shaded = std::make_shared<const Accumulation>(accumulate(fine, s, channels));
-    if (!sp.control.preview) est = estimate_error(s, *shaded->image, coarse, stride);
+    if (!sp.control.preview) est = estimate_error(s, *shaded->image, coarse, sampled);
     fine.shaded = std::move(shaded);
     fine.preview = sp.control.preview;
     return fine;

@@ -31,6 +31,7 @@ struct Sampler {
     mutable std::atomic<std::uint64_t> rays{0}; ///< rays traced or reserved in this image, all passes
     mutable std::atomic<bool> budget_hit{false};
     std::vector<Angle> base_angles; ///< the base grid's elevations (set_base_grid)
+    std::vector<int> traced;        ///< the beams traced (TraceControl::beams; all by default)
     /// Multipath: the nodes' continuations (Node::via), per thread, in blocks that never move.
     mutable tbb::enumerable_thread_specific<std::deque<Via>> via_store;
 
@@ -38,6 +39,15 @@ struct Sampler {
     void set_base_grid(int M0);
 
     Sampler(const SceneGeometry& geo, const SceneDesc& scene, const TraceControl& c);
+
+    /// Every stride-th traced beam: the sample the error estimates look at.
+    std::vector<int> sampled_beams(int stride) const {
+        std::vector<int> out;
+        for (size_t k = 0; k < traced.size(); k += size_t(stride)) out.push_back(traced[k]);
+        return out;
+    }
+    /// Rays of a base grid of M0 elevation rays over the traced beams.
+    double base_rays(int M0) const { return double(M0) * double(traced.size()) * s.sampling.azimuth_rays; }
 
     /// Takes n rays from the image's budget (sampling.max_rays); false (and nothing taken) when it is spent.
     bool reserve(std::uint64_t n) const;

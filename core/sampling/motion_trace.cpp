@@ -61,8 +61,12 @@ TraceResult trace_moving(const SceneGeometry& g, const SceneDesc& s, const Trace
         sub.sonar.range_max_m = slot.bin_end == K ? s.sonar.range_max_m : r0 + slot.bin_end * bin_m;
         sub.sonar.range_bins = slot.bin_end - slot.bin_begin;
         sub.sampling.max_rays = std::max(1000, int(s.sampling.max_rays / std::int64_t(slots.size())));
+        // Only this ping's beams (every P-th): the others are fired by other pings, from other poses.
+        std::vector<char> fired(size_t(N), 0);
+        for (int i = 0; i < N; ++i) fired[size_t(i)] = ping_of_beam(s.sonar, i) == slot.ping;
         TraceControl tc = control;
         tc.channels = {};
+        tc.beams = s.sonar.pings_per_frame > 1 ? &fired : nullptr;
         TraceResult r = trace(g, sub, tc);
 
         // Keep the echoes of this ping's beams that arrive in the slab (the first slab keeps everything

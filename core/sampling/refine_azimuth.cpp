@@ -34,13 +34,16 @@ void mark_neighbours(const Sampler& sp, const Beams& beams, int i, int lv, int M
                      std::vector<std::vector<char>>& m) {
     const auto& cols = beams[size_t(i)];
     const int N = int(beams.size());
+    if (cols.empty()) return; // a beam not traced (TraceControl::beams)
     for (size_t k = 0; k + 1 < cols.size(); ++k)
         if (lv == 0 || (cols[k].sibling && cols[k + 1].sibling && cols[k].group == cols[k + 1].group))
             mark_disagreement(sp, cols[k], cols[k + 1], m[k], m[k + 1]);
     if (lv != 0) return;
     std::vector<char> other(static_cast<size_t>(M0));
-    if (i > 0) mark_disagreement(sp, beams[size_t(i) - 1].back(), cols.front(), other, m.front());
-    if (i + 1 < N) mark_disagreement(sp, cols.back(), beams[size_t(i) + 1].front(), m.back(), other);
+    if (i > 0 && !beams[size_t(i) - 1].empty())
+        mark_disagreement(sp, beams[size_t(i) - 1].back(), cols.front(), other, m.front());
+    if (i + 1 < N && !beams[size_t(i) + 1].empty())
+        mark_disagreement(sp, cols.back(), beams[size_t(i) + 1].front(), m.back(), other);
 }
 
 /// Cells that need a narrower column on their own: a specular lobe or an absorption step across it.

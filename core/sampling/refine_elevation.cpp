@@ -10,7 +10,10 @@ namespace sonarsim::adaptive {
 Sampler::Sampler(const SceneGeometry& geo, const SceneDesc& scene, const TraceControl& c)
     : g(geo), s(scene), control(c), frame(scene), multipath(detail::multipath_active(scene)),
       mp(geo, scene, frame), criteria(scene, frame, multipath), phi(frame.elevation_weight.traced_fov_rad()),
-      elevation_levels(c.preview ? 0 : kElevationLevels), azimuth_levels(c.preview ? 0 : kAzimuthLevels) {}
+      elevation_levels(c.preview ? 0 : kElevationLevels), azimuth_levels(c.preview ? 0 : kAzimuthLevels) {
+    for (int i = 0; i < scene.sonar.beams; ++i)
+        if (c.traces(i)) traced.push_back(i);
+}
 
 void Sampler::set_base_grid(int M0) {
     for (auto& store : via_store) store.clear(); // the last pass's nodes are gone

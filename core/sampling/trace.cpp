@@ -72,7 +72,7 @@ TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s, const Trac
     std::vector<std::vector<GhostCell>> ghosts(multipath ? size_t(N) : 0);
     std::vector<std::uint64_t> ghost_rays(static_cast<size_t>(N), 0);
     tbb::parallel_for(0, N, [&](int i) {
-        if (control.cancelled()) return;
+        if (control.cancelled() || !control.traces(i)) return;
         auto& cells = out.cells[size_t(i)];
         const double a_beam_lo = grid.beam_starboard_edge_rad(i), da = grid.beam_width_rad(i) / K;
         for (int k = 0; k < K; ++k) {
@@ -98,7 +98,7 @@ TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s, const Trac
         }
     });
     if (control.cancelled()) throw TraceCancelled();
-    out.rays_traced = std::uint64_t(N) * K * M;
+    out.rays_traced = std::uint64_t(control.traced_beams(N)) * K * M;
     if (multipath) {
         out.ghosts = detail::gather_ghosts(ghosts, s);
         for (auto r : ghost_rays) out.multipath_rays += r;

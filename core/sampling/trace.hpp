@@ -86,7 +86,17 @@ struct TraceControl {
     /// The channels the caller will shade from the traced cells: a tracer that shades its cells anyway
     /// (adaptive) fills them in the same pass (TraceResult::shaded), so no cell's echo is evaluated twice.
     Channels channels;
+    /// The beams to trace (one flag per beam), or null for all: the others are left without cells (motion
+    /// during a frame traces each ping's beams from its own pose).
+    const std::vector<char>* beams = nullptr;
     bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
+    bool traces(int beam) const { return !beams || (*beams)[size_t(beam)]; }
+    /// How many of n beams are traced.
+    int traced_beams(int n) const {
+        int k = 0;
+        for (int i = 0; i < n; ++i) k += traces(i);
+        return k;
+    }
 };
 
 /// Thrown by trace() when TraceControl::cancel was set.

@@ -8,6 +8,7 @@
 #include "core/sampling/acquisition.hpp"
 #include "core/scene/params.hpp"
 #include "core/shading/physics.hpp"
+#include "core/shading/shade.hpp"
 #include "support.hpp"
 
 #include <catch2/catch.hpp>
@@ -195,4 +196,48 @@ TEST_CASE("pings per frame must divide the beams", "[motion]") {
     } catch (const InputError& e) {
         CHECK(std::string(e.what()).find("sonar.pings_per_frame") != std::string::npos);
     }
+}
+
+TEST_CASE("a trace of some beams leaves the others empty and traces the rest as a whole trace would",
+          "[motion]") {
+    SceneDesc s = pole_scene();
+    s.seafloor = Seafloor{};
+    s.sonar.pose.orientation_deg = {0, 20, 0}; // the floor in view
+    const SceneGeometry g(s);
+    std::vector<char> every_8th(size_t(s.sonar.beams), 0);
+    for (int i = 3; i < s.sonar.beams; i += 8) every_8th[size_t(i)] = 1;
+    TraceControl some;
+    some.beams = &every_8th;
+    // The grid: the same cells in the traced beams, none elsewhere, an eighth of the rays.
+    s.sampling.placement = RayPlacement::Grid;
+    const TraceResult all = trace(g, s), part = trace(g, s, some);
+    CHECK(part.rays_traced * 8 == all.rays_traced);
+    for (int i = 0; i < s.sonar.beams; ++i) {
+        INFO(i);
+        if (!every_8th[size_t(i)]) {
+            CHECK(part.cells[size_t(i)].empty());
+            continue;
+        }
+        auto ranges = [&](const TraceResult& t) {
+            std::vector<float> r;
+            for (const Cell& c : t.cells[size_t(i)]) r.push_back(c.range_m);
+            return r;
+        };
+        CHECK(ranges(part) == ranges(all));
+    }
+    // Adaptive: the traced beams' image within the tolerance of the whole trace's, the others empty.
+    s.sampling.placement = RayPlacement::Adaptive;
+    const TraceResult a_all = trace(g, s), a_part = trace(g, s, some);
+    CHECK(a_part.rays_traced < a_all.rays_traced / 4);
+    const PolarImage img_all = shade(a_all, s), img_part = shade(a_part, s);
+    std::vector<double> x, ref;
+    for (int k = 0; k < s.sonar.range_bins; ++k)
+        for (int i = 0; i < s.sonar.beams; ++i) {
+            if (!every_8th[size_t(i)]) {
+                if (!std::isinf(img_part.at(k, i))) FAIL("an untraced beam echoes");
+                continue;
+            }
+            x.push_back(lin(img_part.at(k, i))), ref.push_back(lin(img_all.at(k, i)));
+        }
+    CHECK(test::relative_l1(x, ref) < 0.02);
 }
