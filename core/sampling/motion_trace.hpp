@@ -1,7 +1,8 @@
 // Tracing a frame taken while the sonar moves (sampling/acquisition.hpp): each (ping, range slab) is traced
-// from the sonar's pose at its receive time with the placement the scene asks for, over that ping's beams only
-// (TraceControl::beams), and the frame keeps, per beam, the echoes of its own ping that arrive in each slab. An echo's range is half its two-way path: from
-// the transmit position to the scatterer and back to the receive position.
+// from the sonar's pose at its receive time with the placement the scene asks for, over that ping's beams
+// only (TraceControl::beams), and the frame keeps, per beam, the echoes of its own ping that arrive in each
+// slab. An echo's range is half its two-way path: from the transmit position to the scatterer and back to the
+// receive position.
 #pragma once
 #include "core/sampling/trace.hpp"
 
