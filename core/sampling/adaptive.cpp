@@ -1,78 +1,252 @@
 // Adaptive sampling: refine where the integrand of SONAR_MODEL.md is not smooth and the error that leaves
 // in the image is significant against the tolerance; leave the rest coarse (see core/ARCHITECTURE.md).
-// This file holds the passes: each pass (adaptive_pass.cpp) triples the base grid until the estimated error
-// meets sampling.tolerance_db, kMaxPasses are done or the ray budget would be exceeded.
+// This file holds the passes. The image's traced beams form groups (every kEstimateStride-th beam of a wide
+// image is a group's sample, whose error is estimated). A pass traces some groups at one base grid and
+// refines them (adaptive_pass.cpp); a group whose base grid alone misses the tolerances by a large share is
+// left for a denser one (x3) at once. When the estimate misses sampling.tolerance_db or tolerance_rel_l1,
+// the groups with the largest estimated shares of the error go to a denser base grid, largest first, until
+// the others would meet both; the rest keep their cells. Passes stop when the estimate meets both, at
+// kMaxPasses base grids or at the ray budget.
 #include "core/sampling/adaptive_sampler.hpp"
 
 #include "core/scene/params.hpp"
+#include "core/shading/accumulate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
 
 namespace sonarsim {
 namespace {
 
+using adaptive::BeamGroups;
+using adaptive::SampleError;
 using adaptive::Sampler;
+
+/// Base grids: elevation_rays x 3^level, level < kMaxPasses.
+constexpr int kMaxLevel = adaptive::kMaxPasses - 1;
+/// A group taken to a denser base grid is taken to keep this share of its error (first order).
+constexpr double kRefinedShare = 1.0 / 3;
+/// The groups taken after an estimate aim at this fraction of each tolerance, so that one more pass is
+/// rarely needed.
+constexpr double kAim = 0.75;
 
 /// Both targets: the estimated median |dB| (tolerance_db) and the estimated rel L1 (tolerance_rel_l1).
 bool tolerance_met(const SceneDesc& s, const TraceResult::ErrorEstimate& est) {
     return est.median_abs_db <= s.sampling.tolerance_db && est.rel_l1 <= s.sampling.tolerance_rel_l1;
 }
 
-/// Rays of the base grid of the pass after one at M0.
-double next_base_rays(const Sampler& sp, int M0) {
-    return sp.base_rays(3 * M0);
+struct Choice {
+    std::vector<char> take;    ///< per group
+    bool budget_short = false; ///< a group was wanted that the budget could not pay for
+};
+
+/// Groups to take to a denser base grid, the largest estimated shares of the error first, until what is
+/// left meets both tolerances times `aim` (a group taken keeps kRefinedShare of its share). errs[g]: group
+/// g's share (null: none); cost[g]: the rays its denser base grid takes (negative: not eligible).
+Choice choose(const SceneDesc& s, const std::vector<const SampleError*>& errs,
+              const std::vector<double>& cost, double budget_left, double aim) {
+    const size_t G = errs.size();
+    Choice c;
+    c.take.assign(G, 0);
+    double num = 0, den = 0, n = 0, excess = 0;
+    std::vector<double> ex(G, 0.0);
+    const float lim = float(2 * s.sampling.tolerance_db); // estimates are half the difference
+    for (size_t g = 0; g < G; ++g) {
+        if (!errs[g]) continue;
+        num += errs[g]->scale * errs[g]->num, den += errs[g]->den, n += double(errs[g]->diffs_db.size());
+        for (float d : errs[g]->diffs_db) ex[g] += errs[g]->scale * d > lim;
+        excess += ex[g];
+    }
+    if (!(den > 0)) return c;
+    const double num_aim = 2 * aim * s.sampling.tolerance_rel_l1 * den;
+    const double excess_aim = aim * 0.5 * n; // the median meets the tolerance below half the bins
+    auto take = [&](size_t g) {
+        if (c.take[g] || !errs[g] || cost[g] < 0) return;
+        if (cost[g] > budget_left) {
+            c.budget_short = true;
+            return;
+        }
+        budget_left -= cost[g];
+        c.take[g] = 1;
+        num -= (1 - kRefinedShare) * errs[g]->scale * errs[g]->num;
+        excess -= (1 - kRefinedShare) * ex[g];
+    };
+    std::vector<size_t> order(G);
+    std::iota(order.begin(), order.end(), size_t(0));
+    auto share = [&](size_t g) { return errs[g] ? errs[g]->scale * errs[g]->num : 0.0; };
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return share(a) > share(b); });
+    for (size_t g : order) {
+        if (num <= num_aim) break;
+        take(g);
+    }
+    if (excess > excess_aim) {
+        std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return ex[a] > ex[b]; });
+        for (size_t g : order) {
+            if (excess <= excess_aim) break;
+            take(g);
+        }
+    }
+    return c;
 }
 
-/// Whether a pass at M0 can be followed by a denser one (passes left, the budget and the image's limit).
-bool next_pass_fits(const Sampler& sp, int pass, int M0) {
-    const double next_base = next_base_rays(sp, M0);
-    // What this pass refines comes out of the budget too: keep the next base grid's rays free.
-    return pass < adaptive::kMaxPasses && next_base <= kMaxRaysPerImage / 9 &&
-           double(sp.rays.load()) + sp.base_rays(M0) + next_base <= double(sp.s.sampling.max_rays);
+/// The traced beams in groups of `stride` (adaptive::BeamGroups).
+BeamGroups make_groups(const std::vector<int>& traced, int stride) {
+    BeamGroups groups;
+    for (size_t k = 0; k < traced.size(); k += size_t(stride))
+        groups.emplace_back(traced.begin() + long(k),
+                            traced.begin() + long(std::min(traced.size(), k + size_t(stride))));
+    return groups;
 }
 
-/// Whether another pass (base grid M0 x 3) is not to be made; sets est.budget_reached when only the budget
-/// stops it.
-bool last_pass(const Sampler& sp, const TraceResult& out, TraceResult::ErrorEstimate& est, int pass, int M0) {
-    const SceneDesc& s = sp.s;
-    // A denser base grid must fit in what is left of the budget.
-    const double next_base = next_base_rays(sp, M0);
-    const bool over_budget = double(sp.rays.load()) + next_base > double(s.sampling.max_rays);
-    const bool met = tolerance_met(s, est);
-    if (!(out.preview || met || pass == adaptive::kMaxPasses || est.budget_reached ||
-          next_base > kMaxRaysPerImage / 9 || over_budget))
-        return false;
-    if (!out.preview && !met && !est.budget_reached && pass < adaptive::kMaxPasses && over_budget)
-        est.budget_reached = true; // the next pass would not fit
-    return true;
+/// Columns `beams` of `img` as an image of their own (-1: an empty column).
+PolarImage columns_of(const PolarImage& img, const std::vector<int>& beams) {
+    PolarImage out;
+    out.bins = img.bins, out.beams = int(beams.size());
+    out.level_db.assign(size_t(out.bins) * beams.size(), -std::numeric_limits<float>::infinity());
+    for (int b = 0; b < img.bins; ++b)
+        for (size_t k = 0; k < beams.size(); ++k)
+            if (beams[k] >= 0) out.level_db[size_t(b) * beams.size() + k] = img.at(b, beams[k]);
+    return out;
+}
+
+/// The image of `beams` (-1: none) from the cells in `cells`, as an image of their own.
+PolarImage shade_beams(const SceneDesc& s, std::vector<std::vector<Cell>>& cells,
+                       const std::vector<int>& beams) {
+    TraceResult sub;
+    sub.beams = int(beams.size());
+    sub.cells.resize(beams.size());
+    for (size_t k = 0; k < beams.size(); ++k)
+        if (beams[k] >= 0) sub.cells[k] = std::move(cells[size_t(beams[k])]);
+    PolarImage img = shade(sub, adaptive::sampled_beams_scene(s, sub.beams));
+    for (size_t k = 0; k < beams.size(); ++k)
+        if (beams[k] >= 0) cells[size_t(beams[k])] = std::move(sub.cells[k]);
+    return img;
 }
 
 } // namespace
 
 TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control) {
     Sampler sp(g, s, control);
-    std::uint64_t rays = 0, multipath_rays = 0;
-    int M0 = s.sampling.elevation_rays;
+    const int N = s.sonar.beams, T = int(sp.traced.size());
+    const int stride = T >= 8 * adaptive::kEstimateStride && !sp.multipath ? adaptive::kEstimateStride : 1;
+    const BeamGroups groups = make_groups(sp.traced, stride);
+    const size_t G = groups.size();
+    std::vector<int> level(G, 0);
+    std::vector<char> pending(G, 1), has_err(G, 0);
+    std::vector<SampleError> err(G);
+    std::vector<double> prev_num(G, 0.0); // a group's last |fine - coarse| sum, at the level below
     TraceResult out;
+    out.beams = N;
+    out.cells.resize(size_t(N));
+    out.preview = control.preview;
+    std::uint64_t rays = 0, multipath_rays = 0;
+    Channels channels = control.channels;
+    channels.image = true;
+    std::shared_ptr<const Accumulation> shaded; // the whole image, when the first pass traced all of it
+    TraceResult::ErrorEstimate est;
+    adaptive::Beams carried; // bumped groups' base grids, split into the next pass's
+    auto M0_of = [&](int L) { return s.sampling.elevation_rays * int(std::lround(std::pow(3.0, L))); };
+    // A denser base grid exists (levels, and the image's limit on rays).
+    auto denser = [&](int L) { return L < kMaxLevel && sp.base_rays(M0_of(L + 1)) <= kMaxRaysPerImage / 9; };
+    auto budget_left = [&] { return double(s.sampling.max_rays) - double(sp.rays.load()); };
+    // The rays of group g's base grid one level denser (negative: none).
+    auto next_cost = [&](size_t g) {
+        return denser(level[g]) ? sp.base_rays(M0_of(level[g] + 1), int(groups[g].size())) : -1.0;
+    };
+    int passes = 0; // base grids traced (trace_pass calls)
     for (int pass = 1;; ++pass) {
-        TraceResult::ErrorEstimate est;
-        bool skipped = false;
-        // Asked before the pass traces: it counts this pass's base grid and the next one's.
-        const bool may_skip = next_pass_fits(sp, pass, M0);
-        TraceResult r = adaptive::trace_pass(sp, M0, est, may_skip, skipped);
-        rays += r.rays_traced;
-        multipath_rays += r.multipath_rays;
-        sp.edge_azimuth_levels = 1; // passes after the first: see Sampler::edge_azimuth_levels
-        if (skipped) {              // the base grid alone was far off: a denser one, unrefined here
-            M0 *= 3;
-            continue;
+        for (int L = 0; L <= kMaxLevel; ++L) {
+            std::vector<size_t> idx; // the groups of this base grid
+            BeamGroups sel;
+            for (size_t k = 0; k < G; ++k)
+                if (pending[k] && level[k] == L) idx.push_back(k), sel.push_back(groups[k]);
+            if (sel.empty()) continue;
+            sp.edge_azimuth_levels = L == 0 ? adaptive::kEdgeAzimuthLevels : 1;
+            // A base grid far off goes denser at once, the largest shares first (the others' shares as last
+            // estimated), unrefined here.
+            adaptive::BumpRule bump = [&](const std::vector<SampleError>& base) {
+                std::vector<const SampleError*> e(G, nullptr);
+                std::vector<double> cost(G, -1.0);
+                for (size_t k = 0; k < G; ++k)
+                    if (has_err[k] && !(pending[k] && level[k] == L)) e[k] = &err[k];
+                for (size_t k = 0; k < idx.size(); ++k)
+                    e[idx[k]] = &base[k], cost[idx[k]] = next_cost(idx[k]);
+                const Choice c = choose(s, e, cost, budget_left(), adaptive::kSkipFactor);
+                std::vector<char> out_k(idx.size(), 0);
+                for (size_t k = 0; k < idx.size(); ++k)
+                    if ((out_k[k] = c.take[idx[k]])) prev_num[idx[k]] = base[k].num;
+                return out_k;
+            };
+            const bool may_bump = denser(L) && !control.preview && !sp.multipath;
+            ++passes;
+            adaptive::PassCells pc =
+                adaptive::trace_pass(sp, M0_of(L), sel, may_bump ? &bump : nullptr, &carried);
+            rays += pc.fine.rays_traced;
+            multipath_rays += pc.fine.multipath_rays;
+            if (sp.multipath) out.ghosts = std::move(pc.fine.ghosts);
+            std::vector<int> samples(idx.size(), -1); // refined groups' sample beams, by slot
+            bool all = pass == 1 && idx.size() == G;
+            for (size_t k = 0; k < idx.size(); ++k) {
+                if (pc.bumped[k]) {
+                    level[idx[k]] = L + 1, all = false;
+                    continue;
+                }
+                pending[idx[k]] = 0;
+                for (int i : sel[k]) out.cells[size_t(i)] = std::move(pc.fine.cells[size_t(i)]);
+                samples[k] = sel[k].front();
+            }
+            if (control.preview) continue;
+            // The estimate's shares of the groups refined here: their sample beams, fine and coarse.
+            PolarImage fine_img;
+            if (all) { // the whole image in one pass: shade it once, for the estimate and the caller
+                shaded = std::make_shared<const Accumulation>(accumulate(out, s, channels));
+                fine_img = columns_of(*shaded->image, samples);
+            } else {
+                fine_img = shade_beams(s, out.cells, samples);
+            }
+            sp.set_ref_db(fine_img);
+            const std::vector<SampleError> shares = adaptive::sample_errors(
+                shade(pc.coarse, adaptive::sampled_beams_scene(s, int(idx.size()))), fine_img, sp.ref_db);
+            for (size_t k = 0; k < idx.size(); ++k) {
+                if (samples[k] < 0) continue;
+                SampleError& e = err[idx[k]];
+                e = shares[k], has_err[idx[k]] = 1;
+                // Richardson: the ratio of this level's difference to the last one's shows the order.
+                if (prev_num[idx[k]] > 0) {
+                    const double rho = std::clamp(e.num / prev_num[idx[k]], 1.0 / 9, 1.0 / 3);
+                    e.scale = 2 * rho / (1 - rho);
+                }
+            }
         }
-        out = std::move(r);
-        est.passes = pass;
-        est.budget_reached = sp.budget_hit.load();
-        const bool done = last_pass(sp, out, est, pass, M0);
-        out.error_estimate = est;
-        if (done) break;
-        M0 *= 3;
+        if (control.cancelled()) throw TraceCancelled();
+        if (control.preview) break;
+        if (std::find(pending.begin(), pending.end(), 1) != pending.end()) continue; // bumped groups
+        std::vector<const SampleError*> e(G);
+        for (size_t k = 0; k < G; ++k) e[k] = &err[k];
+        est = adaptive::combine_errors(e);
+        est.passes = passes;
+        if (tolerance_met(s, est)) break;
+        std::vector<double> cost(G);
+        for (size_t k = 0; k < G; ++k) cost[k] = next_cost(k);
+        Choice c = choose(s, e, cost, budget_left(), kAim);
+        // Multipath: every group or none (a pass's ghosts are the whole image's).
+        if (sp.multipath && std::find(c.take.begin(), c.take.end(), 1) != c.take.end())
+            for (size_t k = 0; k < G; ++k) c.take[k] = cost[k] >= 0;
+        bool any = false;
+        for (size_t k = 0; k < G; ++k)
+            if (c.take[k]) pending[k] = 1, ++level[k], prev_num[k] = err[k].num, any = true;
+        if (!any) {
+            est.budget_reached = c.budget_short;
+            break;
+        }
+        shaded.reset(); // the image changes
     }
+    est.budget_reached = est.budget_reached || sp.budget_hit.load();
+    if (!control.preview) out.error_estimate = est;
+    if (!shaded) shaded = std::make_shared<const Accumulation>(accumulate(out, s, channels));
+    out.shaded = std::move(shaded);
     out.rays_traced = rays;
     out.multipath_rays = multipath_rays;
     return out;

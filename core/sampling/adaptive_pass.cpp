@@ -18,15 +18,28 @@ double column_azimuth(const SonarGrid& grid, int i, int k, int K) {
     return grid.beam_port_edge_rad(i) - (k + 0.5) * grid.beam_width_rad(i) / K;
 }
 
-/// The base grid: azimuth_rays columns of M0 cells per beam, sibling triples grouped.
-Beams trace_base_grid(const Sampler& sp, int M0) {
+/// The base grid: azimuth_rays columns of M0 cells per beam, sibling triples grouped. A beam with columns
+/// in `carried` (its base grid at M0 / 3) keeps their rays: each cell splits in three.
+Beams trace_base_grid(const Sampler& sp, int M0, Beams* carried) {
     const SceneDesc& s = sp.s;
     const SonarGrid& grid = *sp.frame.grid;
     const int N = grid.beams, K0 = s.sampling.azimuth_rays;
     Beams beams(static_cast<size_t>(N));
-    sp.rays.fetch_add(std::uint64_t(sp.base_rays(M0))); // the base grid is always traced
+    auto kept = [&](int i) {
+        return carried && size_t(i) < carried->size() && !(*carried)[size_t(i)].empty();
+    };
+    double rays = 0; // the base grid is always traced
+    for (int i = 0; i < N; ++i)
+        if (sp.traces(i)) rays += kept(i) ? sp.base_rays(M0, 1) * 2 / 3 : sp.base_rays(M0, 1);
+    sp.rays.fetch_add(std::uint64_t(rays));
     tbb::parallel_for(0, N, [&](int i) {
-        if (!sp.control.traces(i)) return; // left without columns, so without cells
+        if (!sp.traces(i)) return; // left without columns, so without cells
+        if (kept(i)) {
+            beams[size_t(i)] = std::move((*carried)[size_t(i)]);
+            (*carried)[size_t(i)].clear();
+            for (auto& c : beams[size_t(i)]) sp.densify_column(c, M0);
+            return;
+        }
         for (int k = 0; k < K0; ++k) {
             beams[size_t(i)].push_back(
                 sp.trace_column(column_azimuth(grid, i, k, K0), grid.beam_width_rad(i) / K0, M0, i, 0, M0));
@@ -74,17 +87,28 @@ void set_base_image(Sampler& sp, const Beams& beams) {
     tbb::parallel_for(0, N, [&](int i) {
         base_echo(s, sp.criteria.bin_m(), beams[size_t(i)], base_db.data() + size_t(i) * size_t(K));
     });
+    double peak = -std::numeric_limits<double>::infinity(), cells = 0;
+    for (float v : base_db) peak = std::max(peak, double(v));
+    for (const auto& b : beams)
+        for (const auto& c : b) cells += double(c.nodes.size());
+    sp.criteria.cell_share_db = -std::numeric_limits<double>::infinity();
+    if (!std::isfinite(peak) || cells == 0) return;
+    double sum = 0;
+    for (float v : base_db) sum += std::exp(kLn10Over10 * (double(v) - peak));
+    sp.criteria.cell_share_db =
+        peak + 10 * std::log10(kCellShare * s.sampling.tolerance_rel_l1 * sum / cells);
 }
 
-/// The cells of the refined columns (fine) and, on the `sampled` beams unless previewing, the same cells
-/// one level coarser: sibling column triples -> the middle column (3 da), and within each column sibling
-/// elevation triples -> the middle cell. Frees the columns.
-void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& sampled_beams, TraceResult& fine,
+/// The cells of the refined columns (fine) and, on the `samples` beams (slot k: samples[k]; -1: none)
+/// unless previewing, the same cells one level coarser: sibling column triples -> the middle column
+/// (3 da), and within each column sibling elevation triples -> the middle cell. Frees the columns.
+void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samples, TraceResult& fine,
                    TraceResult& coarse) {
     const SceneDesc& s = sp.s;
-    const int N = s.sonar.beams, sampled = int(sampled_beams.size());
-    std::vector<int> slot(static_cast<size_t>(N), -1); // beam -> its place among the sampled
-    for (int k = 0; k < sampled; ++k) slot[size_t(sampled_beams[size_t(k)])] = k;
+    const int N = s.sonar.beams, sampled = int(samples.size());
+    std::vector<int> slot(static_cast<size_t>(N), -1); // beam -> its slot
+    for (int k = 0; k < sampled; ++k)
+        if (samples[size_t(k)] >= 0) slot[size_t(samples[size_t(k)])] = k;
     fine.beams = N, coarse.beams = sampled;
     coarse.cells.resize(size_t(sampled)), fine.cells.resize(size_t(N));
     std::vector<std::vector<GhostCell>> fine_ghosts(static_cast<size_t>(N)),
@@ -122,37 +146,6 @@ void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samp
         for (auto& c : b) fine.rays_traced += c.rays;
     beams.clear(); // the nodes are no longer needed: free them before shading
     beams.shrink_to_fit();
-}
-
-/// The scene of `sampled` of its beams as an image of their own (shade() sums beam by beam, so a beam's image
-/// does not depend on the others; the image channel needs no beam angles, so they are even).
-SceneDesc sampled_beams_scene(const SceneDesc& s, int sampled) {
-    SceneDesc out = s;
-    out.sonar.beams = sampled;
-    out.sonar.beam_table = kUniformBeams;
-    return out;
-}
-
-/// The error of the fine image, estimated from its difference to the coarse cells' image on the sampled
-/// beams (every stride-th).
-TraceResult::ErrorEstimate estimate_error(const SceneDesc& s, const PolarImage& fine_image,
-                                          const TraceResult& coarse, const std::vector<int>& sampled_beams) {
-    const int sampled = coarse.beams;
-    const SceneDesc sampled_scene = sampled_beams_scene(s, sampled);
-    PolarImage fine_sampled;
-    fine_sampled.bins = fine_image.bins, fine_sampled.beams = sampled;
-    fine_sampled.level_db.resize(size_t(fine_image.bins) * size_t(sampled));
-    for (int b = 0; b < fine_image.bins; ++b)
-        for (int i = 0; i < sampled; ++i)
-            fine_sampled.level_db[size_t(b) * size_t(sampled) + size_t(i)] =
-                fine_image.at(b, sampled_beams[size_t(i)]);
-    const ImageError e = compare_images(shade(coarse, sampled_scene), fine_sampled);
-    // The coarse image's error is taken as three times the fine one's (first order at discontinuities, the
-    // slowest case): fine error ~ |fine - coarse| / 2.
-    TraceResult::ErrorEstimate est;
-    est.valid = true;
-    est.rel_l1 = e.rel_l1 / 2, est.median_abs_db = e.median_abs_db / 2, est.p95_abs_db = e.p95_abs_db / 2;
-    return est;
 }
 
 } // namespace
@@ -195,50 +188,49 @@ std::uint64_t Sampler::cells_of(const Column& c, bool coarse, double da, std::ve
     return rays;
 }
 
-/// The base grid's own error, estimated as the refined image's is (against its sibling triples merged, on
-/// every stride-th beam): the error that refinement, which works only at discontinuities, starts from.
-TraceResult::ErrorEstimate base_error(const Sampler& sp, const Beams& beams,
-                                      const std::vector<int>& sampled_beams) {
+/// The base grid's own error on each group's sample beam, estimated as the refined image's is (against
+/// its sibling triples merged): the error that refinement, which works only at discontinuities, starts
+/// from.
+static std::vector<SampleError> base_errors(Sampler& sp, const Beams& beams, const BeamGroups& groups) {
     const SceneDesc& s = sp.s;
-    const int sampled = int(sampled_beams.size());
+    const int sampled = int(groups.size());
     TraceResult fine, coarse;
     fine.beams = coarse.beams = sampled;
     fine.cells.resize(size_t(sampled)), coarse.cells.resize(size_t(sampled));
     tbb::parallel_for(0, sampled, [&](int k) {
-        std::vector<GhostCell> ghosts; // base_error is not used with multipath
-        for (const auto& c : beams[size_t(sampled_beams[size_t(k)])]) {
+        std::vector<GhostCell> ghosts; // not used with multipath
+        for (const auto& c : beams[size_t(groups[size_t(k)].front())]) {
             sp.cells_of(c, false, c.da, fine.cells[size_t(k)], ghosts);
             sp.cells_of(c, true, c.da, coarse.cells[size_t(k)], ghosts);
         }
     });
     const SceneDesc sampled_scene = sampled_beams_scene(s, sampled);
-    const ImageError e = compare_images(shade(coarse, sampled_scene), shade(fine, sampled_scene));
-    TraceResult::ErrorEstimate est;
-    est.valid = true;
-    est.rel_l1 = e.rel_l1 / 2, est.median_abs_db = e.median_abs_db / 2, est.p95_abs_db = e.p95_abs_db / 2;
-    return est;
+    const PolarImage f = shade(fine, sampled_scene);
+    sp.set_ref_db(f);
+    return sample_errors(shade(coarse, sampled_scene), f, sp.ref_db);
 }
 
-TraceResult trace_pass(Sampler& sp, int M0, TraceResult::ErrorEstimate& est, bool may_skip, bool& skipped) {
-    skipped = false;
+PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRule* bump, Beams* carried) {
     const SceneDesc& s = sp.s;
-    const int N = s.sonar.beams, traced = int(sp.traced.size());
+    const int N = s.sonar.beams, G = int(groups.size());
+    sp.pass_beams.assign(size_t(N), 0);
+    for (const auto& grp : groups)
+        for (int i : grp) sp.pass_beams[size_t(i)] = 1;
     sp.set_base_grid(M0);
-    Beams beams = trace_base_grid(sp, M0);
-    // A base grid whose own error is kSkipFactor x the tolerance or more is left unrefined when a denser
-    // one follows: refinement fixes edges, not the error of every smooth cell, and the denser grid's
-    // refinement would redo it.
-    if (may_skip && !sp.control.preview && !sp.multipath && M0 >= 9) {
-        const int stride = traced >= 8 * kEstimateStride ? kEstimateStride : 1;
-        const TraceResult::ErrorEstimate base = base_error(sp, beams, sp.sampled_beams(stride));
-        if (base.rel_l1 > kSkipFactor * s.sampling.tolerance_rel_l1 ||
-            base.median_abs_db > kSkipFactor * s.sampling.tolerance_db) {
-            est = base;
-            skipped = true;
-            TraceResult out;
-            for (auto& b : beams)
-                for (auto& c : b) out.rays_traced += c.rays;
-            return out;
+    Beams beams = trace_base_grid(sp, M0, carried);
+    PassCells out;
+    out.bumped.assign(size_t(G), 0);
+    if (bump && !sp.control.preview && !sp.multipath && M0 >= 9) {
+        out.bumped = (*bump)(base_errors(sp, beams, groups));
+        for (int k = 0; k < G; ++k) {
+            if (!out.bumped[size_t(k)]) continue;
+            if (carried) carried->resize(size_t(N));
+            for (int i : groups[size_t(k)]) {
+                // To a denser base grid, unrefined here: its rays are kept when `carried` takes them.
+                if (carried) (*carried)[size_t(i)] = std::move(beams[size_t(i)]);
+                for (auto& c : beams[size_t(i)]) out.fine.rays_traced += c.rays;
+                beams[size_t(i)].clear();
+            }
         }
     }
     set_base_image(sp, beams);
@@ -247,22 +239,14 @@ TraceResult trace_pass(Sampler& sp, int M0, TraceResult::ErrorEstimate& est, boo
     });
     sp.refine_azimuth(beams, M0);
     if (sp.control.cancelled()) throw TraceCancelled();
-    // The error estimate compares the image with the same cells one level coarser on every
-    // kEstimateStride-th beam (all beams of narrow images): a sample of the image, at a quarter of the cost.
-    // With multipath every beam: ghosts arrive in beams other than their rays'.
-    const int stride = traced >= 8 * kEstimateStride && !sp.multipath ? kEstimateStride : 1;
-    const std::vector<int> sampled = sp.sampled_beams(stride);
-    TraceResult fine, coarse;
-    collect_cells(sp, beams, sampled, fine, coarse);
-    // The accumulation pass on the fine cells: the image the estimate needs, with every channel the caller
-    // asked for (TraceControl::channels), so that the caller need not shade these cells again.
-    Channels channels = sp.control.channels;
-    channels.image = true;
-    auto shaded = std::make_shared<const Accumulation>(accumulate(fine, s, channels));
-    if (!sp.control.preview) est = estimate_error(s, *shaded->image, coarse, sampled);
-    fine.shaded = std::move(shaded);
-    fine.preview = sp.control.preview;
-    return fine;
+    std::vector<int> samples(static_cast<size_t>(G), -1);
+    for (int k = 0; k < G; ++k)
+        if (!out.bumped[size_t(k)]) samples[size_t(k)] = groups[size_t(k)].front();
+    const std::uint64_t bumped_rays = out.fine.rays_traced;
+    collect_cells(sp, beams, samples, out.fine, out.coarse);
+    out.fine.rays_traced += bumped_rays;
+    out.fine.preview = sp.control.preview;
+    return out;
 }
 
 } // namespace sonarsim::adaptive

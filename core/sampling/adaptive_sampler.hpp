@@ -1,15 +1,19 @@
 // Adaptive sampling, internal: what one image's trace shares across its passes (the scene, the frame, the
 // criteria, the ray budget) and the steps of a pass, each in its own file:
 // refine_elevation.cpp (trace and refine a column), refine_azimuth.cpp (split columns where neighbours
-// disagree), adaptive_pass.cpp (one pass: base grid, refinement, cells, error estimate), adaptive.cpp (the
-// passes).
+// disagree), adaptive_pass.cpp (one pass over some groups of beams: base grid, refinement, cells),
+// adaptive_estimate.cpp (the error estimate's shares), adaptive.cpp (the passes, by priority).
 #pragma once
 #include "core/sampling/adaptive_node.hpp"
 #include "core/sampling/refine_criteria.hpp"
 
 #include <tbb/enumerable_thread_specific.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
+#include <functional>
+#include <limits>
 #include <deque>
 #include <cstdint>
 
@@ -32,6 +36,17 @@ struct Sampler {
     mutable std::atomic<bool> budget_hit{false};
     std::vector<Angle> base_angles; ///< the base grid's elevations (set_base_grid)
     std::vector<int> traced;        ///< the beams traced (TraceControl::beams; all by default)
+    /// The beams of the pass being traced (one flag per beam; a pass traces the groups it refines).
+    std::vector<char> pass_beams;
+    /// The level [dB] linear error sums are taken relative to (the first estimated image's peak; NaN before).
+    double ref_db = std::numeric_limits<double>::quiet_NaN();
+    /// Sets ref_db to img's peak when not yet set.
+    void set_ref_db(const PolarImage& img) {
+        if (!std::isnan(ref_db)) return;
+        double peak = -std::numeric_limits<double>::infinity();
+        for (float v : img.level_db) peak = std::max(peak, double(v));
+        if (std::isfinite(peak)) ref_db = peak;
+    }
     /// Multipath: the nodes' continuations (Node::via), per thread, in blocks that never move.
     mutable tbb::enumerable_thread_specific<std::deque<Via>> via_store;
 
@@ -40,14 +55,12 @@ struct Sampler {
 
     Sampler(const SceneGeometry& geo, const SceneDesc& scene, const TraceControl& c);
 
-    /// Every stride-th traced beam: the sample the error estimates look at.
-    std::vector<int> sampled_beams(int stride) const {
-        std::vector<int> out;
-        for (size_t k = 0; k < traced.size(); k += size_t(stride)) out.push_back(traced[k]);
-        return out;
+    /// Whether beam i is traced in the current pass.
+    bool traces(int i) const { return pass_beams.empty() ? control.traces(i) : pass_beams[size_t(i)] != 0; }
+    /// Rays of a base grid of M0 elevation rays over n beams (default: every traced beam).
+    double base_rays(int M0, int n = -1) const {
+        return double(M0) * double(n < 0 ? int(traced.size()) : n) * s.sampling.azimuth_rays;
     }
-    /// Rays of a base grid of M0 elevation rays over the traced beams.
-    double base_rays(int M0) const { return double(M0) * double(traced.size()) * s.sampling.azimuth_rays; }
 
     /// Takes n rays from the image's budget (sampling.max_rays); false (and nothing taken) when it is spent.
     bool reserve(std::uint64_t n) const;
@@ -57,6 +70,8 @@ struct Sampler {
     Node trace_node(const Angle& a, const Angle& e, double de, int group) const;
     /// The base grid of one column: base cells [j0, j1) of M0.
     Column trace_column(double a_rad, double da, int M0, int beam, int j0, int j1) const;
+    /// A base column at M0 / 3 as one at M0: each cell splits in three, keeping its ray as the middle one.
+    void densify_column(Column& col, int M0) const;
     /// Ternary refinement of a column's cells down to kElevationLevels.
     void refine_column(Column& col, int M0) const;
 
@@ -78,11 +93,49 @@ struct Sampler {
     void split_marked(Column& col, const Angle& a, size_t marked, int& next_group) const;
 };
 
-/// One pass at base grid M0 elevation rays: traces, refines, shades and (unless previewing) estimates the
-/// error against the image one level coarser. With `may_skip` (a denser pass can follow), a base grid whose
-/// own estimated error is kSkipFactor x a tolerance or more is not refined: `skipped`, `est` is the base
-/// grid's, and the result holds no cells.
-TraceResult trace_pass(Sampler& sampler, int M0, TraceResult::ErrorEstimate& est, bool may_skip,
-                       bool& skipped);
+/// The error estimate's share of one group of beams: its sample beam's image against the same cells one
+/// level coarser (adaptive_estimate.cpp). Linear sums are relative to a fixed level (Estimator::ref_db).
+struct SampleError {
+    double num = 0, den = 0;     ///< sum |coarse - fine| and sum fine over the bins, linear
+    std::vector<float> diffs_db; ///< |coarse - fine| [dB] over bins echoing in both
+    /// The fine error is taken as scale x |fine - coarse| / 2: 1 for first-order convergence (the slowest
+    /// case), down to 1/4 for second order, as the group's last two levels show (Richardson).
+    double scale = 1;
+};
+
+/// The beams of an image in groups: every stride-th traced beam is a group's sample (the beam whose error
+/// is estimated), the traced beams after it up to the next sample belong to its group.
+using BeamGroups = std::vector<std::vector<int>>;
+
+/// What one pass over some groups at one base grid leaves.
+struct PassCells {
+    TraceResult fine;         ///< cells (and ghosts) per beam of the image; empty for beams not refined
+    TraceResult coarse;       ///< per group passed in (slot k: group k's sample beam), one level coarser
+    std::vector<char> bumped; ///< per group passed in: left unrefined, for a denser base grid
+};
+
+/// Which of some groups' base grids to leave for a denser one, from their base grids' own errors.
+using BumpRule = std::function<std::vector<char>(const std::vector<SampleError>& base)>;
+
+/// One pass at base grid M0 elevation rays over `groups`: traces their base grids; when `bump` is given,
+/// asks it which to leave unrefined (refinement fixes edges, not the error of every smooth cell, and a
+/// denser grid's refinement would redo it); refines the others and collects their cells, fine and (on each
+/// group's sample beam, unless previewing) one level coarser.
+/// `carried`: beams' base grids at M0 / 3 left by the last pass (kept and split, not traced again); it
+/// receives this pass's bumped beams' base grids.
+PassCells trace_pass(Sampler& sampler, int M0, const BeamGroups& groups, const BumpRule* bump,
+                     Beams* carried);
+
+/// Per sample beam (column k of both images: the same beams), the estimate's share (adaptive_estimate.cpp).
+std::vector<SampleError> sample_errors(const PolarImage& coarse, const PolarImage& fine, double ref_db);
+
+/// The image's error estimated from its groups' shares: fine error ~ scale x |fine - coarse| / 2 (with
+/// scale 1, the coarse image's error taken as three times the fine one's: first order at
+/// discontinuities, the slowest case).
+TraceResult::ErrorEstimate combine_errors(const std::vector<const SampleError*>& errors);
+
+/// The scene of n of its beams as an image of their own (shade() sums beam by beam, so a beam's image does
+/// not depend on the others; the image channel needs no beam angles, so they are even).
+SceneDesc sampled_beams_scene(const SceneDesc& s, int n);
 
 } // namespace sonarsim::adaptive

@@ -99,12 +99,14 @@ bool RefineCriteria::significant(const Node& n, const Column& c, double f) const
 }
 
 bool RefineCriteria::significant_via(const Node& n, const Column& c, double f) const {
-    return n.via->hit && significant_at(n.via->density_db, n.via->hit->t, n.via->dr_de * n.de, n, c, f);
+    // Ghosts are weak against the image: the cell share (an image-wide bound) would leave them all coarse.
+    return n.via->hit &&
+           significant_at(n.via->density_db, n.via->hit->t, n.via->dr_de * n.de, n, c, f, /*shared=*/false);
 }
 
 /// The same for an echo of `density_db` per steradian at range r spread over `footprint_m`.
 bool RefineCriteria::significant_at(double density_db, double r, double footprint_m, const Node& n,
-                                    const Column& c, double f) const {
+                                    const Column& c, double f, bool shared) const {
     if (base_db.empty()) return true;
     if (!(f > 0)) return false;
     const double b = std::floor((r - s_.sonar.range_min_m) / bin_m_);
@@ -112,7 +114,7 @@ bool RefineCriteria::significant_at(double density_db, double r, double footprin
     const double bin_db = base_db[size_t(c.beam) * size_t(s_.sonar.range_bins) + size_t(b)]; // may be -inf
     const double error_db =
         density_db + 10 * std::log10(f * n.angle.c * n.de * c.da / std::max(1.0, footprint_m / bin_m_));
-    return error_db > tol_rel_db_ + bin_db;
+    return error_db > tol_rel_db_ + bin_db && (!shared || error_db > cell_share_db);
 }
 
 /// Direction of normal incidence on the node's surface (its shading normal), in the sonar frame.

@@ -60,6 +60,9 @@ class RefineCriteria {
     /// The base grid's image: [beam * range_bins + bin], echo [dB, as cell_echo_db] (-inf: none). The
     /// scale against which a pair's possible error is judged; empty: every flagged pair counts.
     std::vector<float> base_db;
+    /// The error [dB, as base_db] below which a pair is not worth refining whatever its bin: each base cell's
+    /// even share of the error the rel L1 tolerance allows the whole image (-inf: none).
+    double cell_share_db = -INFINITY;
 
   private:
     bool discontinuous_direct(const Node& x, const Column& cx, const Node& y, const Column& cy,
@@ -72,7 +75,7 @@ class RefineCriteria {
     bool significant(const Node& n, const Column& c, double f) const;
     bool significant_via(const Node& n, const Column& c, double f) const;
     bool significant_at(double density_db, double r, double footprint_m, const Node& n, const Column& c,
-                        double f) const;
+                        double f, bool shared = true) const;
     bool absorbed_across(double footprint_m) const;
     glm::dvec3 normal_direction_sonar(const Node& n) const;
 

@@ -80,6 +80,20 @@ Column Sampler::trace_column(double a_rad, double da, int M0, int beam, int j0, 
     return col;
 }
 
+void Sampler::densify_column(Column& col, int M0) const {
+    const Angle a(col.a);
+    for (auto& n : col.nodes) n.refine = true;
+    int next_group = 0;
+    split_marked(col, a, col.nodes.size(), next_group);
+    // The new base cells, numbered and grouped as trace_column numbers them (M0 is a multiple of 3).
+    for (size_t j = 0; j < col.nodes.size(); ++j) {
+        Node& n = col.nodes[j];
+        n.j = int(j), n.group = int(j) / 3, n.fresh = true, n.alone_checked = false;
+    }
+    col.j0 = 0, col.j1 = M0;
+    if (azimuth_levels > 0) col.base = col.nodes;
+}
+
 size_t Sampler::mark_for_split(Column& col, const Angle& a, double de_min) const {
     size_t marked = 0;
     auto mark = [&](Node& n) {

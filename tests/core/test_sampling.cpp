@@ -165,9 +165,12 @@ TEST_CASE("the sampler stops on both the median and the rel L1 estimate", "[samp
     CHECK(both.error_estimate.median_abs_db <= strict.sampling.tolerance_db);
     CHECK(both.rays_traced > one.rays_traced);
     CHECK(e2.rel_l1 < e1.rel_l1);
-    // The estimate stays honest: above the measured error, within 3x.
+    // The estimate stays honest: above the measured error, and no less sharp than the first pass's (it
+    // takes first-order convergence, the slowest case, where a group has not shown its own order: on this
+    // smooth terrain, second order, that is up to ~4x, and 7x after one pass).
     CHECK(both.error_estimate.rel_l1 >= e2.rel_l1);
-    CHECK(both.error_estimate.rel_l1 <= 3 * e2.rel_l1);
+    CHECK(both.error_estimate.rel_l1 / e2.rel_l1 <= one.error_estimate.rel_l1 / e1.rel_l1);
+    CHECK(both.error_estimate.rel_l1 <= 8 * e2.rel_l1);
     Simulator sim(strict);
     const json meta = frame_metadata(strict, *sim.render());
     CHECK(meta["sampling_error_estimate"]["tolerance_met"] == true);

@@ -1,0 +1,60 @@
+// Adaptive sampling: the error estimate, per group of beams and for the whole image. Each group's sample
+// beam is shaded twice, from its cells and from the same cells one level coarser; the image's estimate is
+// the relative L1 and the |dB| quantiles of their difference over all samples, halved (adaptive_sampler.hpp).
+#include "core/sampling/adaptive_sampler.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace sonarsim::adaptive {
+
+SceneDesc sampled_beams_scene(const SceneDesc& s, int n) {
+    SceneDesc out = s;
+    out.sonar.beams = n;
+    out.sonar.beam_table = kUniformBeams;
+    return out;
+}
+
+std::vector<SampleError> sample_errors(const PolarImage& coarse, const PolarImage& fine, double ref_db) {
+    const int N = fine.beams, K = fine.bins;
+    if (std::isnan(ref_db)) ref_db = 0; // no echo estimated yet: any fixed level does
+    std::vector<SampleError> out(static_cast<size_t>(N));
+    for (int i = 0; i < N; ++i) {
+        SampleError& e = out[size_t(i)];
+        for (int b = 0; b < K; ++b) {
+            const double a = coarse.at(b, i), f = fine.at(b, i);
+            const bool ea = a > -INFINITY, ef = f > -INFINITY;
+            const double lf = ef ? std::exp((f - ref_db) * kLn10Over10) : 0.0;
+            const double la = a == f ? lf : ea ? std::exp((a - ref_db) * kLn10Over10) : 0.0;
+            e.num += std::abs(la - lf), e.den += lf;
+            if (ea && ef) e.diffs_db.push_back(float(std::abs(a - f)));
+        }
+    }
+    return out;
+}
+
+TraceResult::ErrorEstimate combine_errors(const std::vector<const SampleError*>& errors) {
+    double num = 0, den = 0;
+    size_t n = 0;
+    for (const SampleError* e : errors) num += e->scale * e->num, den += e->den, n += e->diffs_db.size();
+    std::vector<float> diffs;
+    diffs.reserve(n);
+    for (const SampleError* e : errors)
+        for (float d : e->diffs_db) diffs.push_back(float(e->scale) * d);
+    TraceResult::ErrorEstimate est;
+    est.valid = true;
+    est.rel_l1 = (den > 0 ? num / den : (num > 0 ? INFINITY : 0.0)) / 2;
+    if (!diffs.empty()) {
+        auto q = [&](double f) {
+            const size_t k = std::min(diffs.size() - 1, size_t(f * double(diffs.size() - 1) + 0.5));
+            std::nth_element(diffs.begin(), diffs.begin() + long(k), diffs.end());
+            return double(diffs[k]);
+        };
+        est.median_abs_db = q(0.5) / 2;
+        est.p95_abs_db = q(0.95) / 2;
+    }
+    return est;
+}
+
+} // namespace sonarsim::adaptive
