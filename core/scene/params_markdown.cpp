@@ -21,6 +21,9 @@ std::string params_markdown() {
             md << "| `" << p.key << "` | " << p.unit << " | `" << p.get(defaults).dump() << "` | "
                << cell(allowed_text(p)) << " | " << cell(p.help) << " |\n";
     Material m;
+    const ValueSpec& preset = material_preset_param();
+    md << "| `material." << preset.key << "` | | `" << json(m.preset).dump() << "` | "
+       << cell(allowed_text(preset)) << " | " << cell(preset.help) << " |\n";
     for (auto& p : material_params())
         md << "| `material." << p.key << "` | " << p.unit << " | `" << p.get(m).dump() << "` | "
            << cell(allowed_text(p)) << " | " << cell(p.help) << " |\n";
