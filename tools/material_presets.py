@@ -17,7 +17,7 @@ Hull: the energy an air-backed steel plate can transmit, an upper bound of its m
 Usage:
   git clone https://github.com/hydroffice/hyo2_openbst /tmp/openbst
   git -C /tmp/openbst checkout 6fdcf36ebb547a11fd626ef90f8b0f34d2d7233c
-  python3 tools/material_presets.py --openbst /tmp/openbst [--check assets/materials]
+  python3 tools/material_presets.py --openbst /tmp/openbst [--check assets/materials] [--frequency-khz 20]
 Needs numpy only (the module's np.complex, removed in numpy 1.24, is aliased to complex here).
 """
 import argparse
@@ -80,15 +80,15 @@ def fit_lambert(graze_deg, ss_db, lo, hi):
     return nu_db, q, float(np.sqrt(np.mean(r ** 2))), float(np.abs(r).max())
 
 
-def derive(openbst):
+def derive(openbst, frequency_khz=FREQUENCY_KHZ):
     """{preset: {key: value}} rounded as the preset files hold them, and a printed account."""
     out = {}
-    print(f"Jackson & Richardson model (OpenBST jackson2) at {FREQUENCY_KHZ:g} kHz, fit over grazing "
+    print(f"Jackson & Richardson model (OpenBST jackson2) at {frequency_khz:g} kHz, fit over grazing "
           f"{GRAZING_DEG[0]:g}-{GRAZING_DEG[1]:g} deg")
     print("preset  sediment      rho    nu     TR9407(rho, nu) at Mz   nu_db     q   rms  max  "
           "loss@10/30/90 deg")
     for name, (sediment, mz) in SEDIMENTS.items():
-        g, ss, loss, sp = model_curve(openbst, sediment, FREQUENCY_KHZ * 1e3)
+        g, ss, loss, sp = model_curve(openbst, sediment, frequency_khz * 1e3)
         nu_db, q, rms, worst = fit_lambert(g, ss, *GRAZING_DEG)
         rho9407, nu9407 = tr9407_rho_nu(mz)
         at = {a: loss[np.argmin(abs(g - a))] for a in (10, 30, 90)}
@@ -101,7 +101,7 @@ def derive(openbst):
     print(f"rock: Lambert (q = 2), S({ROCK_GRAZING_DEG:g} deg) = {mid:g} dB (middle of {ROCK_SS_DB[0]:g} to "
           f"{ROCK_SS_DB[1]:g}) -> nu_db = {rock_nu:.1f} (range {ROCK_SS_DB[0] - mid + rock_nu:.1f} to "
           f"{ROCK_SS_DB[1] - mid + rock_nu:.1f})")
-    g, ss, _, _ = model_curve(openbst, "ROCK", FREQUENCY_KHZ * 1e3)
+    g, ss, _, _ = model_curve(openbst, "ROCK", frequency_khz * 1e3)
     nu_db, q, rms, worst = fit_lambert(g, ss, *GRAZING_DEG)
     s20 = ss[np.argmin(abs(g - ROCK_GRAZING_DEG))]
     print(f"  (the model's Rock for comparison: nu_db {nu_db:.1f}, q {q:.2f}, S(20 deg) = {s20:.1f} dB)")
@@ -134,8 +134,10 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--openbst", required=True, help="a checkout of hydroffice/hyo2_openbst")
     ap.add_argument("--check", metavar="DIR", help="compare with DIR/NAME.json (assets/materials)")
+    ap.add_argument("--frequency-khz", type=float, default=FREQUENCY_KHZ,
+                    help="fit at another frequency (the presets: %(default)g; --check needs the default)")
     args = ap.parse_args()
-    derived = derive(args.openbst)
+    derived = derive(args.openbst, args.frequency_khz)
     return 1 if args.check and check(derived, args.check) else 0
 
 
