@@ -56,7 +56,7 @@ void print_table(bool markdown) {
     if (markdown)
         for (size_t i = 0; i <= cols.size(); ++i) out << "---|";
     out << (markdown ? "\n" : "");
-    std::vector<std::pair<std::string, std::string>> cited; // tag, citation: each once, first seen
+    std::vector<std::pair<std::string, std::string>> cited; // tag, full citation: each tag once, first seen
     for (auto& p : material_presets()) {
         out << (markdown ? "| `" + p.name + "` | " + p.title + " |" : p.name + "\t" + p.title + "\t");
         for (auto* c : cols) out << (markdown ? " " : "") << show(p, c->key) << (markdown ? " |" : "\t");
@@ -66,14 +66,12 @@ void print_table(bool markdown) {
             tags += (tags.empty() ? "" : " ") + tag;
             bool seen = false;
             for (auto& c : cited) seen = seen || c.first == tag;
-            if (!seen)
-                cited.push_back(
-                    {tag, s.citation.substr(tag.size() < s.citation.size() ? tag.size() + 1 : 0)});
+            if (!seen) cited.push_back({tag, s.citation});
         }
         out << (markdown ? " " + tags + " |\n" : tags + "\n");
     }
     out << "\n";
-    for (auto& [tag, citation] : cited) out << (markdown ? "- " : "") << tag << " " << citation << "\n";
+    for (auto& c : cited) out << (markdown ? "- " : "") << c.second << "\n";
     out << "\n`-`: not set, the surface keeps its own value. Each value's derivation and what a preset "
            "leaves "
            "unset: `sonarsim materials NAME` (assets/materials/NAME.json).\n";
