@@ -20,6 +20,7 @@ void register_render(CLI::App& app, std::function<int()>& run);
 void register_batch(CLI::App& app, std::function<int()>& run);
 void register_params(CLI::App& app, std::function<int()>& run);
 void register_devices(CLI::App& app, std::function<int()>& run);
+void register_materials(CLI::App& app, std::function<int()>& run);
 void register_study(CLI::App& app, std::function<int()>& run);
 void register_view(CLI::App& app, std::function<int()>& run);
 void register_compare(CLI::App& app, std::function<int()>& run);

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
     sonarsim::app::register_batch(app, run);
     sonarsim::app::register_params(app, run);
     sonarsim::app::register_devices(app, run);
+    sonarsim::app::register_materials(app, run);
     sonarsim::app::register_compare(app, run);
     // Exit status: 0 done, 2 bad input (command line, scene file, mesh), 1 anything else (I/O, memory).
     // Every error is one line on stderr.

@@ -43,16 +43,19 @@ std::string overrides_text(const std::vector<DeviceOverride>& overrides,
 SceneDesc load_scene_from_options(const SceneOptions& o) {
     // sensor.model applies before the scene file's keys, so that the file's sensor keys still override the
     // model. sonar.device applies after them: a device named on the command line brings every value its
-    // preset sets over the file's (the file's other keys stay). Every other --set applies last, in order,
-    // and overrides both.
+    // preset sets over the file's (the file's other keys stay); so does a material preset
+    // (KEY.material.preset, water.surface_material.preset). Every other --set applies last, in order, and
+    // overrides them all.
     GroupOverrides model;
     std::vector<std::pair<std::string, json>> device, rest;
+    const std::string material_preset = "material." + material_preset_param().key;
     for (auto& s : o.sets) {
         auto kv = parse_setting_text(s, "--set");
-        (kv.first == "sonar.device" ? device
-         : is_group_key(kv.first)   ? model
-                                    : rest)
-            .push_back(std::move(kv));
+        const std::string& k = kv.first;
+        const bool preset = k == "sonar.device" || (k.size() >= material_preset.size() &&
+                                                    k.compare(k.size() - material_preset.size(),
+                                                              material_preset.size(), material_preset) == 0);
+        (preset ? device : is_group_key(k) ? model : rest).push_back(std::move(kv));
     }
     SceneDesc scene = default_scene();
     if (o.scene_file.empty())

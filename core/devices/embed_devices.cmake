@@ -1,4 +1,4 @@
-# Writes OUT: a C++ file holding every DIR/*.EXT (default json: the presets; csv: the beam tables) as {file name, contents} (raw strings),
+# Writes OUT: a C++ file holding every DIR/*.EXT (default json: the device or material presets; csv: the beam tables) as {file name, contents} (raw strings),
 # so the presets travel inside the library. Run by add_custom_command in core/CMakeLists.txt.
 if(NOT EXT)
   set(EXT json)

@@ -127,6 +127,7 @@ std::vector<ParamSpec> display_rows();        ///< rows/display.cpp
 std::vector<ParamSpec> sensor_rows();         ///< rows/sensor.cpp
 std::vector<ParamSpec> export_rows();         ///< rows/display.cpp: the 8-bit exports' mapping, times
 std::vector<MaterialSpec> material_rows();    ///< rows/material.cpp
+ValueSpec material_preset_row();              ///< rows/material.cpp: material.preset
 std::vector<ObjectSpec> object_rows();        ///< rows/parts.cpp
 std::vector<SeafloorSpec> seafloor_rows();    ///< rows/parts.cpp
 

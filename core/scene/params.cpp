@@ -3,6 +3,7 @@
 #include "core/scene/params.hpp"
 
 #include "core/base/errors.hpp"
+#include "core/materials/materials.hpp"
 #include "core/scene/param_rows.hpp"
 
 namespace sonarsim {
@@ -51,6 +52,11 @@ const std::vector<MaterialSpec>& material_params() {
     return table;
 }
 
+const ValueSpec& material_preset_param() {
+    static const ValueSpec row = rows::material_preset_row();
+    return row;
+}
+
 const std::vector<ObjectSpec>& object_params() {
     static const std::vector<ObjectSpec> table = rows::object_rows();
     return table;
@@ -86,8 +92,16 @@ std::string material_keys_text() {
 
 void set_material(Material& m, const std::string& field, const json& value, const std::string& file,
                   const std::string& key) {
+    if (field == material_preset_param().key) {
+        const std::string name = validate_value(material_preset_param(), value, file, key).get<std::string>();
+        if (const MaterialPreset* preset = find_material_preset(name))
+            apply_material_preset(m, *preset);
+        else
+            m.preset = name; // "none": the values stay as they are
+        return;
+    }
     const MaterialSpec* spec = find_material_param(field);
-    if (!spec) throw InputError(file, key, "unknown key; allowed: " + material_keys_text());
+    if (!spec) throw InputError(file, key, "unknown key; allowed: preset, " + material_keys_text());
     m.*(spec->field) = spec->value_of(validate_value(*spec, value, file, key));
 }
 

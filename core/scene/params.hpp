@@ -32,13 +32,16 @@ const std::vector<ParamSpec>& input_params();
 const std::vector<MaterialSpec>& material_params();
 const ParamSpec* find_param(const std::string& key);
 const MaterialSpec* find_material_param(const std::string& key);
+/// material.preset: the material preset (assets/materials/NAME.json) a surface starts from; not one of
+/// material_params() (those are numbers in Material).
+const ValueSpec& material_preset_param();
 
-/// Sets material field `field` ("nu_db", "reflection_db", ...) from `value`. `key` names the whole key
-/// path in errors.
+/// Sets material field `field` ("nu_db", "reflection_db", ...) from `value`; "preset" applies that preset's
+/// values and records its name. `key` names the whole key path in errors.
 void set_material(Material& m, const std::string& field, const json& value, const std::string& file,
                   const std::string& key);
 
-/// "nu_db, q, mu, h_deg, reflection_db": the material keys, for error messages.
+/// "nu_db, q, mu, h_deg, reflection_db, ...": the material number keys, for error messages.
 std::string material_keys_text();
 
 /// Object keys (mesh, box, position, orientation_deg, scale, crease_angle_deg, name): stage Geometry (name:

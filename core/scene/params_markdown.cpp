@@ -21,6 +21,9 @@ std::string params_markdown() {
             md << "| `" << p.key << "` | " << p.unit << " | `" << p.get(defaults).dump() << "` | "
                << cell(allowed_text(p)) << " | " << cell(p.help) << " |\n";
     Material m;
+    const ValueSpec& preset = material_preset_param();
+    md << "| `material." << preset.key << "` | " << preset.unit << " | `" << json(m.preset).dump() << "` | "
+       << cell(allowed_text(preset)) << " | " << cell(preset.help) << " |\n";
     for (auto& p : material_params())
         md << "| `material." << p.key << "` | " << p.unit << " | `" << p.get(m).dump() << "` | "
            << cell(allowed_text(p)) << " | " << cell(p.help) << " |\n";
@@ -28,7 +31,9 @@ std::string params_markdown() {
     for (auto& p : scene_params())
         if (p.preset_may_set) preset_keys += (preset_keys.empty() ? "`" : ", `") + p.key + "`";
     md << "\nA device preset (`assets/devices/NAME.json`, `sonar.device`) may set " << preset_keys
-       << "; any other key is an error when the preset is read.\n";
+       << "; any other key is an error when the preset is read. A material preset "
+          "(`assets/materials/NAME.json`, `material.preset`, `sonarsim materials`) may set any `material.*` "
+          "number; its surface's explicit keys override it.\n";
     return md.str();
 }
 

@@ -27,6 +27,8 @@ struct Material {
     double ripple_wavelength_m = 0.5;   ///< ripple crest spacing [m]
     double ripple_direction_deg = 0.0;  ///< ripples' wave vector, from the surface frame's x toward y [deg]
     double slope_rms_deg = 0.0;         ///< rms facet tilt in the plane of incidence [deg]; 0: off
+    /// The material preset applied before the explicit keys (assets/materials/NAME.json); "none": none.
+    std::string preset = "none";
     bool is_mirror() const { return reflection_db < std::numeric_limits<double>::infinity(); }
 };
 

@@ -84,12 +84,14 @@ const json& require_object(const json& v, const std::string& file, const std::st
     return v;
 }
 
+/// A material object: its preset first, so that its other keys override the preset's values.
 Material parse_material(const json& v, const std::string& file, const std::string& key) {
     require_object(v, file, key);
     Material m;
-    for (auto& [k, val] : v.items()) {
-        set_material(m, k, val, file, key + "." + k);
-    }
+    const std::string preset = material_preset_param().key;
+    if (v.contains(preset)) set_material(m, preset, v[preset], file, key + "." + preset);
+    for (auto& [k, val] : v.items())
+        if (k != preset) set_material(m, k, val, file, key + "." + k);
     return m;
 }
 
@@ -262,6 +264,7 @@ json scene_to_json(const SceneDesc& s) {
     }
     auto material = [](const Material& m) {
         json o;
+        o[material_preset_param().key] = m.preset;
         for (auto& p : material_params()) o[p.key] = p.get(m);
         return o;
     };

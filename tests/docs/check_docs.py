@@ -3,6 +3,7 @@
 
   check_docs.py SONARSIM REPO parameters [--update]   docs/parameters.md == header + `sonarsim params`
   check_docs.py SONARSIM REPO devices                 docs/devices.md holds `sonarsim devices --markdown`
+  check_docs.py SONARSIM REPO materials               docs/model.md holds `sonarsim materials --markdown`
   check_docs.py SONARSIM REPO links                   every relative link and image in README.md, docs/*.md,
                                                       core/ARCHITECTURE.md and the other READMEs names an
                                                       existing file; none points at ../shared/reference
@@ -72,6 +73,20 @@ def check_devices(sonarsim, repo):
     return 1
 
 
+def check_materials(sonarsim, repo):
+    table = run(sonarsim, "materials", "--markdown").strip()
+    text = (repo / "docs" / "model.md").read_text(encoding="utf-8")
+    if table in text:
+        print("docs/model.md holds the current `sonarsim materials --markdown` table")
+        return 0
+    start = text.find("| preset |")
+    end = text.find("\n", text.find("`-`: not set", start)) if start >= 0 else -1
+    show_diff(table, text[start:end] if start >= 0 else "", "docs/model.md")
+    print("docs/model.md is stale: replace its presets table (from `| preset |` to the `-`: not set line) with the\n"
+          "output of\n  build/sonarsim materials --markdown")
+    return 1
+
+
 def anchors(md):
     """GitHub's anchors of a Markdown file's headings: lower case, punctuation dropped, spaces to hyphens."""
     text = re.sub(r"```.*?```", "", md.read_text(encoding="utf-8"), flags=re.S)
@@ -122,6 +137,8 @@ def main():
         return check_parameters(sonarsim, repo, "--update" in sys.argv[4:])
     if what == "devices":
         return check_devices(sonarsim, repo)
+    if what == "materials":
+        return check_materials(sonarsim, repo)
     if what == "links":
         return check_links(repo)
     print(__doc__)

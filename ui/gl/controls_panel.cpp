@@ -224,6 +224,13 @@ void material_section(Session& session, ControlsUi& ui) {
     const std::string prefix = surface             ? "water.surface_material."
                                : ui.selected == -1 ? "seafloor.material."
                                                    : "objects." + std::to_string(ui.selected) + ".material.";
+    const ValueSpec& preset = material_preset_param(); // a combo box of the presets' names
+    if (ImGui::BeginCombo(field_label(preset.label_text(), prefix + preset.key).c_str(), m.preset.c_str())) {
+        for (auto& c : preset.choices)
+            if (ImGui::Selectable(c.c_str(), c == m.preset)) session.set(prefix + preset.key, c);
+        ImGui::EndCombo();
+    }
+    help_tooltip(preset);
     for (const MaterialSpec& spec : material_params()) {
         if (surface && spec.optional) continue; // reflection_db: the surface is always a mirror (roughness)
         double v = 0;

@@ -1,9 +1,19 @@
-// The material's rows of the parameter table: GSAB backscatter (nu, q, mu, h), the mirror's loss, and the
-// seabed texture. Every surface has them: seafloor.material.*, objects.N.material.*,
+// The material's rows of the parameter table: the preset, GSAB backscatter (nu, q, mu, h), the mirror's
+// loss, and the seabed texture. Every surface has them: seafloor.material.*, objects.N.material.*,
 // water.surface_material.*.
+#include "core/materials/materials.hpp"
 #include "core/scene/param_rows.hpp"
 
 namespace sonarsim::rows {
+
+ValueSpec material_preset_row() {
+    auto p = blank<ValueSpec>("preset", "", ParamType::Enum, Stage::Shade,
+                              "Material preset (assets/materials/NAME.json, docs/model.md): sets its sourced "
+                              "values first; the surface's other keys override them; none: no preset");
+    p.choices = material_preset_choices();
+    p.section = Section::Material;
+    return p;
+}
 
 std::vector<MaterialSpec> material_rows() {
     std::vector<MaterialSpec> t;
