@@ -47,18 +47,20 @@ void mark_neighbours(const Sampler& sp, const Beams& beams, int i, int lv, int M
 }
 
 /// Cells that need a narrower column on their own: a specular lobe or an absorption step across it.
-/// Columns already at the finest width are left unmarked. Returns whether any cell is marked.
-bool mark_alone(const Sampler& sp, const std::vector<Column>& cols, double min_da,
+/// Columns already at the finest width are left unmarked, and with `new_only` (after the first level) those
+/// the last split did not make. Returns whether any cell is marked.
+bool mark_alone(const Sampler& sp, const std::vector<Column>& cols, double min_da, bool new_only,
                 std::vector<std::vector<char>>& m) {
     bool any = false;
     for (size_t k = 0; k < cols.size(); ++k) {
         const Column& c = cols[k];
+        // At the finest width nothing splits; a column the last split left as it was was judged then.
+        if (c.da <= min_da || (new_only && !c.sibling)) continue;
         const Angle a(c.a);
         for (auto& n : c.nodes)
             if (sp.criteria.specular_in_azimuth(n, c.a - c.da / 2, c.a + c.da / 2, c.da) ||
                 sp.criteria.absorbed_across_azimuth(n, c, a))
                 m[k][size_t(n.j - c.j0)] = 1;
-        if (c.da <= min_da) std::fill(m[k].begin(), m[k].end(), 0);
         any = any || std::find(m[k].begin(), m[k].end(), 1) != m[k].end();
     }
     return any;
@@ -154,7 +156,7 @@ void Sampler::refine_azimuth(Beams& beams, int M0) const {
             m.resize(cols.size());
             for (size_t k = 0; k < cols.size(); ++k) m[k].assign(size_t(cols[k].j1 - cols[k].j0), 0);
             if (lv < edge_azimuth_levels) mark_neighbours(*this, beams, i, lv, M0, m);
-            if (mark_alone(*this, cols, min_da, m)) any = true;
+            if (mark_alone(*this, cols, min_da, lv > 0, m)) any = true;
         });
         if (!any) break;
         tbb::parallel_for(0, N, [&](int i) {
