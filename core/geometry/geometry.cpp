@@ -7,7 +7,6 @@
 
 #include <embree3/rtcore.h>
 #include <glm/gtc/matrix_inverse.hpp>
-#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -281,31 +280,6 @@ bool SceneGeometry::update_transforms(const SceneDesc& s) {
     return true;
 }
 
-/// Where a smooth object's surface is, not its flat facet: Phong tessellation (Boubekeur & Alexa, "Phong
-/// Tessellation", ACM TOG 27(5), 2008) moves the point p of the facet at barycentric (u, v) to
-/// p* = (1 - a) p + a sum_i b_i pi_i(p), pi_i(p) the projection of p on the plane through corner i normal to
-/// its shading normal, a = 3/4; for a sphere this halves and more the facet's sag. Returns the range offset
-/// along the ray o + t d that takes the hit to p*, bounded by 4x the point's shift (a ray within ~15 deg of
-/// grazing the facet would otherwise move far along it).
-static double curved_range_offset(const TriMesh& mesh, const ShadingNormals& normals,
-                                  const Placement& placement, unsigned prim, float u, float v,
-                                  const glm::dvec3& d) {
-    constexpr double kAlpha = 0.75;
-    const glm::uvec3 tri = mesh.triangles[prim];
-    const double b[3] = {1.0 - u - v, u, v};
-    glm::dvec3 c[3], p(0);
-    for (int i = 0; i < 3; ++i) c[i] = glm::dvec3(mesh.vertices[tri[i]]), p += b[i] * c[i];
-    glm::dvec3 q(0);
-    for (int i = 0; i < 3; ++i) {
-        const glm::dvec3 n(normals.corner[3 * size_t(prim) + size_t(i)]);
-        q += b[i] * (p - glm::dot(p - c[i], n) * n);
-    }
-    const glm::dvec3 shift = glm::dmat3(placement.transform) * (kAlpha * (q - p)); // local -> world
-    const double d2 = glm::dot(d, d);
-    const double along = glm::dot(shift, d) / d2, bound = 4 * glm::length(shift) / std::sqrt(d2);
-    return std::isfinite(along) ? std::clamp(along, -bound, bound) : 0.0;
-}
-
 std::optional<Hit> SceneGeometry::intersect(const glm::dvec3& o, const glm::dvec3& d, double t_max) const {
     const Impl& g = *impl_;
     if (!g.top) return std::nullopt;
@@ -340,9 +314,6 @@ std::optional<Hit> SceneGeometry::intersect(const glm::dvec3& o, const glm::dvec
             ob.placement.normal * glm::dvec3(ob.normals->at(rh.hit.primID, rh.hit.u, rh.hit.v));
         const double n_len = glm::length(n);
         if (n_len > 0 && std::isfinite(n_len)) h.normal = n / n_len;
-        const double t = h.t + curved_range_offset(*ob.blas->mesh, *ob.normals, ob.placement, rh.hit.primID,
-                                                   rh.hit.u, rh.hit.v, d);
-        if (t > kMinHitRange_m && t <= t_max) h.t = t;
     }
     h.material = object + 1;
     h.prim = rh.hit.primID;
