@@ -105,7 +105,7 @@ std::vector<BenchScene> prepare_scenes(const Paths& p, const std::function<bool(
         entry("fig9",
               "paper Fig. 9: 70 x 120 x 220 mm prism on a flat floor, ARIS 3000 (128 beams, 32 x 14 deg, "
               "0.5-5 m), pose 1",
-              ""));
+              "", false, true));
     make.push_back([&] { return assets + "fig9.json"; });
 
     v.push_back(
@@ -133,7 +133,7 @@ std::vector<BenchScene> prepare_scenes(const Paths& p, const std::function<bool(
         entry("monterey",
               "Monterey Bay bathymetry tile (1 x 1.2 km, 8-10 m grid), 900 kHz, 256 beams, 90 x 20 deg, "
               "2-100 m, 15 m above the canyon floor",
-              ""));
+              "", false, true));
     make.push_back([&] { return assets + "monterey.json"; });
 
     // The 1.1 M-triangle bunny (Stanford terms: not shipped here), stood on a floor (Y-up -> Z-up: roll 90).
