@@ -1,6 +1,7 @@
 // Adaptive sampling, internal (adaptive*.cpp, refine_*.cpp, tests): the cells of a column as the sampler
 // refines them, and the columns of a beam.
 #pragma once
+#include "core/base/fast_math.hpp"
 #include "core/sampling/multipath.hpp"
 #include "core/sampling/trace_detail.hpp"
 
@@ -34,6 +35,7 @@ constexpr double kCellShare = 1.0 / 32;
 /// The error estimate looks at every kEstimateStride-th beam of images with 8 x that many beams or more.
 constexpr int kEstimateStride = 4;
 constexpr double kLn10Over10 = 0.23025850929940458;
+constexpr double kLog2_10Over10 = 0.33219280948873623; ///< log2(10) / 10: dB to a power of 2
 /// An azimuth split covers the base cells where neighbouring columns disagree and this many on each side
 /// (what differs between columns often moves in elevation from one to the next).
 constexpr int kRunMargin = 1;
@@ -70,7 +72,7 @@ struct Node {
 inline void set_width(Node& n, double de, double bin_m) {
     n.de = de, n.fresh = true;
     n.footprint_m = n.dr_de * de;
-    n.per_metre_db = n.density_db + 10 * std::log10(n.angle.c * de / std::max(n.footprint_m, bin_m));
+    n.per_metre_db = n.density_db + fast::db(n.angle.c * de / std::max(n.footprint_m, bin_m));
 }
 
 /// One azimuth column of a beam: its elevation cells.

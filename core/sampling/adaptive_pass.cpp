@@ -2,6 +2,7 @@
 #include "core/sampling/adaptive_sampler.hpp"
 
 #include "core/analysis/reference.hpp"
+#include "core/base/fast_math.hpp"
 #include "core/shading/accumulate.hpp"
 
 #include <tbb/parallel_for.h>
@@ -63,7 +64,8 @@ void base_echo(const SceneDesc& s, double bin_m, const std::vector<Column>& cols
     for (const auto& c : cols)
         for (const auto& n : c.nodes) {
             if (!n.hit) continue;
-            const double e = std::exp(kLn10Over10 * (n.density_db - peak)) * n.angle.c * n.de * c.da;
+            const double e =
+                fast::exp2_nonpositive(kLog2_10Over10 * (n.density_db - peak)) * n.angle.c * n.de * c.da;
             const double r0 = n.hit->t - 0.5 * n.footprint_m, r1 = n.hit->t + 0.5 * n.footprint_m;
             const double b0 = std::floor((r0 - s.sonar.range_min_m) / bin_m);
             const double b1 = std::floor((r1 - s.sonar.range_min_m) / bin_m);
@@ -73,7 +75,7 @@ void base_echo(const SceneDesc& s, double bin_m, const std::vector<Column>& cols
             for (int b = lo; b <= hi; ++b) lin[size_t(b)] += share;
         }
     for (int b = 0; b < K; ++b)
-        if (lin[size_t(b)] > 0) out[b] = float(peak + 10 * std::log10(lin[size_t(b)]));
+        if (lin[size_t(b)] > 0) out[b] = float(peak + fast::db(lin[size_t(b)]));
 }
 
 /// The base grid's image sets the scale of what is worth refining (none when nothing is refined).
@@ -94,7 +96,7 @@ void set_base_image(Sampler& sp, const Beams& beams) {
     sp.criteria.cell_share_db = -std::numeric_limits<double>::infinity();
     if (!std::isfinite(peak) || cells == 0) return;
     double sum = 0;
-    for (float v : base_db) sum += std::exp(kLn10Over10 * (double(v) - peak));
+    for (float v : base_db) sum += fast::exp2_nonpositive(kLog2_10Over10 * (double(v) - peak));
     sp.criteria.cell_share_db =
         peak + 10 * std::log10(kCellShare * s.sampling.tolerance_rel_l1 * sum / cells);
 }
