@@ -72,6 +72,16 @@ TEST_CASE("every beam table is ordered port to starboard, and its edges hold its
     CHECK(oculus.centre_deg.back() == -30.0);
     const double s1 = std::sin(30 * 3.14159265358979323846 / 180) * (1 - 2.0 * 100 / 511);
     CHECK(oculus.centre_deg[100] == Approx(std::asin(s1) * 180 / 3.14159265358979323846).margin(0.01));
+    // Gemini: the same rule over +-60 deg, to 1e-6 deg (a device-reported GLF table follows it within 4e-6).
+    const BeamTable& gemini = *find_beam_table("gemini720is_512");
+    REQUIRE(gemini.beams() == 512);
+    for (int i : {0, 1, 100, 255, 256, 511}) {
+        const double s = std::sin(60 * 3.14159265358979323846 / 180) * (1 - 2.0 * i / 511);
+        CHECK(gemini.centre_deg[size_t(i)] ==
+              Approx(std::asin(s) * 180 / 3.14159265358979323846).margin(1e-6));
+    }
+    CHECK(gemini.centre_deg[256] - gemini.centre_deg[257] < 0.2); // 0.194 deg apart at the centre
+    CHECK(gemini.centre_deg[0] - gemini.centre_deg[1] > 0.38);    // 0.386 deg at the edges
 }
 
 TEST_CASE("each device preset's beam table has the preset's beam count", "[beam_table][devices]") {
@@ -89,7 +99,7 @@ TEST_CASE("each device preset's beam table has the preset's beam count", "[beam_
         REQUIRE(find_beam_table(table));
         CHECK(find_beam_table(table)->beams() == beams);
     }
-    CHECK(with_table == 10); // five ARIS, the DIDSON, four Oculus
+    CHECK(with_table == 11); // five ARIS, the DIDSON, four Oculus, the Gemini
 }
 
 TEST_CASE("a grid from a table has the table's angles and its lookups invert them", "[beam_table]") {
