@@ -4,6 +4,7 @@
 #include "core/base/pose.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/sonar_grid.hpp"
+#include "core/sensor/keyed_variates.hpp"
 #include "core/sensor/sensor_patterns.hpp"
 #include "core/sensor/speckle_field.hpp"
 
@@ -31,11 +32,6 @@ std::uint64_t pose_key(const SceneDesc& s) {
     for (double v : s.sonar.pose.position_m) h = mix64(h ^ bits_of(v));
     for (double v : s.sonar.pose.orientation_deg) h = mix64(h ^ bits_of(v));
     return h;
-}
-
-/// A uniform variate in (0, 1) from the top 32 bits of h.
-double unit(std::uint64_t h) {
-    return (double(h >> 32) + 0.5) * 0x1.0p-32;
 }
 
 /// Linear intensity relative to 10^(peak/10) (0 where -inf); returns the peak [dB].
@@ -72,38 +68,6 @@ std::vector<double> form_beams(const std::vector<double>& in, int K, int J, cons
 }
 
 } // namespace
-
-double KeyedRandom::uniform() {
-    state_ = mix64(state_);
-    return (double(state_ >> 11) + 1.0) * 0x1.0p-53;
-}
-
-double KeyedRandom::normal() {
-    // Box-Muller; the second value is dropped so that each call consumes a fixed number of draws.
-    const double u1 = uniform(), u2 = uniform();
-    return std::sqrt(-2 * std::log(u1)) * std::cos(2 * kPi * u2);
-}
-
-double KeyedRandom::exponential() {
-    return -std::log(uniform());
-}
-
-double KeyedRandom::gamma(double shape) {
-    if (shape < 1) return gamma(shape + 1) * std::pow(uniform(), 1 / shape);
-    const double d = shape - 1.0 / 3, c = 1 / std::sqrt(9 * d);
-    for (int tries = 0; tries < 1000; ++tries) {
-        double x, v;
-        do {
-            x = normal();
-            v = 1 + c * x;
-        } while (v <= 0);
-        v = v * v * v;
-        const double u = uniform();
-        if (u < 1 - 0.0331 * x * x * x * x || std::log(u) < 0.5 * x * x + d * (1 - v + std::log(v)))
-            return d * v;
-    }
-    return shape; // not reached in practice (acceptance rate >= 95 %)
-}
 
 double tvg_db(Tvg law, double r, double alpha) {
     const int n = law == Tvg::Log20 ? 20 : law == Tvg::Log30 ? 30 : law == Tvg::Log40 ? 40 : 0;
@@ -159,25 +123,48 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
     out.bins = K, out.beams = N;
     out.level_db.resize(cells);
     tbb::parallel_for(0, K, [&](int k) {
+        struct Scratch {
+            std::vector<double> v, x, y, z, texture;
+            std::vector<std::uint32_t> key;
+            std::vector<float> power, cos_phase, sin_phase;
+        };
+        thread_local Scratch w; // a leaf task's: nothing else runs on this thread while it is in use
         const double r = r_min + (k + 0.5) * dr;
         const double gain = tvg_db(p.tvg, r, alpha) + p.gain_db + peak;
-        // The texture's cells: world points on a grid of half a range bin (or half the beam spacing across).
-        const WorldKeyGrid grid(texture_seed, std::min(dr, r * spacing));
+        const size_t c0 = size_t(k) * N;
+        w.v.assign(I.begin() + std::ptrdiff_t(c0), I.begin() + std::ptrdiff_t(c0 + N));
+        if (!beam_gain.empty())
+            for (int b = 0; b < N; ++b) w.v[size_t(b)] *= beam_gain[size_t(b)];
+        w.key.resize(size_t(N));
+        if (k_dist) {
+            // The texture's cells: world points on a grid of half a range bin (or half the beam spacing
+            // across).
+            for (auto* a : {&w.x, &w.y, &w.z, &w.texture}) a->resize(size_t(N));
+            for (int b = 0; b < N; ++b) {
+                const glm::dvec3 q = frame.point(ahead[size_t(b)], r, inputs->elevation_rad[c0 + size_t(b)]);
+                w.x[size_t(b)] = q.x, w.y[size_t(b)] = q.y, w.z[size_t(b)] = q.z;
+            }
+            WorldKeyGrid(texture_seed, std::min(dr, r * spacing))
+                .keys(N, w.x.data(), w.y.data(), w.z.data(), w.key.data());
+            keyed::gamma_unit_mean(N, w.key.data(), p.speckle_k_shape, w.texture.data());
+            for (int b = 0; b < N; ++b) w.v[size_t(b)] *= w.texture[size_t(b)];
+        }
+        if (noise_power > 0) {
+            // |sqrt(v) + n|^2, n = sigma sqrt(E) e^(i phi): circular complex Gaussian of power sigma^2.
+            const std::uint32_t row_key = keyed::fold(mix64(noise_seed ^ std::uint64_t(k)));
+            for (int b = 0; b < N; ++b) w.key[size_t(b)] = keyed::mix32(row_key + std::uint32_t(b));
+            for (auto* a : {&w.power, &w.cos_phase, &w.sin_phase}) a->resize(size_t(N));
+            keyed::exp_phasors(N, w.key.data(), w.power.data(), w.cos_phase.data(), w.sin_phase.data());
+            for (int b = 0; b < N; ++b) {
+                const double v = w.v[size_t(b)], E = w.power[size_t(b)];
+                w.v[size_t(b)] =
+                    v + noise_power * E + 2 * sigma * std::sqrt(v * E) * double(w.cos_phase[size_t(b)]);
+            }
+        }
         for (int b = 0; b < N; ++b) {
-            const size_t c = size_t(k) * N + b;
-            double v = I[c];
-            if (!beam_gain.empty()) v *= beam_gain[size_t(b)];
-            if (k_dist && v > 0) {
-                const std::uint64_t key = grid(frame.point(ahead[size_t(b)], r, inputs->elevation_rad[c]));
-                v *= KeyedRandom(key).gamma(p.speckle_k_shape) / p.speckle_k_shape;
-            }
-            if (noise_power > 0) {
-                // |sqrt(v) + n|^2, n = sigma sqrt(E) e^(i phi): circular complex Gaussian of power sigma^2.
-                const std::uint64_t h = mix64(noise_seed ^ (std::uint64_t(k) << 32 | std::uint64_t(b)));
-                const double E = fast::neg_ln(unit(h)), cphi = fast::cos_turn(unit(h << 32));
-                v = v + noise_power * E + 2 * sigma * std::sqrt(v * E) * cphi;
-            }
-            out.level_db[c] = v > 0 ? float(fast::db(v) + gain) : -std::numeric_limits<float>::infinity();
+            const double v = w.v[size_t(b)];
+            out.level_db[c0 + size_t(b)] =
+                v > 0 ? float(fast::db(v) + gain) : -std::numeric_limits<float>::infinity();
         }
     });
     return out;

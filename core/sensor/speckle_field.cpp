@@ -1,29 +1,93 @@
 #include "core/sensor/speckle_field.hpp"
 
 #include "core/base/fast_math.hpp"
-#include "core/sensor/sensor.hpp"
 #include "core/scene/sonar_grid.hpp"
+#include "core/sensor/sensor.hpp"
 #include "core/sensor/sensor_patterns.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 namespace sonarsim {
 namespace {
 
-/// A uniform variate in (0, 1) from the top 32 bits of h.
-double unit(std::uint64_t h) {
-    return (double(h >> 32) + 0.5) * 0x1.0p-32;
+/// Range bins formed together: the field of a block is stored column by column, kBlockRows values (one per
+/// bin) a column, so that forming a beam is a sum of whole columns, kBlockRows lanes wide.
+constexpr int kBlockRows = 8;
+
+/// The receive pattern's amplitude by beam: beam b sums the fine columns column[start[b] ... start[b + 1])
+/// with the weights beside them (ascending columns).
+struct BeamSums {
+    std::vector<int> start, column;
+    std::vector<double> weight;
+};
+
+BeamSums by_beam(const AzimuthBeamforming& bf, int J) {
+    BeamSums s;
+    s.start.assign(size_t(bf.beams) + 1, 0);
+    for (int j = 0; j < J; ++j)
+        for (int t = 0; t < bf.count[size_t(j)]; ++t) ++s.start[size_t(bf.first[size_t(j)] + t) + 1];
+    for (int b = 0; b < bf.beams; ++b) s.start[size_t(b) + 1] += s.start[size_t(b)];
+    s.column.resize(size_t(s.start.back())), s.weight.resize(size_t(s.start.back()));
+    std::vector<int> next(s.start.begin(), s.start.end() - 1);
+    for (int j = 0; j < J; ++j)
+        for (int t = 0; t < bf.count[size_t(j)]; ++t) {
+            const int p = next[size_t(bf.first[size_t(j)] + t)]++;
+            s.column[size_t(p)] = j, s.weight[size_t(p)] = bf.amplitude[bf.offset[size_t(j)] + size_t(t)];
+        }
+    return s;
+}
+
+/// The field sqrt(I) z of one row from the intensities and z's power and phase.
+SONARSIM_AVX2_CLONES void field_row(int J, const double* intensity, const float* power,
+                                    const float* cos_phase, const float* sin_phase, double* re, double* im) {
+    for (int j = 0; j < J; ++j) {
+        const double a = std::sqrt(intensity[j] * double(power[j]));
+        re[j] = a * double(cos_phase[j]), im[j] = a * double(sin_phase[j]);
+    }
+}
+
+/// The beams of a block: (re, im) of beam b for the block's row t into rows[t * 2 N + b] and
+/// rows[t * 2 N + N + b], t < `rows`.
+SONARSIM_AVX2_CLONES void form_block(const BeamSums& sums, int N, const double* re, const double* im,
+                                     int rows, double* out) {
+    for (int b = 0; b < N; ++b) {
+        double sum_re[kBlockRows] = {}, sum_im[kBlockRows] = {};
+        for (int p = sums.start[size_t(b)]; p < sums.start[size_t(b) + 1]; ++p) {
+            const double w = sums.weight[size_t(p)];
+            const double* x_re = re + size_t(sums.column[size_t(p)]) * kBlockRows;
+            const double* x_im = im + size_t(sums.column[size_t(p)]) * kBlockRows;
+            for (int t = 0; t < kBlockRows; ++t) sum_re[t] += w * x_re[t], sum_im[t] += w * x_im[t];
+        }
+        for (int t = 0; t < rows; ++t)
+            out[size_t(t) * 2 * N + size_t(b)] = sum_re[t],
+                                    out[size_t(t) * 2 * N + size_t(N + b)] = sum_im[t];
+    }
+}
+
+/// One output row: |sum_t g[t + half] A_(k - t)|^2 over the rows of A (re N values, then im N values).
+SONARSIM_AVX2_CLONES void intensity_row(const double* A, int K, int N, int k, const std::vector<double>& g,
+                                        double* sum_re, double* sum_im, double* out) {
+    const int half = int(g.size() / 2);
+    std::fill(sum_re, sum_re + N, 0.0), std::fill(sum_im, sum_im + N, 0.0);
+    for (int t = -half; t <= half; ++t) {
+        const int src = k - t;
+        if (src < 0 || src >= K) continue;
+        const double w = g[size_t(t + half)];
+        const double* x = A + size_t(src) * 2 * N;
+        for (int b = 0; b < N; ++b) sum_re[b] += w * x[b], sum_im[b] += w * x[N + b];
+    }
+    for (int b = 0; b < N; ++b) out[b] = sum_re[b] * sum_re[b] + sum_im[b] * sum_im[b];
 }
 
 } // namespace
 
 WorldKeyGrid::WorldKeyGrid(std::uint64_t seed, double cell_m) {
     const int q_exp = int(std::floor(std::log2(0.5 * cell_m)));
-    inv_q_ = std::ldexp(1.0, -q_exp);
-    row_key_ = mix64(seed ^ std::uint64_t(std::int64_t(q_exp)));
+    inv_q_per_m_ = std::ldexp(1.0, -q_exp);
+    row_seed_ = keyed::fold(mix64(seed ^ std::uint64_t(std::int64_t(q_exp))));
 }
 
 SonarFrame::SonarFrame(const SceneDesc& s)
@@ -58,52 +122,73 @@ std::vector<double> form_speckle(const std::vector<double>& I, int K, int J, con
     const double r_min = sg->range_min_m, dr = sg->bin_m;
     const double column = sg->fov_rad / J; // the mean column's width [rad]
     const SonarFrame frame(s);
-    std::vector<glm::dvec3> ahead(static_cast<size_t>(J));
-    for (int j = 0; j < J; ++j) ahead[size_t(j)] = frame.ahead(sg->column_azimuth_rad(j, S));
+    std::vector<double> ahead_x(static_cast<size_t>(J)), ahead_y(ahead_x), ahead_z(ahead_x);
+    for (int j = 0; j < J; ++j) {
+        const glm::dvec3 a = frame.ahead(sg->column_azimuth_rad(j, S));
+        ahead_x[size_t(j)] = a.x, ahead_y[size_t(j)] = a.y, ahead_z[size_t(j)] = a.z;
+    }
     const bool formed = s.sensor.azimuth_window != AzimuthWindow::None;
-    const AzimuthBeamforming bf = formed ? make_azimuth_beamforming(s, true) : AzimuthBeamforming{};
-    std::vector<double> w2(2 * bf.amplitude.size()); // each weight twice: (re, im) pairs in one step
-    for (size_t i = 0; i < bf.amplitude.size(); ++i) w2[2 * i] = w2[2 * i + 1] = bf.amplitude[i];
+    const BeamSums sums = formed ? by_beam(make_azimuth_beamforming(s, true), J) : BeamSums{};
     const std::uint64_t seed = mix64(std::uint64_t(s.sensor.seed) ^ 0x677261696eULL); // "grain"
 
-    // Per range bin: the field on the source columns, then (formed) the beams' complex amplitudes.
-    std::vector<double> beams(size_t(K) * N * 2, 0.0); // (re, im) per (bin, beam)
-    tbb::parallel_for(0, K, [&](int k) {
-        const double r = r_min + (k + 0.5) * dr;
-        const WorldKeyGrid grid(seed, std::min(dr, r * column));
-        std::vector<double> local(formed ? size_t(J) * 2 : 0);
-        double* field = formed ? local.data() : beams.data() + size_t(k) * N * 2;
-        const double* x = I.data() + size_t(k) * J;
-        const float* elevation = in.elevation_rad.data() + size_t(k) * N;
-        glm::dvec3 base{};
-        double scale = 0;
-        for (int j = 0; j < J; ++j) {
-            if (j % S == 0) std::tie(base, scale) = frame.raised(r, elevation[j / S]); // the beam's elevation
-            if (x[j] == 0) {
-                field[2 * j] = field[2 * j + 1] = 0;
+    // Per block of range bins: the field on the source columns, then (formed) the beams' complex amplitudes,
+    // into A: per bin, re of the N beams, then im.
+    std::vector<double> A(size_t(K) * N * 2);
+    const int blocks = (K + kBlockRows - 1) / kBlockRows;
+    tbb::parallel_for(0, blocks, [&](int block) {
+        struct Scratch {
+            std::vector<double> x, y, z, re, im, block_re, block_im;
+            std::vector<std::uint32_t> key;
+            std::vector<float> power, cos_phase, sin_phase;
+        };
+        thread_local Scratch w; // a leaf task's: nothing else runs on this thread while it is in use
+        for (auto* v : {&w.x, &w.y, &w.z, &w.re, &w.im}) v->resize(size_t(J));
+        for (auto* v : {&w.power, &w.cos_phase, &w.sin_phase}) v->resize(size_t(J));
+        w.key.resize(size_t(J));
+        w.block_re.resize(formed ? size_t(J) * kBlockRows : 0), w.block_im.resize(w.block_re.size());
+        const int k0 = block * kBlockRows, rows = std::min(kBlockRows, K - k0);
+        for (int t = 0; t < rows; ++t) {
+            const int k = k0 + t;
+            const double r = r_min + (k + 0.5) * dr;
+            const float* elevation = in.elevation_rad.data() + size_t(k) * N;
+            for (int b = 0; b < N; ++b) {
+                const auto [base, scale] = frame.raised(r, elevation[b]); // the beam's mean elevation
+                for (int j = b * S; j < (b + 1) * S; ++j) {
+                    w.x[size_t(j)] = base.x + scale * ahead_x[size_t(j)];
+                    w.y[size_t(j)] = base.y + scale * ahead_y[size_t(j)];
+                    w.z[size_t(j)] = base.z + scale * ahead_z[size_t(j)];
+                }
+            }
+            WorldKeyGrid(seed, std::min(dr, r * column))
+                .keys(J, w.x.data(), w.y.data(), w.z.data(), w.key.data());
+            keyed::exp_phasors(J, w.key.data(), w.power.data(), w.cos_phase.data(), w.sin_phase.data());
+            double* row = A.data() + size_t(k) * N * 2;
+            if (!formed) {
+                field_row(J, I.data() + size_t(k) * J, w.power.data(), w.cos_phase.data(), w.sin_phase.data(),
+                          row, row + N);
                 continue;
             }
-            const std::uint64_t h = grid(base + scale * ahead[size_t(j)]);
-            const double a = std::sqrt(x[j] * fast::neg_ln(unit(h))), u = unit(h << 32);
-            field[2 * j] = a * fast::cos_turn(u), field[2 * j + 1] = a * fast::cos_turn(u + 0.75);
+            field_row(J, I.data() + size_t(k) * J, w.power.data(), w.cos_phase.data(), w.sin_phase.data(),
+                      w.re.data(), w.im.data());
+            for (int j = 0; j < J; ++j) {
+                w.block_re[size_t(j) * kBlockRows + size_t(t)] = w.re[size_t(j)];
+                w.block_im[size_t(j) * kBlockRows + size_t(t)] = w.im[size_t(j)];
+            }
         }
-        if (!formed) return;
-        double* row = beams.data() + size_t(k) * N * 2;
-        for (int j = 0; j < J; ++j) {
-            const double re = field[2 * j], im = field[2 * j + 1];
-            if (re == 0 && im == 0) continue;
-            const double* w = w2.data() + 2 * bf.offset[size_t(j)];
-            double* o = row + 2 * bf.first[size_t(j)];
-            for (int u = 0, n = 2 * bf.count[size_t(j)]; u < n; u += 2)
-                o[u] += w[u] * re, o[u + 1] += w[u + 1] * im; // one (re, im) pair a step
-        }
+        if (formed)
+            form_block(sums, N, w.block_re.data(), w.block_im.data(), rows, A.data() + size_t(k0) * N * 2);
     });
+
+    // The matched filter along range on the amplitudes, then |.|^2.
     const SensorParams& p = s.sensor;
-    if (const std::vector<double> g = range_amplitude_kernel(p.pulse, p.range_resolution_m, dr); g.size() > 1)
-        convolve_range(beams, K, 2 * N, g);
+    const std::vector<double> g = range_amplitude_kernel(p.pulse, p.range_resolution_m, dr);
     std::vector<double> out(size_t(K) * N);
-    for (size_t c = 0; c < out.size(); ++c)
-        out[c] = beams[2 * c] * beams[2 * c] + beams[2 * c + 1] * beams[2 * c + 1];
+    tbb::parallel_for(tbb::blocked_range<int>(0, K, 16), [&](const tbb::blocked_range<int>& ks) {
+        thread_local std::vector<double> sum_re, sum_im; // a leaf task's, as above
+        sum_re.resize(size_t(N)), sum_im.resize(size_t(N));
+        for (int k = ks.begin(); k < ks.end(); ++k)
+            intensity_row(A.data(), K, N, k, g, sum_re.data(), sum_im.data(), out.data() + size_t(k) * N);
+    });
     return out;
 }
 

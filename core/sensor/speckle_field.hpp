@@ -5,8 +5,8 @@
 // pulse length, and the mean is the intensity path's (sum of P I, then the range kernel) exactly.
 #pragma once
 #include "core/base/pose.hpp"
-#include "core/base/fast_math.hpp"
 #include "core/scene/scene.hpp"
+#include "core/sensor/keyed_variates.hpp"
 #include "core/sensor/sensor.hpp"
 #include "core/shading/accumulate.hpp"
 
@@ -19,19 +19,18 @@ namespace sonarsim {
 
 /// Keys of world points: a point is quantised on a grid of 2^q metres, the largest power of two at or below
 /// half of `cell_m` (so the grid is the same at all ranges within an octave and a scatterer keeps its key
-/// while the sonar moves over it); the key hashes the seed, q and the grid cell.
+/// while the sonar moves over it); the key hashes the seed, q and the grid cell (keyed_variates.hpp).
 class WorldKeyGrid {
   public:
     WorldKeyGrid(std::uint64_t seed, double cell_m);
-    std::uint64_t operator()(const glm::dvec3& p) const {
-        auto cell = [&](double x) { return std::uint64_t(fast::floor_int(x * inv_q_)); };
-        return mix64(row_key_ ^ cell(p.x) * 0x9e3779b97f4a7c15ULL ^ cell(p.y) * 0xc2b2ae3d27d4eb4fULL ^
-                     cell(p.z) * 0x165667b19e3779f9ULL);
+    /// The keys of the n points (x, y, z)[i] [m].
+    void keys(int n, const double* x_m, const double* y_m, const double* z_m, std::uint32_t* key) const {
+        keyed::world_cell_keys(n, x_m, y_m, z_m, inv_q_per_m_, row_seed_, key);
     }
 
   private:
-    std::uint64_t row_key_;
-    double inv_q_;
+    std::uint32_t row_seed_;
+    double inv_q_per_m_;
 };
 
 /// Where the sonar looks from: the world point at range r along a direction of the fan (`ahead`, unit,
