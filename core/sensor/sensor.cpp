@@ -34,16 +34,41 @@ std::uint64_t pose_key(const SceneDesc& s) {
     return h;
 }
 
+/// The largest level [dB] (-inf when there is none; NaN is passed over). On the bits, where
+/// i ^ ((i >> 31) & 0x7fffffff) orders as the floats do and an integer maximum vectorises.
+SONARSIM_AVX2_CLONES float max_level(std::size_t n, const float* level_db) {
+    auto order = [](std::int32_t i) { return i ^ ((i >> 31) & 0x7fffffff); }; // its own inverse
+    const std::int32_t lowest = order(fast::bits_of(-std::numeric_limits<float>::infinity()));
+    std::int32_t top = lowest;
+    for (std::size_t i = 0; i < n; ++i) {
+        const float v = level_db[i];
+        top = std::max(top, v == v ? order(fast::bits_of(v)) : lowest);
+    }
+    return fast::float_of(order(top));
+}
+
+/// 10^((level - peak) / 10) of each level.
+SONARSIM_AVX2_CLONES void linear_of(std::size_t n, const float* level_db, double peak_db, double* out) {
+    constexpr double kLog2Of10Over10 = 0.33219280948873623;
+    for (std::size_t i = 0; i < n; ++i)
+        out[i] = fast::exp2_nonpositive((double(level_db[i]) - peak_db) * kLog2Of10Over10);
+}
+
+/// The output levels of a row: 10 log10(v) + gain [dB], -inf where v is 0.
+SONARSIM_AVX2_CLONES void levels_db(int n, const double* v, double gain_db, float* out) {
+    for (int i = 0; i < n; ++i) {
+        const float level = float(fast::db(v[i]) + gain_db);
+        out[i] = v[i] > 0 ? level : -std::numeric_limits<float>::infinity();
+    }
+}
+
 /// Linear intensity relative to 10^(peak/10) (0 where -inf); returns the peak [dB].
 double to_linear(const PolarImage& src, std::vector<double>& out) {
-    double peak = kNegInf;
-    for (float v : src.level_db) peak = std::max(peak, double(v));
+    double peak = max_level(src.level_db.size(), src.level_db.data());
     if (peak == kNegInf) peak = 0;
     out.resize(src.level_db.size());
-    constexpr double kLog2Of10Over10 = 0.33219280948873623;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 1 << 14), [&](auto r) {
-        for (std::size_t i = r.begin(); i < r.end(); ++i)
-            out[i] = fast::exp2_nonpositive((double(src.level_db[i]) - peak) * kLog2Of10Over10);
+        linear_of(r.size(), src.level_db.data() + r.begin(), peak, out.data() + r.begin());
     });
     return peak;
 }
@@ -112,8 +137,11 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
     const double sigma = std::sqrt(noise_power);
     const SonarFrame frame(s);
     const double spacing = sg->spacing_rad;
-    std::vector<glm::dvec3> ahead(static_cast<size_t>(N));
-    for (int b = 0; b < N; ++b) ahead[size_t(b)] = frame.ahead(sg->beam_azimuth_rad(b));
+    std::vector<double> ahead_x(static_cast<size_t>(N)), ahead_y(ahead_x), ahead_z(ahead_x);
+    for (int b = 0; b < N; ++b) {
+        const glm::dvec3 a = frame.ahead(sg->beam_azimuth_rad(b));
+        ahead_x[size_t(b)] = a.x, ahead_y[size_t(b)] = a.y, ahead_z[size_t(b)] = a.z;
+    }
     std::vector<double> beam_gain; // a table's relative response per beam (none: every beam 1)
     if (sg->table())
         for (int b = 0; b < N; ++b) beam_gain.push_back(sg->beam_gain(b));
@@ -140,10 +168,8 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
             // The texture's cells: world points on a grid of half a range bin (or half the beam spacing
             // across).
             for (auto* a : {&w.x, &w.y, &w.z, &w.texture}) a->resize(size_t(N));
-            for (int b = 0; b < N; ++b) {
-                const glm::dvec3 q = frame.point(ahead[size_t(b)], r, inputs->elevation_rad[c0 + size_t(b)]);
-                w.x[size_t(b)] = q.x, w.y[size_t(b)] = q.y, w.z[size_t(b)] = q.z;
-            }
+            frame.row_points(r, N, 1, inputs->elevation_rad.data() + c0, ahead_x.data(), ahead_y.data(),
+                             ahead_z.data(), w.x.data(), w.y.data(), w.z.data());
             WorldKeyGrid(texture_seed, std::min(dr, r * spacing))
                 .keys(N, w.x.data(), w.y.data(), w.z.data(), w.key.data());
             keyed::gamma_unit_mean(N, w.key.data(), p.speckle_k_shape, w.texture.data());
@@ -161,11 +187,7 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
                     v + noise_power * E + 2 * sigma * std::sqrt(v * E) * double(w.cos_phase[size_t(b)]);
             }
         }
-        for (int b = 0; b < N; ++b) {
-            const double v = w.v[size_t(b)];
-            out.level_db[c0 + size_t(b)] =
-                v > 0 ? float(fast::db(v) + gain) : -std::numeric_limits<float>::infinity();
-        }
+        levels_db(N, w.v.data(), gain, out.level_db.data() + c0);
     });
     return out;
 }

@@ -82,7 +82,33 @@ SONARSIM_AVX2_CLONES void intensity_row(const double* A, int K, int N, int k, co
     for (int b = 0; b < N; ++b) out[b] = sum_re[b] * sum_re[b] + sum_im[b] * sum_im[b];
 }
 
+/// Per beam, the rise r sin(e) along `up` and the reach r cos(e) along `ahead` (e NaN: 0).
+SONARSIM_AVX2_CLONES void rise_and_reach(int n, double r_m, const float* elevation_rad, double* rise_m,
+                                         double* reach_m) {
+    for (int b = 0; b < n; ++b) {
+        const double e = elevation_rad[b];
+        const double se = e == e ? SonarFrame::key_sin(e) : 0.0; // NaN: nothing echoes, 0
+        rise_m[b] = r_m * se, reach_m[b] = r_m * std::sqrt(1 - se * se);
+    }
+}
+
 } // namespace
+
+void SonarFrame::row_points(double r_m, int cells, int per_beam, const float* elevation_rad,
+                            const double* ahead_x, const double* ahead_y, const double* ahead_z, double* x,
+                            double* y, double* z) const {
+    thread_local std::vector<double> rise, reach; // used only within this call
+    const int beams = cells / per_beam;
+    rise.resize(size_t(beams)), reach.resize(size_t(beams));
+    rise_and_reach(beams, r_m, elevation_rad, rise.data(), reach.data());
+    for (int b = 0; b < beams; ++b) {
+        const glm::dvec3 base = origin + rise[size_t(b)] * up;
+        const double scale = reach[size_t(b)];
+        for (int j = b * per_beam; j < (b + 1) * per_beam; ++j)
+            x[j] = base.x + scale * ahead_x[j], y[j] = base.y + scale * ahead_y[j],
+            z[j] = base.z + scale * ahead_z[j];
+    }
+}
 
 WorldKeyGrid::WorldKeyGrid(std::uint64_t seed, double cell_m) {
     const int q_exp = int(std::floor(std::log2(0.5 * cell_m)));
@@ -150,15 +176,8 @@ std::vector<double> form_speckle(const std::vector<double>& I, int K, int J, con
         for (int t = 0; t < rows; ++t) {
             const int k = k0 + t;
             const double r = r_min + (k + 0.5) * dr;
-            const float* elevation = in.elevation_rad.data() + size_t(k) * N;
-            for (int b = 0; b < N; ++b) {
-                const auto [base, scale] = frame.raised(r, elevation[b]); // the beam's mean elevation
-                for (int j = b * S; j < (b + 1) * S; ++j) {
-                    w.x[size_t(j)] = base.x + scale * ahead_x[size_t(j)];
-                    w.y[size_t(j)] = base.y + scale * ahead_y[size_t(j)];
-                    w.z[size_t(j)] = base.z + scale * ahead_z[size_t(j)];
-                }
-            }
+            frame.row_points(r, J, S, in.elevation_rad.data() + size_t(k) * N, ahead_x.data(), ahead_y.data(),
+                             ahead_z.data(), w.x.data(), w.y.data(), w.z.data());
             WorldKeyGrid(seed, std::min(dr, r * column))
                 .keys(J, w.x.data(), w.y.data(), w.z.data(), w.key.data());
             keyed::exp_phasors(J, w.key.data(), w.power.data(), w.cos_phase.data(), w.sin_phase.data());

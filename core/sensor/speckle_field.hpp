@@ -34,28 +34,25 @@ class WorldKeyGrid {
 };
 
 /// Where the sonar looks from: the world point at range r along a direction of the fan (`ahead`, unit,
-/// horizontal in the sonar frame) raised by the elevation e [rad] (NaN: 0) towards `up`, as
-/// base + scale * ahead with (base, scale) = raised(r, e), shared by every direction at that r and e.
+/// horizontal in the sonar frame) raised by the elevation e [rad] (NaN: 0) towards `up` is
+/// origin + r sin(e) up + r cos(e) ahead.
 struct SonarFrame {
     explicit SonarFrame(const SceneDesc& s);
     glm::dvec3 origin, up;
     glm::dmat3 R;
     glm::dvec3 ahead(double azimuth_rad) const; ///< R (cos a, sin a, 0)
-    std::pair<glm::dvec3, double> raised(double r_m, float elevation_rad) const {
-        const double se = std::isnan(elevation_rad) ? 0.0 : key_sin(elevation_rad),
-                     ce = std::sqrt(1 - se * se);
-        return {origin + r_m * se * up, r_m * ce};
-    }
     /// sin of an elevation angle |e| <= pi/2 (Taylor to e^9: error below 2e-4 at pi/2, 1e-8 within 0.5 rad):
     /// only used to place a key, where any fixed function of e does.
     static double key_sin(double e) {
         const double e2 = e * e;
-        return e * (1 - e2 / 6 * (1 - e2 / 20 * (1 - e2 / 42 * (1 - e2 / 72))));
+        return e *
+               (1 - e2 * (1.0 / 6) * (1 - e2 * (1.0 / 20) * (1 - e2 * (1.0 / 42) * (1 - e2 * (1.0 / 72)))));
     }
-    glm::dvec3 point(const glm::dvec3& ahead, double r_m, float elevation_rad) const {
-        const auto [base, scale] = raised(r_m, elevation_rad);
-        return base + scale * ahead;
-    }
+    /// The world points [m] of a row of cells at range r: cell j looks along (ahead_x, ahead_y, ahead_z)[j]
+    /// raised by its beam's elevation, elevation_rad[j / per_beam] (a beam's cells share it).
+    void row_points(double r_m, int cells, int per_beam, const float* elevation_rad, const double* ahead_x,
+                    const double* ahead_y, const double* ahead_z, double* x_m, double* y_m,
+                    double* z_m) const;
 };
 
 /// The speckled intensity per (range bin, beam) [bin * beams + beam] from the linear intensities `I` per
