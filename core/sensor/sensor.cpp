@@ -2,6 +2,7 @@
 
 #include "core/base/fast_math.hpp"
 #include "core/base/pose.hpp"
+#include "core/base/scratch_pool.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/sonar_grid.hpp"
 #include "core/sensor/keyed_variates.hpp"
@@ -66,7 +67,7 @@ SONARSIM_AVX2_CLONES void levels_db(int n, const double* v, double gain_db, floa
 double to_linear(const PolarImage& src, std::vector<double>& out) {
     double peak = max_level(src.level_db.size(), src.level_db.data());
     if (peak == kNegInf) peak = 0;
-    out.resize(src.level_db.size());
+    out = scratch::take(src.level_db.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 1 << 14), [&](auto r) {
         linear_of(r.size(), src.level_db.data() + r.begin(), peak, out.data() + r.begin());
     });
@@ -124,7 +125,9 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
     const double peak = to_linear(src, I);
     const bool speckle = p.speckle != Speckle::Off && inputs && !inputs->elevation_rad.empty();
     if (speckle) {
-        I = form_speckle(I, K, src.beams, *inputs, s);
+        std::vector<double> formed = form_speckle(I, K, src.beams, *inputs, s);
+        scratch::give(std::move(I));
+        I = std::move(formed);
     } else {
         if (p.azimuth_window != AzimuthWindow::None) I = form_beams(I, K, src.beams, s);
         if (const std::vector<double> h = range_kernel(p.pulse, p.range_resolution_m, dr); h.size() > 1)
@@ -189,6 +192,7 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
         }
         levels_db(N, w.v.data(), gain, out.level_db.data() + c0);
     });
+    scratch::give(std::move(I));
     return out;
 }
 

@@ -1,6 +1,7 @@
 #include "core/sensor/speckle_field.hpp"
 
 #include "core/base/fast_math.hpp"
+#include "core/base/scratch_pool.hpp"
 #include "core/scene/sonar_grid.hpp"
 #include "core/sensor/sensor.hpp"
 #include "core/sensor/sensor_patterns.hpp"
@@ -159,7 +160,7 @@ std::vector<double> form_speckle(const std::vector<double>& I, int K, int J, con
 
     // Per block of range bins: the field on the source columns, then (formed) the beams' complex amplitudes,
     // into A: per bin, re of the N beams, then im.
-    std::vector<double> A(size_t(K) * N * 2);
+    std::vector<double> A = scratch::take(size_t(K) * N * 2); // every value written below
     const int blocks = (K + kBlockRows - 1) / kBlockRows;
     tbb::parallel_for(0, blocks, [&](int block) {
         struct Scratch {
@@ -201,13 +202,14 @@ std::vector<double> form_speckle(const std::vector<double>& I, int K, int J, con
     // The matched filter along range on the amplitudes, then |.|^2.
     const SensorParams& p = s.sensor;
     const std::vector<double> g = range_amplitude_kernel(p.pulse, p.range_resolution_m, dr);
-    std::vector<double> out(size_t(K) * N);
+    std::vector<double> out = scratch::take(size_t(K) * N); // every value written below
     tbb::parallel_for(tbb::blocked_range<int>(0, K, 16), [&](const tbb::blocked_range<int>& ks) {
         thread_local std::vector<double> sum_re, sum_im; // a leaf task's, as above
         sum_re.resize(size_t(N)), sum_im.resize(size_t(N));
         for (int k = ks.begin(); k < ks.end(); ++k)
             intensity_row(A.data(), K, N, k, g, sum_re.data(), sum_im.data(), out.data() + size_t(k) * N);
     });
+    scratch::give(std::move(A));
     return out;
 }
 
