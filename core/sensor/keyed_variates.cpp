@@ -8,18 +8,13 @@
 namespace sonarsim::keyed {
 namespace {
 
-/// floor(y) for |y| < 2^51 in plain arithmetic: adding and subtracting 1.5 2^52 rounds to an integer.
-inline double floor_small(double y) {
-    constexpr double kRound = 6755399441055744.0;
-    const double r = (y + kRound) - kRound;
-    return r > y ? r - 1 : r;
-}
-
-/// floor(y) modulo 2^32.
+/// floor(y) modulo 2^32, for |y| < 2^51: adding 1.5 2^52 rounds y to the integer n held in the low bits of
+/// the mantissa (modulo 2^32, as two's complement: the offset 2^51 is a multiple of 2^32), less 1 where
+/// that rounded up.
 inline std::uint32_t cell_index(double y) {
-    const double n = floor_small(y);
-    const double wrapped = n - 4294967296.0 * floor_small(n * (1.0 / 4294967296.0)); // [0, 2^32)
-    return std::uint32_t(std::int32_t(wrapped - 2147483648.0)) ^ 0x80000000U;
+    constexpr double kRound = 6755399441055744.0;
+    const double t = y + kRound;
+    return std::uint32_t(fast::bits_of(t)) - (t - kRound > y ? 1U : 0U);
 }
 
 /// A uniform variate in (0, 1) from the top 24 bits of h (exact in single precision).
@@ -31,9 +26,9 @@ inline float unit24(std::uint32_t h) {
 /// `accepted` whether the draw stands.
 inline float gamma_attempt(std::uint32_t key, std::uint32_t attempt, float d, float c, bool& accepted) {
     const std::uint32_t h = mix32(key + attempt * 0x9e3779b9U);
-    float cos_phase, sin_phase;
+    float cos_phase, sin_phase; // the sine unused
     fast::sincos_turn_f(unit24(mix32(h ^ 0x2545f491U)) - 0.5f, cos_phase, sin_phase);
-    const float x = std::sqrt(-2 * fast::ln_f(unit24(mix32(h ^ 0x68e31da4U)))) * cos_phase; // N(0, 1)
+    const float x = std::sqrt(-2 * fast::ln_f(unit24(h))) * cos_phase; // N(0, 1) by Box and Muller
     const float u = unit24(mix32(h + 0xb5297a4dU));
     const float w = 1 + c * x, v = w * w * w, x2 = x * x;
     accepted =
@@ -65,7 +60,7 @@ SONARSIM_AVX2_CLONES void world_cell_keys(int n, const double* x, const double* 
 SONARSIM_AVX2_CLONES void exp_phasors(int n, const std::uint32_t* key, float* power, float* cos_phase,
                                       float* sin_phase) {
     for (int i = 0; i < n; ++i) {
-        power[i] = -fast::ln_f(unit24(mix32(key[i] ^ 0x5bd1e995U)));
+        power[i] = -fast::ln_f(unit24(key[i])); // a key is a hash already
         fast::sincos_turn_f(unit24(mix32(key[i] + 0x68e31da4U)) - 0.5f, cos_phase[i], sin_phase[i]);
     }
 }
