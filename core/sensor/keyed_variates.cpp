@@ -60,7 +60,7 @@ SONARSIM_AVX2_CLONES void world_cell_keys(int n, const double* x, const double* 
 SONARSIM_AVX2_CLONES void exp_phasors(int n, const std::uint32_t* key, float* power, float* cos_phase,
                                       float* sin_phase) {
     for (int i = 0; i < n; ++i) {
-        power[i] = -fast::ln_f(unit24(key[i])); // a key is a hash already
+        power[i] = -fast::ln_f(unit24(mix32(key[i] ^ 0x5bd1e995U)));
         fast::sincos_turn_f(unit24(mix32(key[i] + 0x68e31da4U)) - 0.5f, cos_phase[i], sin_phase[i]);
     }
 }
