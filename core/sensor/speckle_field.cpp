@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -19,10 +20,10 @@ namespace {
 constexpr int kBlockRows = 8;
 
 /// The receive pattern's amplitude by beam: beam b sums the fine columns column[start[b] ... start[b + 1])
-/// with the weights beside them (ascending columns).
+/// with the weights beside them (ascending columns), in single precision like the field it forms.
 struct BeamSums {
     std::vector<int> start, column;
-    std::vector<double> weight;
+    std::vector<float> weight;
 };
 
 BeamSums by_beam(const AzimuthBeamforming& bf, int J) {
@@ -36,7 +37,8 @@ BeamSums by_beam(const AzimuthBeamforming& bf, int J) {
     for (int j = 0; j < J; ++j)
         for (int t = 0; t < bf.count[size_t(j)]; ++t) {
             const int p = next[size_t(bf.first[size_t(j)] + t)]++;
-            s.column[size_t(p)] = j, s.weight[size_t(p)] = bf.amplitude[bf.offset[size_t(j)] + size_t(t)];
+            s.column[size_t(p)] = j,
+            s.weight[size_t(p)] = float(bf.amplitude[bf.offset[size_t(j)] + size_t(t)]);
         }
     return s;
 }
@@ -50,21 +52,46 @@ SONARSIM_AVX2_CLONES void field_row(int J, const double* intensity, const float*
     }
 }
 
-/// The beams of a block: (re, im) of beam b for the block's row t into rows[t * 2 N + b] and
-/// rows[t * 2 N + N + b], t < `rows`.
-SONARSIM_AVX2_CLONES void form_block(const BeamSums& sums, int N, const double* re, const double* im,
-                                     int rows, double* out) {
+/// The largest of n intensities (>= 0; on the bits, where non-negative doubles order as integers do).
+SONARSIM_AVX2_CLONES double max_intensity(std::size_t n, const double* I) {
+    std::int64_t top = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto b = std::int64_t(fast::bits_of(I[i]));
+        top = b > top ? b : top;
+    }
+    return fast::double_of(std::uint64_t(top));
+}
+
+/// The field of one row relative to the amplitude `unit`, in single precision.
+SONARSIM_AVX2_CLONES void relative_field_row(int J, const double* intensity, const float* power,
+                                             const float* cos_phase, const float* sin_phase, double inv_unit,
+                                             float* re, float* im) {
+    for (int j = 0; j < J; ++j) {
+        const double a = std::sqrt(intensity[j] * double(power[j])) * inv_unit;
+        re[j] = float(a * double(cos_phase[j])), im[j] = float(a * double(sin_phase[j]));
+    }
+}
+
+/// kBlockRows floats as one value (GCC's vector extension: one AVX register, or two SSE ones).
+typedef float BlockFloats __attribute__((vector_size(kBlockRows * sizeof(float))));
+
+/// The beams of a block from its field relative to `unit` (re, im of column j, row t at j * kBlockRows + t):
+/// unit * (re, im) of beam b for the block's row t into out[t * 2 N + b] and out[t * 2 N + N + b], t < rows.
+SONARSIM_AVX2_CLONES void form_block(const BeamSums& sums, int N, const float* re, const float* im,
+                                     double unit, int rows, double* out) {
     for (int b = 0; b < N; ++b) {
-        double sum_re[kBlockRows] = {}, sum_im[kBlockRows] = {};
+        BlockFloats sum_re = {}, sum_im = {};
         for (int p = sums.start[size_t(b)]; p < sums.start[size_t(b) + 1]; ++p) {
-            const double w = sums.weight[size_t(p)];
-            const double* x_re = re + size_t(sums.column[size_t(p)]) * kBlockRows;
-            const double* x_im = im + size_t(sums.column[size_t(p)]) * kBlockRows;
-            for (int t = 0; t < kBlockRows; ++t) sum_re[t] += w * x_re[t], sum_im[t] += w * x_im[t];
+            const float w = sums.weight[size_t(p)];
+            BlockFloats x_re, x_im;
+            std::memcpy(&x_re, re + size_t(sums.column[size_t(p)]) * kBlockRows, sizeof x_re);
+            std::memcpy(&x_im, im + size_t(sums.column[size_t(p)]) * kBlockRows, sizeof x_im);
+            sum_re += w * x_re, sum_im += w * x_im;
         }
-        for (int t = 0; t < rows; ++t)
-            out[size_t(t) * 2 * N + size_t(b)] = sum_re[t],
-                                    out[size_t(t) * 2 * N + size_t(N + b)] = sum_im[t];
+        for (int t = 0; t < rows; ++t) {
+            out[size_t(t) * 2 * N + size_t(b)] = unit * double(sum_re[t]);
+            out[size_t(t) * 2 * N + size_t(N + b)] = unit * double(sum_im[t]);
+        }
     }
 }
 
@@ -164,16 +191,20 @@ std::vector<double> form_speckle(const std::vector<double>& I, int K, int J, con
     const int blocks = (K + kBlockRows - 1) / kBlockRows;
     tbb::parallel_for(0, blocks, [&](int block) {
         struct Scratch {
-            std::vector<double> x, y, z, re, im, block_re, block_im;
+            std::vector<double> x, y, z;
             std::vector<std::uint32_t> key;
-            std::vector<float> power, cos_phase, sin_phase;
+            std::vector<float> power, cos_phase, sin_phase, re, im, block_re, block_im;
         };
         thread_local Scratch w; // a leaf task's: nothing else runs on this thread while it is in use
-        for (auto* v : {&w.x, &w.y, &w.z, &w.re, &w.im}) v->resize(size_t(J));
-        for (auto* v : {&w.power, &w.cos_phase, &w.sin_phase}) v->resize(size_t(J));
+        for (auto* v : {&w.x, &w.y, &w.z}) v->resize(size_t(J));
+        for (auto* v : {&w.power, &w.cos_phase, &w.sin_phase, &w.re, &w.im}) v->resize(size_t(J));
         w.key.resize(size_t(J));
         w.block_re.resize(formed ? size_t(J) * kBlockRows : 0), w.block_im.resize(w.block_re.size());
         const int k0 = block * kBlockRows, rows = std::min(kBlockRows, K - k0);
+        // Formed in single precision relative to the block's strongest sample (an amplitude at most
+        // sqrt(17.3) of that), so that nothing within 700 dB of it underflows.
+        const double top = formed ? max_intensity(size_t(rows) * J, I.data() + size_t(k0) * J) : 0.0;
+        const double unit = top > 0 ? std::sqrt(top) : 1.0;
         for (int t = 0; t < rows; ++t) {
             const int k = k0 + t;
             const double r = r_min + (k + 0.5) * dr;
@@ -182,21 +213,22 @@ std::vector<double> form_speckle(const std::vector<double>& I, int K, int J, con
             WorldKeyGrid(seed, std::min(dr, r * column))
                 .keys(J, w.x.data(), w.y.data(), w.z.data(), w.key.data());
             keyed::exp_phasors(J, w.key.data(), w.power.data(), w.cos_phase.data(), w.sin_phase.data());
-            double* row = A.data() + size_t(k) * N * 2;
+            const double* x = I.data() + size_t(k) * J;
             if (!formed) {
-                field_row(J, I.data() + size_t(k) * J, w.power.data(), w.cos_phase.data(), w.sin_phase.data(),
-                          row, row + N);
+                double* row = A.data() + size_t(k) * N * 2;
+                field_row(J, x, w.power.data(), w.cos_phase.data(), w.sin_phase.data(), row, row + N);
                 continue;
             }
-            field_row(J, I.data() + size_t(k) * J, w.power.data(), w.cos_phase.data(), w.sin_phase.data(),
-                      w.re.data(), w.im.data());
+            relative_field_row(J, x, w.power.data(), w.cos_phase.data(), w.sin_phase.data(), 1 / unit,
+                               w.re.data(), w.im.data());
             for (int j = 0; j < J; ++j) {
                 w.block_re[size_t(j) * kBlockRows + size_t(t)] = w.re[size_t(j)];
                 w.block_im[size_t(j) * kBlockRows + size_t(t)] = w.im[size_t(j)];
             }
         }
         if (formed)
-            form_block(sums, N, w.block_re.data(), w.block_im.data(), rows, A.data() + size_t(k0) * N * 2);
+            form_block(sums, N, w.block_re.data(), w.block_im.data(), unit, rows,
+                       A.data() + size_t(k0) * N * 2);
     });
 
     // The matched filter along range on the amplitudes, then |.|^2.
