@@ -61,14 +61,17 @@ SONARSIM_AVX2_CLONES void exp_phasors(int n, const std::uint32_t* key, float* po
                                       float* sin_phase) {
     for (int i = 0; i < n; ++i) {
         power[i] = -fast::ln_f(unit24(mix32(key[i] ^ 0x5bd1e995U)));
-        fast::sincos_turn_f(unit24(mix32(key[i] + 0x68e31da4U)) - 0.5f, cos_phase[i], sin_phase[i]);
+        float c, si;
+        fast::sincos_turn_f(unit24(mix32(key[i] + 0x68e31da4U)) - 0.5f, c, si);
+        cos_phase[i] = c;
+        if (sin_phase) sin_phase[i] = si;
     }
 }
 
 void gamma_unit_mean(int n, const std::uint32_t* key, double shape, double* out) {
     const double a = shape < 1 ? shape + 1 : shape, d = a - 1.0 / 3;
     const float df = float(d), cf = float(1 / std::sqrt(9 * d));
-    thread_local std::vector<std::uint8_t> accepted;
+    thread_local std::vector<std::uint8_t> accepted; // used only within this call
     accepted.resize(size_t(n));
     first_gamma_attempts(n, key, df, cf, out, accepted.data());
     for (int i = 0; i < n; ++i) {
@@ -78,11 +81,13 @@ void gamma_unit_mean(int n, const std::uint32_t* key, double shape, double* out)
             const float v = gamma_attempt(key[i], attempt, df, cf, ok);
             if (ok || attempt == 1000) out[i] = ok ? v : a, accepted[size_t(i)] = 1; // 1000: not reached
         }
-        if (shape < 1)
+    }
+    if (shape < 1)
+        for (int i = 0; i < n; ++i)
             out[i] *=
                 fast::exp2_nonpositive(fast::log2_positive(unit24(mix32(key[i] ^ 0x1b873593U))) / shape);
-        out[i] /= shape;
-    }
+    const double inv_shape = 1 / shape;
+    for (int i = 0; i < n; ++i) out[i] *= inv_shape;
 }
 
 } // namespace sonarsim::keyed

@@ -157,7 +157,7 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
         struct Scratch {
             std::vector<double> v, x, y, z, texture;
             std::vector<std::uint32_t> key;
-            std::vector<float> power, cos_phase, sin_phase;
+            std::vector<float> power, cos_phase;
         };
         thread_local Scratch w; // a leaf task's: nothing else runs on this thread while it is in use
         const double r = r_min + (k + 0.5) * dr;
@@ -182,8 +182,8 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
             // |sqrt(v) + n|^2, n = sigma sqrt(E) e^(i phi): circular complex Gaussian of power sigma^2.
             const std::uint32_t row_key = keyed::fold(mix64(noise_seed ^ std::uint64_t(k)));
             for (int b = 0; b < N; ++b) w.key[size_t(b)] = keyed::mix32(row_key + std::uint32_t(b));
-            for (auto* a : {&w.power, &w.cos_phase, &w.sin_phase}) a->resize(size_t(N));
-            keyed::exp_phasors(N, w.key.data(), w.power.data(), w.cos_phase.data(), w.sin_phase.data());
+            for (auto* a : {&w.power, &w.cos_phase}) a->resize(size_t(N));
+            keyed::exp_phasors(N, w.key.data(), w.power.data(), w.cos_phase.data(), nullptr);
             for (int b = 0; b < N; ++b) {
                 const double v = w.v[size_t(b)], E = w.power[size_t(b)];
                 w.v[size_t(b)] =

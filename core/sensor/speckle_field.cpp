@@ -110,13 +110,25 @@ SONARSIM_AVX2_CLONES void intensity_row(const double* A, int K, int N, int k, co
     for (int b = 0; b < N; ++b) out[b] = sum_re[b] * sum_re[b] + sum_im[b] * sum_im[b];
 }
 
-/// Per beam, the rise r sin(e) along `up` and the reach r cos(e) along `ahead` (e NaN: 0).
+/// Per cell, the rise r sin(e) along `up` and the reach r cos(e) along `ahead` (e NaN: 0).
 SONARSIM_AVX2_CLONES void rise_and_reach(int n, double r_m, const float* elevation_rad, double* rise_m,
                                          double* reach_m) {
-    for (int b = 0; b < n; ++b) {
-        const double e = elevation_rad[b];
+    for (int j = 0; j < n; ++j) {
+        const double e = elevation_rad[j];
         const double se = e == e ? SonarFrame::key_sin(e) : 0.0; // NaN: nothing echoes, 0
-        rise_m[b] = r_m * se, reach_m[b] = r_m * std::sqrt(1 - se * se);
+        rise_m[j] = r_m * se, reach_m[j] = r_m * std::sqrt(1 - se * se);
+    }
+}
+
+/// origin + rise up + reach ahead, per cell.
+SONARSIM_AVX2_CLONES void raised_points(int n, const SonarFrame& f, const double* rise, const double* reach,
+                                        const double* ahead_x, const double* ahead_y, const double* ahead_z,
+                                        double* x, double* y, double* z) {
+    const glm::dvec3 o = f.origin, u = f.up;
+    for (int j = 0; j < n; ++j) {
+        x[j] = o.x + rise[j] * u.x + reach[j] * ahead_x[j];
+        y[j] = o.y + rise[j] * u.y + reach[j] * ahead_y[j];
+        z[j] = o.z + rise[j] * u.z + reach[j] * ahead_z[j];
     }
 }
 
@@ -125,17 +137,16 @@ SONARSIM_AVX2_CLONES void rise_and_reach(int n, double r_m, const float* elevati
 void SonarFrame::row_points(double r_m, int cells, int per_beam, const float* elevation_rad,
                             const double* ahead_x, const double* ahead_y, const double* ahead_z, double* x,
                             double* y, double* z) const {
-    thread_local std::vector<double> rise, reach; // used only within this call
-    const int beams = cells / per_beam;
-    rise.resize(size_t(beams)), reach.resize(size_t(beams));
-    rise_and_reach(beams, r_m, elevation_rad, rise.data(), reach.data());
-    for (int b = 0; b < beams; ++b) {
-        const glm::dvec3 base = origin + rise[size_t(b)] * up;
-        const double scale = reach[size_t(b)];
-        for (int j = b * per_beam; j < (b + 1) * per_beam; ++j)
-            x[j] = base.x + scale * ahead_x[j], y[j] = base.y + scale * ahead_y[j],
-            z[j] = base.z + scale * ahead_z[j];
+    thread_local std::vector<float> elevation; // these used only within this call
+    thread_local std::vector<double> rise, reach;
+    elevation.resize(size_t(cells)), rise.resize(size_t(cells)), reach.resize(size_t(cells));
+    const float* e = elevation_rad;
+    if (per_beam > 1) {
+        for (int j = 0; j < cells; ++j) elevation[size_t(j)] = elevation_rad[j / per_beam];
+        e = elevation.data();
     }
+    rise_and_reach(cells, r_m, e, rise.data(), reach.data());
+    raised_points(cells, *this, rise.data(), reach.data(), ahead_x, ahead_y, ahead_z, x, y, z);
 }
 
 WorldKeyGrid::WorldKeyGrid(std::uint64_t seed, double cell_m) {
