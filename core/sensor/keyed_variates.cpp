@@ -48,12 +48,18 @@ SONARSIM_AVX2_CLONES void first_gamma_attempts(int n, const std::uint32_t* key, 
 
 } // namespace
 
-SONARSIM_AVX2_CLONES void world_cell_keys(int n, const double* x, const double* y, const double* z,
-                                          double inv_cell, std::uint32_t seed, std::uint32_t* key) {
+SONARSIM_AVX2_CLONES void world_cell_keys(int n, const RaisedPoints& p, double inv_cell, std::uint32_t seed,
+                                          std::uint32_t* key) {
+    const double ox = p.origin_m[0], oy = p.origin_m[1], oz = p.origin_m[2];
+    const double ux = p.up[0], uy = p.up[1], uz = p.up[2];
+    const double *rise = p.rise_m, *reach = p.reach_m, *ax = p.ahead_x, *ay = p.ahead_y, *az = p.ahead_z;
     for (int i = 0; i < n; ++i) {
-        std::uint32_t h = mix32(seed + cell_index(x[i] * inv_cell));
-        h = mix32(h + cell_index(y[i] * inv_cell));
-        key[i] = mix32(h + cell_index(z[i] * inv_cell));
+        const double x = ox + rise[i] * ux + reach[i] * ax[i];
+        const double y = oy + rise[i] * uy + reach[i] * ay[i];
+        const double z = oz + rise[i] * uz + reach[i] * az[i];
+        std::uint32_t h = mix32(seed + cell_index(x * inv_cell));
+        h = mix32(h + cell_index(y * inv_cell));
+        key[i] = mix32(h + cell_index(z * inv_cell));
     }
 }
 

@@ -22,11 +22,18 @@ inline std::uint32_t fold(std::uint64_t seed) {
     return mix32(std::uint32_t(seed) ^ mix32(std::uint32_t(seed >> 32)));
 }
 
-/// Keys of the world points (x, y, z)[i] [m] quantised on a grid of 1 / inv_cell_per_m metres:
-/// key[i] = hash(seed, floor(x inv_cell), floor(y inv_cell), floor(z inv_cell)), each cell index taken modulo
-/// 2^32 (exact while |coordinate| * inv_cell < 2^51).
-void world_cell_keys(int n, const double* x_m, const double* y_m, const double* z_m, double inv_cell_per_m,
-                     std::uint32_t seed, std::uint32_t* key);
+/// World points p_i = origin + rise_m[i] up + reach_m[i] (ahead_x, ahead_y, ahead_z)[i] [m]: cells of the
+/// fan at their range and elevation (up, ahead_i: unit vectors).
+struct RaisedPoints {
+    double origin_m[3], up[3];
+    const double *rise_m, *reach_m, *ahead_x, *ahead_y, *ahead_z;
+};
+
+/// Keys of the n points p_i quantised on a grid of 1 / inv_cell_per_m metres: key[i] = hash(seed,
+/// floor(x inv_cell), floor(y inv_cell), floor(z inv_cell)), each cell index taken modulo 2^32 (exact while
+/// |coordinate| * inv_cell < 2^51).
+void world_cell_keys(int n, const RaisedPoints& p, double inv_cell_per_m, std::uint32_t seed,
+                     std::uint32_t* key);
 
 /// A unit-power circular complex Gaussian variate per key: power[i] ~ Exp(1), and cos and sin of a phase
 /// uniform on the circle (in single precision; 24-bit uniforms: power at most 17.3). sin_phase may be null.

@@ -155,7 +155,7 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
     out.level_db.resize(cells);
     tbb::parallel_for(0, K, [&](int k) {
         struct Scratch {
-            std::vector<double> v, x, y, z, texture;
+            std::vector<double> v, rise, reach, texture;
             std::vector<std::uint32_t> key;
             std::vector<float> power, cos_phase;
         };
@@ -170,11 +170,13 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
         if (k_dist) {
             // The texture's cells: world points on a grid of half a range bin (or half the beam spacing
             // across).
-            for (auto* a : {&w.x, &w.y, &w.z, &w.texture}) a->resize(size_t(N));
-            frame.row_points(r, N, 1, inputs->elevation_rad.data() + c0, ahead_x.data(), ahead_y.data(),
-                             ahead_z.data(), w.x.data(), w.y.data(), w.z.data());
+            for (auto* a : {&w.rise, &w.reach, &w.texture}) a->resize(size_t(N));
+            frame.raise(r, N, 1, inputs->elevation_rad.data() + c0, w.rise.data(), w.reach.data());
             WorldKeyGrid(texture_seed, std::min(dr, r * spacing))
-                .keys(N, w.x.data(), w.y.data(), w.z.data(), w.key.data());
+                .keys(N,
+                      frame.points(w.rise.data(), w.reach.data(), ahead_x.data(), ahead_y.data(),
+                                   ahead_z.data()),
+                      w.key.data());
             keyed::gamma_unit_mean(N, w.key.data(), p.speckle_k_shape, w.texture.data());
             for (int b = 0; b < N; ++b) w.v[size_t(b)] *= w.texture[size_t(b)];
         }

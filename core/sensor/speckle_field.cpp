@@ -110,43 +110,28 @@ SONARSIM_AVX2_CLONES void intensity_row(const double* A, int K, int N, int k, co
     for (int b = 0; b < N; ++b) out[b] = sum_re[b] * sum_re[b] + sum_im[b] * sum_im[b];
 }
 
-/// Per cell, the rise r sin(e) along `up` and the reach r cos(e) along `ahead` (e NaN: 0).
+/// Per beam, the rise r sin(e) along `up` and the reach r cos(e) along `ahead` (e NaN: 0).
 SONARSIM_AVX2_CLONES void rise_and_reach(int n, double r_m, const float* elevation_rad, double* rise_m,
                                          double* reach_m) {
-    for (int j = 0; j < n; ++j) {
-        const double e = elevation_rad[j];
+    for (int b = 0; b < n; ++b) {
+        const double e = elevation_rad[b];
         const double se = e == e ? SonarFrame::key_sin(e) : 0.0; // NaN: nothing echoes, 0
-        rise_m[j] = r_m * se, reach_m[j] = r_m * std::sqrt(1 - se * se);
-    }
-}
-
-/// origin + rise up + reach ahead, per cell.
-SONARSIM_AVX2_CLONES void raised_points(int n, const SonarFrame& f, const double* rise, const double* reach,
-                                        const double* ahead_x, const double* ahead_y, const double* ahead_z,
-                                        double* x, double* y, double* z) {
-    const glm::dvec3 o = f.origin, u = f.up;
-    for (int j = 0; j < n; ++j) {
-        x[j] = o.x + rise[j] * u.x + reach[j] * ahead_x[j];
-        y[j] = o.y + rise[j] * u.y + reach[j] * ahead_y[j];
-        z[j] = o.z + rise[j] * u.z + reach[j] * ahead_z[j];
+        rise_m[b] = r_m * se, reach_m[b] = r_m * std::sqrt(1 - se * se);
     }
 }
 
 } // namespace
 
-void SonarFrame::row_points(double r_m, int cells, int per_beam, const float* elevation_rad,
-                            const double* ahead_x, const double* ahead_y, const double* ahead_z, double* x,
-                            double* y, double* z) const {
-    thread_local std::vector<float> elevation; // these used only within this call
-    thread_local std::vector<double> rise, reach;
-    elevation.resize(size_t(cells)), rise.resize(size_t(cells)), reach.resize(size_t(cells));
-    const float* e = elevation_rad;
-    if (per_beam > 1) {
-        for (int j = 0; j < cells; ++j) elevation[size_t(j)] = elevation_rad[j / per_beam];
-        e = elevation.data();
-    }
-    rise_and_reach(cells, r_m, e, rise.data(), reach.data());
-    raised_points(cells, *this, rise.data(), reach.data(), ahead_x, ahead_y, ahead_z, x, y, z);
+void SonarFrame::raise(double r_m, int cells, int per_beam, const float* elevation_rad, double* rise,
+                       double* reach) const {
+    if (per_beam == 1) return rise_and_reach(cells, r_m, elevation_rad, rise, reach);
+    thread_local std::vector<double> beam_rise, beam_reach; // used only within this call
+    const int beams = cells / per_beam;
+    beam_rise.resize(size_t(beams)), beam_reach.resize(size_t(beams));
+    rise_and_reach(beams, r_m, elevation_rad, beam_rise.data(), beam_reach.data());
+    for (int b = 0, j = 0; b < beams; ++b)
+        for (int s = 0; s < per_beam; ++s, ++j)
+            rise[j] = beam_rise[size_t(b)], reach[j] = beam_reach[size_t(b)];
 }
 
 WorldKeyGrid::WorldKeyGrid(std::uint64_t seed, double cell_m) {
@@ -202,12 +187,12 @@ std::vector<double> form_speckle(const std::vector<double>& I, int K, int J, con
     const int blocks = (K + kBlockRows - 1) / kBlockRows;
     tbb::parallel_for(0, blocks, [&](int block) {
         struct Scratch {
-            std::vector<double> x, y, z;
+            std::vector<double> rise, reach;
             std::vector<std::uint32_t> key;
             std::vector<float> power, cos_phase, sin_phase, re, im, block_re, block_im;
         };
         thread_local Scratch w; // a leaf task's: nothing else runs on this thread while it is in use
-        for (auto* v : {&w.x, &w.y, &w.z}) v->resize(size_t(J));
+        w.rise.resize(size_t(J)), w.reach.resize(size_t(J));
         for (auto* v : {&w.power, &w.cos_phase, &w.sin_phase, &w.re, &w.im}) v->resize(size_t(J));
         w.key.resize(size_t(J));
         w.block_re.resize(formed ? size_t(J) * kBlockRows : 0), w.block_im.resize(w.block_re.size());
@@ -219,10 +204,12 @@ std::vector<double> form_speckle(const std::vector<double>& I, int K, int J, con
         for (int t = 0; t < rows; ++t) {
             const int k = k0 + t;
             const double r = r_min + (k + 0.5) * dr;
-            frame.row_points(r, J, S, in.elevation_rad.data() + size_t(k) * N, ahead_x.data(), ahead_y.data(),
-                             ahead_z.data(), w.x.data(), w.y.data(), w.z.data());
+            frame.raise(r, J, S, in.elevation_rad.data() + size_t(k) * N, w.rise.data(), w.reach.data());
             WorldKeyGrid(seed, std::min(dr, r * column))
-                .keys(J, w.x.data(), w.y.data(), w.z.data(), w.key.data());
+                .keys(J,
+                      frame.points(w.rise.data(), w.reach.data(), ahead_x.data(), ahead_y.data(),
+                                   ahead_z.data()),
+                      w.key.data());
             keyed::exp_phasors(J, w.key.data(), w.power.data(), w.cos_phase.data(), w.sin_phase.data());
             const double* x = I.data() + size_t(k) * J;
             if (!formed) {

@@ -23,9 +23,9 @@ namespace sonarsim {
 class WorldKeyGrid {
   public:
     WorldKeyGrid(std::uint64_t seed, double cell_m);
-    /// The keys of the n points (x, y, z)[i] [m].
-    void keys(int n, const double* x_m, const double* y_m, const double* z_m, std::uint32_t* key) const {
-        keyed::world_cell_keys(n, x_m, y_m, z_m, inv_q_per_m_, row_seed_, key);
+    /// The keys of n points.
+    void keys(int n, const keyed::RaisedPoints& p, std::uint32_t* key) const {
+        keyed::world_cell_keys(n, p, inv_q_per_m_, row_seed_, key);
     }
 
   private:
@@ -48,11 +48,17 @@ struct SonarFrame {
         return e *
                (1 - e2 * (1.0 / 6) * (1 - e2 * (1.0 / 20) * (1 - e2 * (1.0 / 42) * (1 - e2 * (1.0 / 72)))));
     }
-    /// The world points [m] of a row of cells at range r: cell j looks along (ahead_x, ahead_y, ahead_z)[j]
-    /// raised by its beam's elevation, elevation_rad[j / per_beam] (a beam's cells share it).
-    void row_points(double r_m, int cells, int per_beam, const float* elevation_rad, const double* ahead_x,
-                    const double* ahead_y, const double* ahead_z, double* x_m, double* y_m,
-                    double* z_m) const;
+    /// A row of cells at range r raised by their beam's elevation: cell j's rise r sin(e) along `up` and
+    /// reach r cos(e) along its direction, e = elevation_rad[j / per_beam] (NaN: 0), a beam's cells sharing
+    /// it.
+    void raise(double r_m, int cells, int per_beam, const float* elevation_rad, double* rise_m,
+               double* reach_m) const;
+    /// The points origin + rise up + reach ahead of n cells (directions ahead_x, ahead_y, ahead_z).
+    keyed::RaisedPoints points(const double* rise_m, const double* reach_m, const double* ahead_x,
+                               const double* ahead_y, const double* ahead_z) const {
+        return {
+            {origin.x, origin.y, origin.z}, {up.x, up.y, up.z}, rise_m, reach_m, ahead_x, ahead_y, ahead_z};
+    }
 };
 
 /// The speckled intensity per (range bin, beam) [bin * beams + beam] from the linear intensities `I` per
