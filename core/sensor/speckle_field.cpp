@@ -114,9 +114,8 @@ SONARSIM_AVX2_CLONES void intensity_row(const double* A, int K, int N, int k, co
 SONARSIM_AVX2_CLONES void rise_and_reach(int n, double r_m, const float* elevation_rad, double* rise_m,
                                          double* reach_m) {
     for (int b = 0; b < n; ++b) {
-        const double e = elevation_rad[b];
-        const double se = e == e ? SonarFrame::key_sin(e) : 0.0; // NaN: nothing echoes, 0
-        rise_m[b] = r_m * se, reach_m[b] = r_m * std::sqrt(1 - se * se);
+        const double e = elevation_rad[b] == elevation_rad[b] ? elevation_rad[b] : 0.0; // NaN: nothing echoes
+        rise_m[b] = r_m * SonarFrame::key_sin(e), reach_m[b] = r_m * SonarFrame::key_cos(e);
     }
 }
 

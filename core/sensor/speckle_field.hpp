@@ -41,12 +41,18 @@ struct SonarFrame {
     glm::dvec3 origin, up;
     glm::dmat3 R;
     glm::dvec3 ahead(double azimuth_rad) const; ///< R (cos a, sin a, 0)
-    /// sin of an elevation angle |e| <= pi/2 (Taylor to e^9: error below 2e-4 at pi/2, 1e-8 within 0.5 rad):
-    /// only used to place a key, where any fixed function of e does.
+    /// sin and cos of an elevation angle |e| <= pi/2 (Taylor to e^9 and e^10: errors below 2e-4 and 5e-7 at
+    /// pi/2, 1e-8 within 0.5 rad): only used to place a key, where any fixed function of e does.
     static double key_sin(double e) {
         const double e2 = e * e;
         return e *
                (1 - e2 * (1.0 / 6) * (1 - e2 * (1.0 / 20) * (1 - e2 * (1.0 / 42) * (1 - e2 * (1.0 / 72)))));
+    }
+    static double key_cos(double e) {
+        const double e2 = e * e;
+        return 1 - e2 * 0.5 *
+                       (1 - e2 * (1.0 / 12) *
+                                (1 - e2 * (1.0 / 30) * (1 - e2 * (1.0 / 56) * (1 - e2 * (1.0 / 90)))));
     }
     /// A row of cells at range r raised by their beam's elevation: cell j's rise r sin(e) along `up` and
     /// reach r cos(e) along its direction, e = elevation_rad[j / per_beam] (NaN: 0), a beam's cells sharing
