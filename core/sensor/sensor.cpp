@@ -35,19 +35,6 @@ std::uint64_t pose_key(const SceneDesc& s) {
     return h;
 }
 
-/// The largest level [dB] (-inf when there is none; NaN is passed over). On the bits, where
-/// i ^ ((i >> 31) & 0x7fffffff) orders as the floats do and an integer maximum vectorises.
-SONARSIM_AVX2_CLONES float max_level(std::size_t n, const float* level_db) {
-    auto order = [](std::int32_t i) { return i ^ ((i >> 31) & 0x7fffffff); }; // its own inverse
-    const std::int32_t lowest = order(fast::bits_of(-std::numeric_limits<float>::infinity()));
-    std::int32_t top = lowest;
-    for (std::size_t i = 0; i < n; ++i) {
-        const float v = level_db[i];
-        top = std::max(top, v == v ? order(fast::bits_of(v)) : lowest);
-    }
-    return fast::float_of(order(top));
-}
-
 /// 10^((level - peak) / 10) of each level.
 SONARSIM_AVX2_CLONES void linear_of(std::size_t n, const float* level_db, double peak_db, double* out) {
     constexpr double kLog2Of10Over10 = 0.33219280948873623;
@@ -63,15 +50,12 @@ SONARSIM_AVX2_CLONES void levels_db(int n, const double* v, double gain_db, floa
     }
 }
 
-/// Linear intensity relative to 10^(peak/10) (0 where -inf); returns the peak [dB].
-double to_linear(const PolarImage& src, std::vector<double>& out) {
-    double peak = max_level(src.level_db.size(), src.level_db.data());
-    if (peak == kNegInf) peak = 0;
+/// Linear intensity relative to 10^(peak/10) (0 where -inf).
+void to_linear(const PolarImage& src, double peak_db, std::vector<double>& out) {
     out = scratch::take(src.level_db.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 1 << 14), [&](auto r) {
-        linear_of(r.size(), src.level_db.data() + r.begin(), peak, out.data() + r.begin());
+        linear_of(r.size(), src.level_db.data() + r.begin(), peak_db, out.data() + r.begin());
     });
-    return peak;
 }
 
 /// The receive pattern: each beam sums the fine columns weighted by its pattern (peak gain 1).
@@ -122,13 +106,13 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
     const bool fine = inputs && inputs->sub > 1 && p.azimuth_window != AzimuthWindow::None;
     const PolarImage& src = fine ? inputs->fine : ideal;
     std::vector<double> I;
-    const double peak = to_linear(src, I);
     const bool speckle = p.speckle != Speckle::Off && inputs && !inputs->elevation_rad.empty();
+    double peak = max_level(src.level_db.size(), src.level_db.data());
+    if (peak == kNegInf) peak = 0;
     if (speckle) {
-        std::vector<double> formed = form_speckle(I, K, src.beams, *inputs, s);
-        scratch::give(std::move(I));
-        I = std::move(formed);
+        I = form_speckle(src, peak, *inputs, s);
     } else {
+        to_linear(src, peak, I);
         if (p.azimuth_window != AzimuthWindow::None) I = form_beams(I, K, src.beams, s);
         if (const std::vector<double> h = range_kernel(p.pulse, p.range_resolution_m, dr); h.size() > 1)
             convolve_range(I, K, N, h);

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -43,32 +44,48 @@ BeamSums by_beam(const AzimuthBeamforming& bf, int J) {
     return s;
 }
 
-/// The field sqrt(I) z of one row from the intensities and z's power and phase.
-SONARSIM_AVX2_CLONES void field_row(int J, const double* intensity, const float* power,
+/// The largest of n levels [dB] (-inf when there is none; NaN is passed over). On the bits, where
+/// i ^ ((i >> 31) & 0x7fffffff) orders as the floats do and an integer maximum vectorises.
+SONARSIM_AVX2_CLONES float max_level_clones(std::size_t n, const float* level_db) {
+    auto order = [](std::int32_t i) { return i ^ ((i >> 31) & 0x7fffffff); }; // its own inverse
+    const std::int32_t lowest = order(fast::bits_of(-std::numeric_limits<float>::infinity()));
+    std::int32_t top = lowest;
+    for (std::size_t i = 0; i < n; ++i) {
+        const float v = level_db[i];
+        top = std::max(top, v == v ? order(fast::bits_of(v)) : lowest);
+    }
+    return fast::float_of(order(top));
+}
+
+/// The field sqrt(I) z of one row, I relative to 10^(peak_db / 10), from the levels and z's power and phase.
+SONARSIM_AVX2_CLONES void field_row(int J, const float* level_db, double peak_db, const float* power,
                                     const float* cos_phase, const float* sin_phase, double* re, double* im) {
+    constexpr double kLog2Of10Over10 = 0.33219280948873623;
     for (int j = 0; j < J; ++j) {
-        const double a = std::sqrt(intensity[j] * double(power[j]));
+        const double I = fast::exp2_nonpositive((double(level_db[j]) - peak_db) * kLog2Of10Over10);
+        const double a = std::sqrt(I * double(power[j]));
         re[j] = a * double(cos_phase[j]), im[j] = a * double(sin_phase[j]);
     }
 }
 
-/// The largest of n intensities (>= 0; on the bits, where non-negative doubles order as integers do).
-SONARSIM_AVX2_CLONES double max_intensity(std::size_t n, const double* I) {
-    std::int64_t top = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        const auto b = std::int64_t(fast::bits_of(I[i]));
-        top = b > top ? b : top;
-    }
-    return fast::double_of(std::uint64_t(top));
+} // namespace
+
+float max_level(std::size_t n, const float* level_db) {
+    return max_level_clones(n, level_db);
 }
 
-/// The field of one row relative to the amplitude `unit`, in single precision.
-SONARSIM_AVX2_CLONES void relative_field_row(int J, const double* intensity, const float* power,
-                                             const float* cos_phase, const float* sin_phase, double inv_unit,
-                                             float* re, float* im) {
+namespace {
+
+/// The field of one row relative to the amplitude 10^(top_db / 20), in single precision: 0 for levels more
+/// than 759 dB below top_db (2^-126 in amplitude).
+SONARSIM_AVX2_CLONES void relative_field_row(int J, const float* level_db, float top_db, const float* power,
+                                             const float* cos_phase, const float* sin_phase, float* re,
+                                             float* im) {
+    constexpr float kLog2Of10Over20 = 0.166096405f;
     for (int j = 0; j < J; ++j) {
-        const double a = std::sqrt(intensity[j] * double(power[j])) * inv_unit;
-        re[j] = float(a * double(cos_phase[j])), im[j] = float(a * double(sin_phase[j]));
+        const float a =
+            fast::exp2_nonpositive_f((level_db[j] - top_db) * kLog2Of10Over20) * std::sqrt(power[j]);
+        re[j] = a * cos_phase[j], im[j] = a * sin_phase[j];
     }
 }
 
@@ -164,8 +181,9 @@ void convolve_range(std::vector<double>& rows, int K, int width, const std::vect
     rows.swap(out);
 }
 
-std::vector<double> form_speckle(const std::vector<double>& I, int K, int J, const SensorInputs& in,
+std::vector<double> form_speckle(const PolarImage& src, double peak_db, const SensorInputs& in,
                                  const SceneDesc& s) {
+    const int K = src.bins, J = src.beams;
     const std::shared_ptr<const SonarGrid> sg = sonar_grid(s.sonar);
     const int N = sg->beams, S = J / N;
     const double r_min = sg->range_min_m, dr = sg->bin_m;
@@ -196,10 +214,13 @@ std::vector<double> form_speckle(const std::vector<double>& I, int K, int J, con
         w.key.resize(size_t(J));
         w.block_re.resize(formed ? size_t(J) * kBlockRows : 0), w.block_im.resize(w.block_re.size());
         const int k0 = block * kBlockRows, rows = std::min(kBlockRows, K - k0);
-        // Formed in single precision relative to the block's strongest sample (an amplitude at most
-        // sqrt(17.3) of that), so that nothing within 700 dB of it underflows.
-        const double top = formed ? max_intensity(size_t(rows) * J, I.data() + size_t(k0) * J) : 0.0;
-        const double unit = top > 0 ? std::sqrt(top) : 1.0;
+        // Formed in single precision relative to the block's strongest sample.
+        const float top_db =
+            formed ? max_level(size_t(rows) * J, src.level_db.data() + size_t(k0) * J) : 0.0f;
+        constexpr double kLog2Of10Over20 = 0.16609640474436812;
+        const double unit = top_db == -std::numeric_limits<float>::infinity()
+                                ? 0.0
+                                : fast::exp2_nonpositive((double(top_db) - peak_db) * kLog2Of10Over20);
         for (int t = 0; t < rows; ++t) {
             const int k = k0 + t;
             const double r = r_min + (k + 0.5) * dr;
@@ -210,13 +231,14 @@ std::vector<double> form_speckle(const std::vector<double>& I, int K, int J, con
                                    ahead_z.data()),
                       w.key.data());
             keyed::exp_phasors(J, w.key.data(), w.power.data(), w.cos_phase.data(), w.sin_phase.data());
-            const double* x = I.data() + size_t(k) * J;
+            const float* level = src.level_db.data() + size_t(k) * J;
             if (!formed) {
                 double* row = A.data() + size_t(k) * N * 2;
-                field_row(J, x, w.power.data(), w.cos_phase.data(), w.sin_phase.data(), row, row + N);
+                field_row(J, level, peak_db, w.power.data(), w.cos_phase.data(), w.sin_phase.data(), row,
+                          row + N);
                 continue;
             }
-            relative_field_row(J, x, w.power.data(), w.cos_phase.data(), w.sin_phase.data(), 1 / unit,
+            relative_field_row(J, level, top_db, w.power.data(), w.cos_phase.data(), w.sin_phase.data(),
                                w.re.data(), w.im.data());
             for (int j = 0; j < J; ++j) {
                 w.block_re[size_t(j) * kBlockRows + size_t(t)] = w.re[size_t(j)];

@@ -67,14 +67,19 @@ struct SonarFrame {
     }
 };
 
-/// The speckled intensity per (range bin, beam) [bin * beams + beam] from the linear intensities `I` per
-/// (range bin, source column) (K x J; J = beams x sub, the fine columns when the receive pattern is formed
-/// from them): the field sqrt(I) z, z ~ CN(0, 1) keyed by the sample's world point (range, column azimuth,
-/// the beam's mean elevation in `inputs`, quantised to half the sample spacing), summed over the columns
-/// with the receive pattern's amplitude (when the window is on), convolved along range with the matched
+/// The speckled intensity per (range bin, beam) [bin * beams + beam], relative to 10^(peak_db / 10), from the
+/// levels L_EN [dB] of `src` per (range bin, source column) (J = beams x sub columns, the fine ones when the
+/// receive pattern is formed from them; peak_db their largest): the field sqrt(I) z, I = 10^(L_EN / 10),
+/// z ~ CN(0, 1) keyed by the sample's world point (range, column azimuth, the beam's mean elevation in
+/// `inputs`, quantised to half the sample spacing), summed over the columns with the receive pattern's
+/// amplitude (when the window is on, in single precision relative to the strongest sample of each 8 range
+/// bins: a sample more than 759 dB below that one counts as 0), convolved along range with the matched
 /// filter's amplitude response, then |.|^2.
-std::vector<double> form_speckle(const std::vector<double>& I, int K, int J, const SensorInputs& inputs,
+std::vector<double> form_speckle(const PolarImage& src, double peak_db, const SensorInputs& inputs,
                                  const SceneDesc& scene);
+
+/// The largest of n levels [dB] (-inf when there is none; NaN is passed over).
+float max_level(std::size_t n, const float* level_db);
 
 /// Each row of `rows` (K rows of `width` values) replaced by the h-weighted sum of its neighbours along
 /// range: out_k = sum_t h[t + half] x_(k - t).

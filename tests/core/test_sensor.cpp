@@ -423,3 +423,18 @@ TEST_CASE("the single-precision lane functions keep their stated error bounds", 
     CHECK(worst_sin < 3e-7);
     CHECK(worst_ln > 0); // single precision: not exact
 }
+
+TEST_CASE("the single-precision 2^x keeps its error bound down to -126 and is 0 below", "[sensor][fast]") {
+    double worst = 0;
+    for (int i = 0; i <= 200000; ++i) {
+        const float x = -126.0f * float(i) / 200000 - 1e-4f * float(i % 7); // 0 ... -126, dense and irregular
+        if (x < -126.0f) continue;
+        worst = std::max(worst, std::abs(double(fast::exp2_nonpositive_f(x)) / std::exp2(double(x)) - 1));
+    }
+    CHECK(worst < 3e-7);
+    CHECK(worst > 0);
+    CHECK(fast::exp2_nonpositive_f(-126.5f) == 0.0f);
+    CHECK(fast::exp2_nonpositive_f(-std::numeric_limits<float>::infinity()) == 0.0f);
+    CHECK(fast::exp2_nonpositive_f(std::nanf("")) == 0.0f);
+    CHECK(fast::exp2_nonpositive_f(0.0f) == 1.0f);
+}
