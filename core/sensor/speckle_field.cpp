@@ -145,9 +145,10 @@ void SonarFrame::raise(double r_m, int cells, int per_beam, const float* elevati
     const int beams = cells / per_beam;
     beam_rise.resize(size_t(beams)), beam_reach.resize(size_t(beams));
     rise_and_reach(beams, r_m, elevation_rad, beam_rise.data(), beam_reach.data());
-    for (int b = 0, j = 0; b < beams; ++b)
-        for (int s = 0; s < per_beam; ++s, ++j)
-            rise[j] = beam_rise[size_t(b)], reach[j] = beam_reach[size_t(b)];
+    for (int b = 0, j = 0; b < beams; ++b) {
+        const double beam_rise_m = beam_rise[size_t(b)], beam_reach_m = beam_reach[size_t(b)];
+        for (int s = 0; s < per_beam; ++s, ++j) rise[j] = beam_rise_m, reach[j] = beam_reach_m;
+    }
 }
 
 WorldKeyGrid::WorldKeyGrid(std::uint64_t seed, double cell_m) {
