@@ -9,6 +9,7 @@
 #include "core/analysis/reference.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/base/fast_math.hpp"
+#include "core/sensor/keyed_variates.hpp"
 #include "core/sensor/sensor.hpp"
 #include "core/sensor/sensor_patterns.hpp"
 #include "core/pipeline/simulator.hpp"
@@ -437,4 +438,23 @@ TEST_CASE("the single-precision 2^x keeps its error bound down to -126 and is 0 
     CHECK(fast::exp2_nonpositive_f(-std::numeric_limits<float>::infinity()) == 0.0f);
     CHECK(fast::exp2_nonpositive_f(std::nanf("")) == 0.0f);
     CHECK(fast::exp2_nonpositive_f(0.0f) == 1.0f);
+}
+
+TEST_CASE("the K texture's gamma draws have the mean and variance of their shape", "[sensor][speckle]") {
+    for (const double shape : {0.3, 1.0, 4.0, 50.0}) {
+        // 2^20 draws: mean 1 and variance 1 / shape within 4.5 standard errors.
+        const int n = 1 << 20;
+        std::vector<std::uint32_t> key(static_cast<size_t>(n));
+        for (int i = 0; i < n; ++i) key[size_t(i)] = keyed::mix32(std::uint32_t(i) * 2654435761U);
+        std::vector<double> g(static_cast<size_t>(n));
+        keyed::gamma_unit_mean(n, key.data(), shape, g.data());
+        double m1 = 0, m2 = 0;
+        for (double v : g) m1 += v, m2 += v * v;
+        m1 /= n, m2 /= n;
+        const double var = m2 - m1 * m1, sd_mean = std::sqrt(1 / shape / n);
+        const double sd_var = std::sqrt((2 + 6 / shape) / n) / shape; // the gamma's kurtosis: 3 + 6 / shape
+        CAPTURE(shape, m1, var);
+        CHECK(std::abs(m1 - 1) < 4.5 * sd_mean);
+        CHECK(std::abs(var - 1 / shape) < 4.5 * sd_var);
+    }
 }
