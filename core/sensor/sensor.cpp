@@ -19,8 +19,6 @@
 namespace sonarsim {
 namespace {
 
-constexpr double kNegInf = -std::numeric_limits<double>::infinity();
-
 std::uint64_t bits_of(double x) {
     std::uint64_t u;
     std::memcpy(&u, &x, sizeof u);
@@ -48,6 +46,17 @@ SONARSIM_AVX2_CLONES void levels_db(int n, const double* v, double gain_db, floa
         const float level = float(fast::db(v[i]) + gain_db);
         out[i] = v[i] > 0 ? level : -std::numeric_limits<float>::infinity();
     }
+}
+
+/// The image's largest level [dB] (0 when nothing echoes), in chunks in parallel.
+double peak_level(const PolarImage& src) {
+    const std::size_t n = src.level_db.size(), chunk = std::size_t(1) << 16, chunks = (n + chunk - 1) / chunk;
+    std::vector<float> top(chunks);
+    tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+        top[c] = max_level(std::min(chunk, n - c * chunk), src.level_db.data() + c * chunk);
+    });
+    const float peak = max_level(chunks, top.data());
+    return peak == -std::numeric_limits<float>::infinity() ? 0.0 : double(peak);
 }
 
 /// Linear intensity relative to 10^(peak/10) (0 where -inf).
@@ -107,8 +116,7 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
     const PolarImage& src = fine ? inputs->fine : ideal;
     std::vector<double> I;
     const bool speckle = p.speckle != Speckle::Off && inputs && !inputs->elevation_rad.empty();
-    double peak = max_level(src.level_db.size(), src.level_db.data());
-    if (peak == kNegInf) peak = 0;
+    const double peak = peak_level(src);
     if (speckle) {
         I = form_speckle(src, peak, *inputs, s);
     } else {
