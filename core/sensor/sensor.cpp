@@ -61,7 +61,7 @@ double peak_level(const PolarImage& src) {
 
 /// Linear intensity relative to 10^(peak/10) (0 where -inf).
 void to_linear(const PolarImage& src, double peak_db, std::vector<double>& out) {
-    out = scratch::take(src.level_db.size());
+    out = scratch::take<double>(src.level_db.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 1 << 14), [&](auto r) {
         linear_of(r.size(), src.level_db.data() + r.begin(), peak_db, out.data() + r.begin());
     });

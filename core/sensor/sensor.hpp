@@ -18,8 +18,8 @@ bool sensor_is_ideal(const SceneDesc& scene);
 
 /// The device's image [dB]: L_EN after the receive pattern, range response, speckle and noise, plus TVG
 /// and gain. `inputs` are needed when needs_sensor_inputs(scene). Intensities are carried in double
-/// precision relative to the image's peak, so nothing within 3000 dB of it underflows (the speckle field's
-/// beam sums: single precision within 759 dB of the strongest sample of their 8 range bins, form_speckle).
+/// precision relative to the image's peak, so nothing within 3000 dB of it underflows (the speckle field:
+/// single precision within 759 dB of the strongest sample of its 8 range bins, form_speckle).
 PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, const SceneDesc& scene,
                         double alpha_db_per_m);
 

@@ -57,17 +57,6 @@ SONARSIM_AVX2_CLONES float max_level_clones(std::size_t n, const float* level_db
     return fast::float_of(order(top));
 }
 
-/// The field sqrt(I) z of one row, I relative to 10^(peak_db / 10), from the levels and z's power and phase.
-SONARSIM_AVX2_CLONES void field_row(int J, const float* level_db, double peak_db, const float* power,
-                                    const float* cos_phase, const float* sin_phase, double* re, double* im) {
-    constexpr double kLog2Of10Over10 = 0.33219280948873623;
-    for (int j = 0; j < J; ++j) {
-        const double I = fast::exp2_nonpositive((double(level_db[j]) - peak_db) * kLog2Of10Over10);
-        const double a = std::sqrt(I * double(power[j]));
-        re[j] = a * double(cos_phase[j]), im[j] = a * double(sin_phase[j]);
-    }
-}
-
 } // namespace
 
 float max_level(std::size_t n, const float* level_db) {
@@ -92,10 +81,10 @@ SONARSIM_AVX2_CLONES void relative_field_row(int J, const float* level_db, float
 /// kBlockRows floats as one value (GCC's vector extension: one AVX register, or two SSE ones).
 typedef float BlockFloats __attribute__((vector_size(kBlockRows * sizeof(float))));
 
-/// The beams of a block from its field relative to `unit` (re, im of column j, row t at j * kBlockRows + t):
-/// unit * (re, im) of beam b for the block's row t into out[t * 2 N + b] and out[t * 2 N + N + b], t < rows.
-SONARSIM_AVX2_CLONES void form_block(const BeamSums& sums, int N, const float* re, const float* im,
-                                     double unit, int rows, double* out) {
+/// The beams of a block from its field (re, im of column j, row t at j * kBlockRows + t): (re, im) of beam b
+/// for the block's row t into out[t * 2 N + b] and out[t * 2 N + N + b], t < rows.
+SONARSIM_AVX2_CLONES void form_block(const BeamSums& sums, int N, const float* re, const float* im, int rows,
+                                     float* out) {
     for (int b = 0; b < N; ++b) {
         BlockFloats sum_re = {}, sum_im = {};
         for (int p = sums.start[size_t(b)]; p < sums.start[size_t(b) + 1]; ++p) {
@@ -105,24 +94,25 @@ SONARSIM_AVX2_CLONES void form_block(const BeamSums& sums, int N, const float* r
             std::memcpy(&x_im, im + size_t(sums.column[size_t(p)]) * kBlockRows, sizeof x_im);
             sum_re += w * x_re, sum_im += w * x_im;
         }
-        for (int t = 0; t < rows; ++t) {
-            out[size_t(t) * 2 * N + size_t(b)] = unit * double(sum_re[t]);
-            out[size_t(t) * 2 * N + size_t(N + b)] = unit * double(sum_im[t]);
-        }
+        for (int t = 0; t < rows; ++t)
+            out[size_t(t) * 2 * N + size_t(b)] = sum_re[t],
+                                    out[size_t(t) * 2 * N + size_t(N + b)] = sum_im[t];
     }
 }
 
-/// One output row: |sum_t g[t + half] A_(k - t)|^2 over the rows of A (re N values, then im N values).
-SONARSIM_AVX2_CLONES void intensity_row(const double* A, int K, int N, int k, const std::vector<double>& g,
-                                        double* sum_re, double* sum_im, double* out) {
+/// One output row: |sum_t g[t + half] unit(k - t) A_(k - t)|^2 over the rows of A (re N values, then im N
+/// values; row k relative to the amplitude unit[k / kBlockRows]).
+SONARSIM_AVX2_CLONES void intensity_row(const float* A, const double* unit, int K, int N, int k,
+                                        const std::vector<double>& g, double* sum_re, double* sum_im,
+                                        double* out) {
     const int half = int(g.size() / 2);
     std::fill(sum_re, sum_re + N, 0.0), std::fill(sum_im, sum_im + N, 0.0);
     for (int t = -half; t <= half; ++t) {
         const int src = k - t;
         if (src < 0 || src >= K) continue;
-        const double w = g[size_t(t + half)];
-        const double* x = A + size_t(src) * 2 * N;
-        for (int b = 0; b < N; ++b) sum_re[b] += w * x[b], sum_im[b] += w * x[N + b];
+        const double w = g[size_t(t + half)] * unit[src / kBlockRows];
+        const float* x = A + size_t(src) * 2 * N;
+        for (int b = 0; b < N; ++b) sum_re[b] += w * double(x[b]), sum_im[b] += w * double(x[N + b]);
     }
     for (int b = 0; b < N; ++b) out[b] = sum_re[b] * sum_re[b] + sum_im[b] * sum_im[b];
 }
@@ -201,8 +191,9 @@ std::vector<double> form_speckle(const PolarImage& src, double peak_db, const Se
 
     // Per block of range bins: the field on the source columns, then (formed) the beams' complex amplitudes,
     // into A: per bin, re of the N beams, then im.
-    std::vector<double> A = scratch::take(size_t(K) * N * 2); // every value written below
     const int blocks = (K + kBlockRows - 1) / kBlockRows;
+    std::vector<float> A = scratch::take<float>(size_t(K) * N * 2); // every value written below
+    std::vector<double> unit(static_cast<size_t>(blocks));          // per block: A's unit amplitude
     tbb::parallel_for(0, blocks, [&](int block) {
         struct Scratch {
             std::vector<double> rise, reach;
@@ -215,13 +206,12 @@ std::vector<double> form_speckle(const PolarImage& src, double peak_db, const Se
         w.key.resize(size_t(J));
         w.block_re.resize(formed ? size_t(J) * kBlockRows : 0), w.block_im.resize(w.block_re.size());
         const int k0 = block * kBlockRows, rows = std::min(kBlockRows, K - k0);
-        // Formed in single precision relative to the block's strongest sample.
-        const float top_db =
-            formed ? max_level(size_t(rows) * J, src.level_db.data() + size_t(k0) * J) : 0.0f;
+        // In single precision relative to the block's strongest sample.
+        const float top_db = max_level(size_t(rows) * J, src.level_db.data() + size_t(k0) * J);
         constexpr double kLog2Of10Over20 = 0.16609640474436812;
-        const double unit = top_db == -std::numeric_limits<float>::infinity()
-                                ? 0.0
-                                : fast::exp2_nonpositive((double(top_db) - peak_db) * kLog2Of10Over20);
+        unit[size_t(block)] = top_db == -std::numeric_limits<float>::infinity()
+                                  ? 0.0
+                                  : fast::exp2_nonpositive((double(top_db) - peak_db) * kLog2Of10Over20);
         for (int t = 0; t < rows; ++t) {
             const int k = k0 + t;
             const double r = r_min + (k + 0.5) * dr;
@@ -234,9 +224,9 @@ std::vector<double> form_speckle(const PolarImage& src, double peak_db, const Se
             keyed::exp_phasors(J, w.key.data(), w.power.data(), w.cos_phase.data(), w.sin_phase.data());
             const float* level = src.level_db.data() + size_t(k) * J;
             if (!formed) {
-                double* row = A.data() + size_t(k) * N * 2;
-                field_row(J, level, peak_db, w.power.data(), w.cos_phase.data(), w.sin_phase.data(), row,
-                          row + N);
+                float* row = A.data() + size_t(k) * N * 2;
+                relative_field_row(J, level, top_db, w.power.data(), w.cos_phase.data(), w.sin_phase.data(),
+                                   row, row + N);
                 continue;
             }
             relative_field_row(J, level, top_db, w.power.data(), w.cos_phase.data(), w.sin_phase.data(),
@@ -247,19 +237,19 @@ std::vector<double> form_speckle(const PolarImage& src, double peak_db, const Se
             }
         }
         if (formed)
-            form_block(sums, N, w.block_re.data(), w.block_im.data(), unit, rows,
-                       A.data() + size_t(k0) * N * 2);
+            form_block(sums, N, w.block_re.data(), w.block_im.data(), rows, A.data() + size_t(k0) * N * 2);
     });
 
     // The matched filter along range on the amplitudes, then |.|^2.
     const SensorParams& p = s.sensor;
     const std::vector<double> g = range_amplitude_kernel(p.pulse, p.range_resolution_m, dr);
-    std::vector<double> out = scratch::take(size_t(K) * N); // every value written below
+    std::vector<double> out = scratch::take<double>(size_t(K) * N); // every value written below
     tbb::parallel_for(tbb::blocked_range<int>(0, K, 16), [&](const tbb::blocked_range<int>& ks) {
         thread_local std::vector<double> sum_re, sum_im; // a leaf task's, as above
         sum_re.resize(size_t(N)), sum_im.resize(size_t(N));
         for (int k = ks.begin(); k < ks.end(); ++k)
-            intensity_row(A.data(), K, N, k, g, sum_re.data(), sum_im.data(), out.data() + size_t(k) * N);
+            intensity_row(A.data(), unit.data(), K, N, k, g, sum_re.data(), sum_im.data(),
+                          out.data() + size_t(k) * N);
     });
     scratch::give(std::move(A));
     return out;

@@ -72,9 +72,9 @@ struct SonarFrame {
 /// receive pattern is formed from them; peak_db their largest): the field sqrt(I) z, I = 10^(L_EN / 10),
 /// z ~ CN(0, 1) keyed by the sample's world point (range, column azimuth, the beam's mean elevation in
 /// `inputs`, quantised to half the sample spacing), summed over the columns with the receive pattern's
-/// amplitude (when the window is on, in single precision relative to the strongest sample of each 8 range
-/// bins: a sample more than 759 dB below that one counts as 0), convolved along range with the matched
-/// filter's amplitude response, then |.|^2.
+/// amplitude (when the window is on), convolved along range with the matched filter's amplitude response,
+/// then |.|^2. The field and the beams are carried in single precision relative to the strongest sample of
+/// each 8 range bins (a sample more than 759 dB below that one counts as 0).
 std::vector<double> form_speckle(const PolarImage& src, double peak_db, const SensorInputs& inputs,
                                  const SceneDesc& scene);
 
