@@ -43,7 +43,7 @@ SONARSIM_AVX2_CLONES void linear_of(std::size_t n, const float* level_db, double
 /// The output levels of a row: 10 log10(v) + gain [dB], -inf where v is 0.
 SONARSIM_AVX2_CLONES void levels_db(int n, const double* v, double gain_db, float* out) {
     for (int i = 0; i < n; ++i) {
-        const float level = float(fast::db(v[i]) + gain_db);
+        const float level = float(fast::db_level(v[i]) + gain_db);
         out[i] = v[i] > 0 ? level : -std::numeric_limits<float>::infinity();
     }
 }

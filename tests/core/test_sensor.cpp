@@ -425,6 +425,18 @@ TEST_CASE("the single-precision lane functions keep their stated error bounds", 
     CHECK(worst_ln > 0); // single precision: not exact
 }
 
+TEST_CASE("the output levels' logarithm keeps its error bound over the whole double range",
+          "[sensor][fast]") {
+    double worst = 0;
+    for (int i = 0; i <= 200000; ++i) {
+        const double x =
+            std::exp2(-1070.0 * i / 200000 + 20) * (1 + 0.37 * (i % 11) / 11); // 2^20 ... 2^-1050
+        worst = std::max(worst, std::abs(fast::db_level(x) - 10 * std::log10(x)));
+    }
+    CHECK(worst < 1e-6);
+    CHECK(fast::db_level(1e-310) == Approx(-3100.0).margin(1e-6)); // denormal
+}
+
 TEST_CASE("the single-precision 2^x keeps its error bound down to -126 and is 0 below", "[sensor][fast]") {
     double worst = 0;
     for (int i = 0; i <= 200000; ++i) {
