@@ -147,7 +147,7 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
     out.level_db.resize(cells);
     tbb::parallel_for(0, K, [&](int k) {
         struct Scratch {
-            std::vector<double> v, rise, reach, texture;
+            std::vector<double> rise, reach, texture;
             std::vector<std::uint32_t> key;
             std::vector<float> power, cos_phase;
         };
@@ -155,9 +155,9 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
         const double r = r_min + (k + 0.5) * dr;
         const double gain = tvg_db(p.tvg, r, alpha) + p.gain_db + peak;
         const size_t c0 = size_t(k) * N;
-        w.v.assign(I.begin() + std::ptrdiff_t(c0), I.begin() + std::ptrdiff_t(c0 + N));
+        double* v = I.data() + c0; // this row's, worked on in place
         if (!beam_gain.empty())
-            for (int b = 0; b < N; ++b) w.v[size_t(b)] *= beam_gain[size_t(b)];
+            for (int b = 0; b < N; ++b) v[b] *= beam_gain[size_t(b)];
         w.key.resize(size_t(N));
         if (k_dist) {
             // The texture's cells: world points on a grid of half a range bin (or half the beam spacing
@@ -170,7 +170,7 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
                                    ahead_z.data()),
                       w.key.data());
             keyed::gamma_unit_mean(N, w.key.data(), p.speckle_k_shape, w.texture.data());
-            for (int b = 0; b < N; ++b) w.v[size_t(b)] *= w.texture[size_t(b)];
+            for (int b = 0; b < N; ++b) v[b] *= w.texture[size_t(b)];
         }
         if (noise_power > 0) {
             // |sqrt(v) + n|^2, n = sigma sqrt(E) e^(i phi): circular complex Gaussian of power sigma^2.
@@ -179,12 +179,12 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
             for (auto* a : {&w.power, &w.cos_phase}) a->resize(size_t(N));
             keyed::exp_phasors(N, w.key.data(), w.power.data(), w.cos_phase.data(), nullptr);
             for (int b = 0; b < N; ++b) {
-                const double v = w.v[size_t(b)], E = w.power[size_t(b)];
-                w.v[size_t(b)] =
-                    v + noise_power * E + 2 * sigma * std::sqrt(v * E) * double(w.cos_phase[size_t(b)]);
+                const double E = w.power[size_t(b)];
+                v[b] =
+                    v[b] + noise_power * E + 2 * sigma * std::sqrt(v[b] * E) * double(w.cos_phase[size_t(b)]);
             }
         }
-        levels_db(N, w.v.data(), gain, out.level_db.data() + c0);
+        levels_db(N, v, gain, out.level_db.data() + c0);
     });
     scratch::give(std::move(I));
     return out;
