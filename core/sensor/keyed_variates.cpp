@@ -17,7 +17,7 @@ inline std::uint32_t cell_index(double y) {
     return std::uint32_t(fast::bits_of(t)) - (t - kRound > y ? 1U : 0U);
 }
 
-/// A uniform variate in (0, 1) from the top 24 bits of h (exact in single precision).
+/// A uniform variate in (0, 1] from the top 24 bits m of h: (m + 1/2) / 2^24, rounded to single precision.
 inline float unit24(std::uint32_t h) {
     return (float(std::int32_t(h >> 8)) + 0.5f) * 0x1.0p-24f;
 }
