@@ -40,6 +40,19 @@ SONARSIM_AVX2_CLONES void linear_of(std::size_t n, const float* level_db, double
         out[i] = fast::exp2_nonpositive((double(level_db[i]) - peak_db) * kLog2Of10Over10);
 }
 
+/// |sqrt(v) + n|^2 for a row of intensities v, n = sigma sqrt(E) e^(i phi) circular complex Gaussian of power
+/// sigma^2 keyed by the row's key and the beam (key, power, cos_phase: scratch of n values).
+SONARSIM_AVX2_CLONES void add_noise(int n, std::uint32_t row_key, double noise_power, std::uint32_t* key,
+                                    float* power, float* cos_phase, double* v) {
+    for (int b = 0; b < n; ++b) key[b] = keyed::mix32(row_key + std::uint32_t(b));
+    keyed::exp_phasors(n, key, power, cos_phase, nullptr);
+    const double sigma = std::sqrt(noise_power);
+    for (int b = 0; b < n; ++b) {
+        const double E = power[b];
+        v[b] = v[b] + noise_power * E + 2 * sigma * std::sqrt(v[b] * E) * double(cos_phase[b]);
+    }
+}
+
 /// The output levels of a row: 10 log10(v) + gain [dB], -inf where v is 0.
 SONARSIM_AVX2_CLONES void levels_db(int n, const double* v, double gain_db, float* out) {
     for (int i = 0; i < n; ++i) {
@@ -129,7 +142,6 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
     // 4-6. The K texture per resolution cell, noise anchored to the pose, then TVG and gain.
     const bool k_dist = speckle && p.speckle == Speckle::K;
     const double noise_power = p.noise ? std::pow(10.0, -peak / 10) : 0.0; // L_EN of noise is 0 dB
-    const double sigma = std::sqrt(noise_power);
     const SonarFrame frame(s);
     const double spacing = sg->spacing_rad;
     std::vector<double> ahead_x(static_cast<size_t>(N)), ahead_y(ahead_x), ahead_z(ahead_x);
@@ -173,16 +185,9 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
             for (int b = 0; b < N; ++b) v[b] *= w.texture[size_t(b)];
         }
         if (noise_power > 0) {
-            // |sqrt(v) + n|^2, n = sigma sqrt(E) e^(i phi): circular complex Gaussian of power sigma^2.
             const std::uint32_t row_key = keyed::fold(mix64(noise_seed ^ std::uint64_t(k)));
-            for (int b = 0; b < N; ++b) w.key[size_t(b)] = keyed::mix32(row_key + std::uint32_t(b));
             for (auto* a : {&w.power, &w.cos_phase}) a->resize(size_t(N));
-            keyed::exp_phasors(N, w.key.data(), w.power.data(), w.cos_phase.data(), nullptr);
-            for (int b = 0; b < N; ++b) {
-                const double E = w.power[size_t(b)];
-                v[b] =
-                    v[b] + noise_power * E + 2 * sigma * std::sqrt(v[b] * E) * double(w.cos_phase[size_t(b)]);
-            }
+            add_noise(N, row_key, noise_power, w.key.data(), w.power.data(), w.cos_phase.data(), v);
         }
         levels_db(N, v, gain, out.level_db.data() + c0);
     });
