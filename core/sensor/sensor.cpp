@@ -171,7 +171,7 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
         if (!beam_gain.empty())
             for (int b = 0; b < N; ++b) v[b] *= beam_gain[size_t(b)];
         w.key.resize(size_t(N));
-        if (k_dist) {
+        if (k_dist && std::any_of(v, v + N, [](double x) { return x > 0; })) {
             // The texture's cells: world points on a grid of half a range bin (or half the beam spacing
             // across).
             for (auto* a : {&w.rise, &w.reach, &w.texture}) a->resize(size_t(N));

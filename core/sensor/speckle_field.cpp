@@ -212,6 +212,11 @@ std::vector<double> form_speckle(const PolarImage& src, double peak_db, const Se
         unit[size_t(block)] = top_db == -std::numeric_limits<float>::infinity()
                                   ? 0.0
                                   : fast::exp2_nonpositive((double(top_db) - peak_db) * kLog2Of10Over20);
+        if (unit[size_t(block)] == 0) { // nothing echoes in these bins: no field to draw
+            std::fill(A.begin() + std::ptrdiff_t(size_t(k0) * N * 2),
+                      A.begin() + std::ptrdiff_t(size_t(k0 + rows) * N * 2), 0.0f);
+            return;
+        }
         for (int t = 0; t < rows; ++t) {
             const int k = k0 + t;
             const double r = r_min + (k + 0.5) * dr;
