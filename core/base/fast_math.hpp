@@ -13,6 +13,7 @@
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__) &&     \
     !defined(__SANITIZE_THREAD__)
 #define SONARSIM_AVX2_CLONES __attribute__((target_clones("avx2", "default")))
+#define SONARSIM_AVX2_DISPATCH 1 // the same, by hand: a target("avx2") function and __builtin_cpu_supports
 #else
 #define SONARSIM_AVX2_CLONES
 #endif

@@ -8,13 +8,19 @@
 namespace sonarsim::keyed {
 namespace {
 
-/// floor(y) modulo 2^32, for |y| < 2^51: adding 1.5 2^52 rounds y to the integer n held in the low bits of
-/// the mantissa (modulo 2^32, as two's complement: the offset 2^51 is a multiple of 2^32), less 1 where
-/// that rounded up.
-inline std::uint32_t cell_index(double y) {
+/// floor(y) for |y| < 2^51 in plain arithmetic: adding and subtracting 1.5 2^52 rounds to an integer.
+inline double floor_small(double y) {
     constexpr double kRound = 6755399441055744.0;
-    const double t = y + kRound;
-    return std::uint32_t(fast::bits_of(t)) - (t - kRound > y ? 1U : 0U);
+    const double r = (y + kRound) - kRound;
+    return r > y ? r - 1 : r;
+}
+
+/// floor(y) modulo 2^32, for |y| < 2^51, in double arithmetic and one conversion to a 32-bit integer (so the
+/// loop vectorises with SSE2 too).
+inline std::uint32_t cell_index(double y) {
+    const double n = floor_small(y);
+    const double wrapped = n - 4294967296.0 * floor_small(n * (1.0 / 4294967296.0)); // [0, 2^32)
+    return std::uint32_t(std::int32_t(wrapped - 2147483648.0)) ^ 0x80000000U;
 }
 
 /// A uniform variate in (0, 1] from the top 24 bits m of h: (m + 1/2) / 2^24, rounded to single precision.
@@ -67,10 +73,7 @@ SONARSIM_AVX2_CLONES void exp_phasors(int n, const std::uint32_t* key, float* po
                                       float* sin_phase) {
     for (int i = 0; i < n; ++i) {
         power[i] = -fast::ln_f(unit24(mix32(key[i] ^ 0x5bd1e995U)));
-        float c, si;
-        fast::sincos_turn_f(unit24(mix32(key[i] + 0x68e31da4U)) - 0.5f, c, si);
-        cos_phase[i] = c;
-        if (sin_phase) sin_phase[i] = si;
+        fast::sincos_turn_f(unit24(mix32(key[i] + 0x68e31da4U)) - 0.5f, cos_phase[i], sin_phase[i]);
     }
 }
 

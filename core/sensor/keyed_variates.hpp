@@ -36,7 +36,7 @@ void world_cell_keys(int n, const RaisedPoints& p, double inv_cell_per_m, std::u
                      std::uint32_t* key);
 
 /// A unit-power circular complex Gaussian variate per key: power[i] ~ Exp(1), and cos and sin of a phase
-/// uniform on the circle (in single precision; 24-bit uniforms: power at most 17.3). sin_phase may be null.
+/// uniform on the circle (in single precision; 24-bit uniforms: power at most 17.3).
 void exp_phasors(int n, const std::uint32_t* key, float* power, float* cos_phase, float* sin_phase);
 
 /// A Gamma(shape, 1) / shape variate (mean 1, variance 1 / shape) per key: Marsaglia and Tsang (2000), a

@@ -41,11 +41,11 @@ SONARSIM_AVX2_CLONES void linear_of(std::size_t n, const float* level_db, double
 }
 
 /// |sqrt(v) + n|^2 for a row of intensities v, n = sigma sqrt(E) e^(i phi) circular complex Gaussian of power
-/// sigma^2 keyed by the row's key and the beam (key, power, cos_phase: scratch of n values).
+/// sigma^2 keyed by the row's key and the beam (key, power, cos_phase, sin_phase: scratch of n values).
 SONARSIM_AVX2_CLONES void add_noise(int n, std::uint32_t row_key, double noise_power, std::uint32_t* key,
-                                    float* power, float* cos_phase, double* v) {
+                                    float* power, float* cos_phase, float* sin_phase, double* v) {
     for (int b = 0; b < n; ++b) key[b] = keyed::mix32(row_key + std::uint32_t(b));
-    keyed::exp_phasors(n, key, power, cos_phase, nullptr);
+    keyed::exp_phasors(n, key, power, cos_phase, sin_phase); // the sine unused
     const double sigma = std::sqrt(noise_power);
     for (int b = 0; b < n; ++b) {
         const double E = power[b];
@@ -134,7 +134,11 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
         I = form_speckle(src, peak, *inputs, s);
     } else {
         to_linear(src, peak, I);
-        if (p.azimuth_window != AzimuthWindow::None) I = form_beams(I, K, src.beams, s);
+        if (p.azimuth_window != AzimuthWindow::None) {
+            std::vector<double> beams = form_beams(I, K, src.beams, s);
+            scratch::give(std::move(I));
+            I = std::move(beams);
+        }
         if (const std::vector<double> h = range_kernel(p.pulse, p.range_resolution_m, dr); h.size() > 1)
             convolve_range(I, K, N, h);
     }
@@ -161,7 +165,7 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
         struct Scratch {
             std::vector<double> rise, reach, texture;
             std::vector<std::uint32_t> key;
-            std::vector<float> power, cos_phase;
+            std::vector<float> power, cos_phase, sin_phase;
         };
         thread_local Scratch w; // a leaf task's: nothing else runs on this thread while it is in use
         const double r = r_min + (k + 0.5) * dr;
@@ -186,8 +190,9 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
         }
         if (noise_power > 0) {
             const std::uint32_t row_key = keyed::fold(mix64(noise_seed ^ std::uint64_t(k)));
-            for (auto* a : {&w.power, &w.cos_phase}) a->resize(size_t(N));
-            add_noise(N, row_key, noise_power, w.key.data(), w.power.data(), w.cos_phase.data(), v);
+            for (auto* a : {&w.power, &w.cos_phase, &w.sin_phase}) a->resize(size_t(N));
+            add_noise(N, row_key, noise_power, w.key.data(), w.power.data(), w.cos_phase.data(),
+                      w.sin_phase.data(), v);
         }
         levels_db(N, v, gain, out.level_db.data() + c0);
     });

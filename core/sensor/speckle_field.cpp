@@ -78,26 +78,49 @@ SONARSIM_AVX2_CLONES void relative_field_row(int J, const float* level_db, float
     }
 }
 
-/// kBlockRows floats as one value (GCC's vector extension: one AVX register, or two SSE ones).
-typedef float BlockFloats __attribute__((vector_size(kBlockRows * sizeof(float))));
-
 /// The beams of a block from its field (re, im of column j, row t at j * kBlockRows + t): (re, im) of beam b
-/// for the block's row t into out[t * 2 N + b] and out[t * 2 N + N + b], t < rows.
-SONARSIM_AVX2_CLONES void form_block(const BeamSums& sums, int N, const float* re, const float* im, int rows,
-                                     float* out) {
+/// for the block's row t into out[t * 2 N + b] and out[t * 2 N + N + b], t < rows. The block's rows in
+/// vectors of W floats (GCC's vector extension): W = 8 fills an AVX register, W = 4 an SSE one.
+template <int W>
+inline __attribute__((always_inline)) void form_block_lanes(const BeamSums& sums, int N, const float* re,
+                                                            const float* im, int rows, float* out) {
+    typedef float Lanes __attribute__((vector_size(W * sizeof(float))));
+    constexpr int kParts = kBlockRows / W;
     for (int b = 0; b < N; ++b) {
-        BlockFloats sum_re = {}, sum_im = {};
+        Lanes sum_re[kParts] = {}, sum_im[kParts] = {};
         for (int p = sums.start[size_t(b)]; p < sums.start[size_t(b) + 1]; ++p) {
             const float w = sums.weight[size_t(p)];
-            BlockFloats x_re, x_im;
-            std::memcpy(&x_re, re + size_t(sums.column[size_t(p)]) * kBlockRows, sizeof x_re);
-            std::memcpy(&x_im, im + size_t(sums.column[size_t(p)]) * kBlockRows, sizeof x_im);
-            sum_re += w * x_re, sum_im += w * x_im;
+            const float* x_re = re + size_t(sums.column[size_t(p)]) * kBlockRows;
+            const float* x_im = im + size_t(sums.column[size_t(p)]) * kBlockRows;
+            for (int h = 0; h < kParts; ++h) {
+                Lanes a, c;
+                std::memcpy(&a, x_re + h * W, sizeof a);
+                std::memcpy(&c, x_im + h * W, sizeof c);
+                sum_re[h] += w * a, sum_im[h] += w * c;
+            }
         }
+        float beam_re[kBlockRows], beam_im[kBlockRows]; // the sums out of their registers
+        std::memcpy(beam_re, sum_re, sizeof beam_re), std::memcpy(beam_im, sum_im, sizeof beam_im);
         for (int t = 0; t < rows; ++t)
-            out[size_t(t) * 2 * N + size_t(b)] = sum_re[t],
-                                    out[size_t(t) * 2 * N + size_t(N + b)] = sum_im[t];
+            out[size_t(t) * 2 * N + size_t(b)] = beam_re[t],
+                                    out[size_t(t) * 2 * N + size_t(N + b)] = beam_im[t];
     }
+}
+
+#ifdef SONARSIM_AVX2_DISPATCH
+__attribute__((target("avx2"))) void form_block_avx2(const BeamSums& sums, int N, const float* re,
+                                                     const float* im, int rows, float* out) {
+    form_block_lanes<8>(sums, N, re, im, rows, out);
+}
+#endif
+
+/// form_block_lanes with the widest vectors the CPU has (the same sums either way).
+void form_block(const BeamSums& sums, int N, const float* re, const float* im, int rows, float* out) {
+#ifdef SONARSIM_AVX2_DISPATCH
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    if (avx2) return form_block_avx2(sums, N, re, im, rows, out);
+#endif
+    form_block_lanes<4>(sums, N, re, im, rows, out);
 }
 
 /// 4 beams of one row in double precision (an AVX register, two SSE ones) and the same in single.
