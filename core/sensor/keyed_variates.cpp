@@ -15,9 +15,16 @@ inline double floor_small(double y) {
     return r > y ? r - 1 : r;
 }
 
-/// floor(y) modulo 2^32, for |y| < 2^51, in double arithmetic and one conversion to a 32-bit integer (so the
-/// loop vectorises with SSE2 too).
-inline std::uint32_t cell_index(double y) {
+/// floor(y) modulo 2^32, for |y| < 2^51. kFromBits: from the low bits of the mantissa of y + 1.5 2^52
+/// (modulo 2^32 as two's complement, the offset 2^51 being a multiple of 2^32), less 1 where that rounded up;
+/// otherwise in double arithmetic and one conversion to a 32-bit integer. The same value; the first is the
+/// faster under AVX2, the second the one that vectorises with SSE2 alone.
+template <bool kFromBits> inline std::uint32_t cell_index(double y) {
+    constexpr double kRound = 6755399441055744.0;
+    if (kFromBits) {
+        const double t = y + kRound;
+        return std::uint32_t(fast::bits_of(t)) - (t - kRound > y ? 1U : 0U);
+    }
     const double n = floor_small(y);
     const double wrapped = n - 4294967296.0 * floor_small(n * (1.0 / 4294967296.0)); // [0, 2^32)
     return std::uint32_t(std::int32_t(wrapped - 2147483648.0)) ^ 0x80000000U;
@@ -52,10 +59,9 @@ SONARSIM_AVX2_CLONES void first_gamma_attempts(int n, const std::uint32_t* key, 
     }
 }
 
-} // namespace
-
-SONARSIM_AVX2_CLONES void world_cell_keys(int n, const RaisedPoints& p, double inv_cell, std::uint32_t seed,
-                                          std::uint32_t* key) {
+template <bool kFromBits>
+inline __attribute__((always_inline)) void cell_keys(int n, const RaisedPoints& p, double inv_cell,
+                                                     std::uint32_t seed, std::uint32_t* key) {
     const double ox = p.origin_m[0], oy = p.origin_m[1], oz = p.origin_m[2];
     const double ux = p.up[0], uy = p.up[1], uz = p.up[2];
     const double *rise = p.rise_m, *reach = p.reach_m, *ax = p.ahead_x, *ay = p.ahead_y, *az = p.ahead_z;
@@ -63,10 +69,27 @@ SONARSIM_AVX2_CLONES void world_cell_keys(int n, const RaisedPoints& p, double i
         const double x = ox + rise[i] * ux + reach[i] * ax[i];
         const double y = oy + rise[i] * uy + reach[i] * ay[i];
         const double z = oz + rise[i] * uz + reach[i] * az[i];
-        std::uint32_t h = mix32(seed + cell_index(x * inv_cell));
-        h = mix32(h + cell_index(y * inv_cell));
-        key[i] = mix32(h + cell_index(z * inv_cell));
+        std::uint32_t h = mix32(seed + cell_index<kFromBits>(x * inv_cell));
+        h = mix32(h + cell_index<kFromBits>(y * inv_cell));
+        key[i] = mix32(h + cell_index<kFromBits>(z * inv_cell));
     }
+}
+
+#ifdef SONARSIM_AVX2_DISPATCH
+__attribute__((target("avx2"))) void cell_keys_avx2(int n, const RaisedPoints& p, double inv_cell,
+                                                    std::uint32_t seed, std::uint32_t* key) {
+    cell_keys<true>(n, p, inv_cell, seed, key);
+}
+#endif
+
+} // namespace
+
+void world_cell_keys(int n, const RaisedPoints& p, double inv_cell, std::uint32_t seed, std::uint32_t* key) {
+#ifdef SONARSIM_AVX2_DISPATCH
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    if (avx2) return cell_keys_avx2(n, p, inv_cell, seed, key);
+#endif
+    cell_keys<false>(n, p, inv_cell, seed, key);
 }
 
 SONARSIM_AVX2_CLONES void exp_phasors(int n, const std::uint32_t* key, float* power, float* cos_phase,
