@@ -36,6 +36,7 @@ constexpr double kCellShare = 1.0 / 32;
 constexpr int kEstimateStride = 4;
 constexpr double kLn10Over10 = 0.23025850929940458;
 constexpr double kLog2_10Over10 = 0.33219280948873623; ///< log2(10) / 10: dB to a power of 2
+constexpr double kDbPerOctave = 3.0102999566398120;    ///< 10 log10(2): a power of 2 to dB
 /// An azimuth split covers the base cells where neighbouring columns disagree and this many on each side
 /// (what differs between columns often moves in elevation from one to the next).
 constexpr int kRunMargin = 1;
@@ -72,7 +73,8 @@ struct Node {
 inline void set_width(Node& n, double de, double bin_m) {
     n.de = de, n.fresh = true;
     n.footprint_m = n.dr_de * de;
-    n.per_metre_db = n.density_db + fast::db(n.angle.c * de / std::max(n.footprint_m, bin_m));
+    n.per_metre_db =
+        n.density_db + kDbPerOctave * fast::log2_positive(n.angle.c * de / std::max(n.footprint_m, bin_m));
 }
 
 /// One azimuth column of a beam: its elevation cells.

@@ -75,7 +75,7 @@ void base_echo(const SceneDesc& s, double bin_m, const std::vector<Column>& cols
             for (int b = lo; b <= hi; ++b) lin[size_t(b)] += share;
         }
     for (int b = 0; b < K; ++b)
-        if (lin[size_t(b)] > 0) out[b] = float(peak + fast::db(lin[size_t(b)]));
+        if (lin[size_t(b)] > 0) out[b] = float(peak + kDbPerOctave * fast::log2_positive(lin[size_t(b)]));
 }
 
 /// The base grid's image sets the scale of what is worth refining (none when nothing is refined).

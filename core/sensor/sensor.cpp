@@ -2,8 +2,10 @@
 
 #include "core/base/fast_math.hpp"
 #include "core/base/pose.hpp"
+#include "core/base/scratch_pool.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/sonar_grid.hpp"
+#include "core/sensor/keyed_variates.hpp"
 #include "core/sensor/sensor_patterns.hpp"
 #include "core/sensor/speckle_field.hpp"
 
@@ -16,8 +18,6 @@
 
 namespace sonarsim {
 namespace {
-
-constexpr double kNegInf = -std::numeric_limits<double>::infinity();
 
 std::uint64_t bits_of(double x) {
     std::uint64_t u;
@@ -33,23 +33,51 @@ std::uint64_t pose_key(const SceneDesc& s) {
     return h;
 }
 
-/// A uniform variate in (0, 1) from the top 32 bits of h.
-double unit(std::uint64_t h) {
-    return (double(h >> 32) + 0.5) * 0x1.0p-32;
+/// 10^((level - peak) / 10) of each level.
+SONARSIM_AVX2_CLONES void linear_of(std::size_t n, const float* level_db, double peak_db, double* out) {
+    constexpr double kLog2Of10Over10 = 0.33219280948873623;
+    for (std::size_t i = 0; i < n; ++i)
+        out[i] = fast::exp2_nonpositive((double(level_db[i]) - peak_db) * kLog2Of10Over10);
 }
 
-/// Linear intensity relative to 10^(peak/10) (0 where -inf); returns the peak [dB].
-double to_linear(const PolarImage& src, std::vector<double>& out) {
-    double peak = kNegInf;
-    for (float v : src.level_db) peak = std::max(peak, double(v));
-    if (peak == kNegInf) peak = 0;
-    out.resize(src.level_db.size());
-    constexpr double kLog2Of10Over10 = 0.33219280948873623;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 1 << 14), [&](auto r) {
-        for (std::size_t i = r.begin(); i < r.end(); ++i)
-            out[i] = fast::exp2_nonpositive((double(src.level_db[i]) - peak) * kLog2Of10Over10);
+/// |sqrt(v) + n|^2 for a row of intensities v, n = sigma sqrt(E) e^(i phi) circular complex Gaussian of power
+/// sigma^2 keyed by the row's key and the beam (key, power, cos_phase, sin_phase: scratch of n values).
+SONARSIM_AVX2_CLONES void add_noise(int n, std::uint32_t row_key, double noise_power, std::uint32_t* key,
+                                    float* power, float* cos_phase, float* sin_phase, double* v) {
+    for (int b = 0; b < n; ++b) key[b] = keyed::mix32(row_key + std::uint32_t(b));
+    keyed::exp_phasors(n, key, power, cos_phase, sin_phase); // the sine unused
+    const double sigma = std::sqrt(noise_power);
+    for (int b = 0; b < n; ++b) {
+        const double E = power[b];
+        v[b] = v[b] + noise_power * E + 2 * sigma * std::sqrt(v[b] * E) * double(cos_phase[b]);
+    }
+}
+
+/// The output levels of a row: 10 log10(v) + gain [dB], -inf where v is 0.
+SONARSIM_AVX2_CLONES void levels_db(int n, const double* v, double gain_db, float* out) {
+    for (int i = 0; i < n; ++i) {
+        const float level = float(fast::db_level(v[i]) + gain_db);
+        out[i] = v[i] > 0 ? level : -std::numeric_limits<float>::infinity();
+    }
+}
+
+/// The image's largest level [dB] (0 when nothing echoes), in chunks in parallel.
+double peak_level(const PolarImage& src) {
+    const std::size_t n = src.level_db.size(), chunk = std::size_t(1) << 16, chunks = (n + chunk - 1) / chunk;
+    std::vector<float> top(chunks);
+    tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+        top[c] = max_level(std::min(chunk, n - c * chunk), src.level_db.data() + c * chunk);
     });
-    return peak;
+    const float peak = max_level(chunks, top.data());
+    return peak == -std::numeric_limits<float>::infinity() ? 0.0 : double(peak);
+}
+
+/// Linear intensity relative to 10^(peak/10) (0 where -inf).
+void to_linear(const PolarImage& src, double peak_db, std::vector<double>& out) {
+    out = scratch::take<double>(src.level_db.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 1 << 14), [&](auto r) {
+        linear_of(r.size(), src.level_db.data() + r.begin(), peak_db, out.data() + r.begin());
+    });
 }
 
 /// The receive pattern: each beam sums the fine columns weighted by its pattern (peak gain 1).
@@ -72,38 +100,6 @@ std::vector<double> form_beams(const std::vector<double>& in, int K, int J, cons
 }
 
 } // namespace
-
-double KeyedRandom::uniform() {
-    state_ = mix64(state_);
-    return (double(state_ >> 11) + 1.0) * 0x1.0p-53;
-}
-
-double KeyedRandom::normal() {
-    // Box-Muller; the second value is dropped so that each call consumes a fixed number of draws.
-    const double u1 = uniform(), u2 = uniform();
-    return std::sqrt(-2 * std::log(u1)) * std::cos(2 * kPi * u2);
-}
-
-double KeyedRandom::exponential() {
-    return -std::log(uniform());
-}
-
-double KeyedRandom::gamma(double shape) {
-    if (shape < 1) return gamma(shape + 1) * std::pow(uniform(), 1 / shape);
-    const double d = shape - 1.0 / 3, c = 1 / std::sqrt(9 * d);
-    for (int tries = 0; tries < 1000; ++tries) {
-        double x, v;
-        do {
-            x = normal();
-            v = 1 + c * x;
-        } while (v <= 0);
-        v = v * v * v;
-        const double u = uniform();
-        if (u < 1 - 0.0331 * x * x * x * x || std::log(u) < 0.5 * x * x + d * (1 - v + std::log(v)))
-            return d * v;
-    }
-    return shape; // not reached in practice (acceptance rate >= 95 %)
-}
 
 double tvg_db(Tvg law, double r, double alpha) {
     const int n = law == Tvg::Log20 ? 20 : law == Tvg::Log30 ? 30 : law == Tvg::Log40 ? 40 : 0;
@@ -132,12 +128,17 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
     const bool fine = inputs && inputs->sub > 1 && p.azimuth_window != AzimuthWindow::None;
     const PolarImage& src = fine ? inputs->fine : ideal;
     std::vector<double> I;
-    const double peak = to_linear(src, I);
     const bool speckle = p.speckle != Speckle::Off && inputs && !inputs->elevation_rad.empty();
+    const double peak = peak_level(src);
     if (speckle) {
-        I = form_speckle(I, K, src.beams, *inputs, s);
+        I = form_speckle(src, peak, *inputs, s);
     } else {
-        if (p.azimuth_window != AzimuthWindow::None) I = form_beams(I, K, src.beams, s);
+        to_linear(src, peak, I);
+        if (p.azimuth_window != AzimuthWindow::None) {
+            std::vector<double> beams = form_beams(I, K, src.beams, s);
+            scratch::give(std::move(I));
+            I = std::move(beams);
+        }
         if (const std::vector<double> h = range_kernel(p.pulse, p.range_resolution_m, dr); h.size() > 1)
             convolve_range(I, K, N, h);
     }
@@ -145,11 +146,13 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
     // 4-6. The K texture per resolution cell, noise anchored to the pose, then TVG and gain.
     const bool k_dist = speckle && p.speckle == Speckle::K;
     const double noise_power = p.noise ? std::pow(10.0, -peak / 10) : 0.0; // L_EN of noise is 0 dB
-    const double sigma = std::sqrt(noise_power);
     const SonarFrame frame(s);
     const double spacing = sg->spacing_rad;
-    std::vector<glm::dvec3> ahead(static_cast<size_t>(N));
-    for (int b = 0; b < N; ++b) ahead[size_t(b)] = frame.ahead(sg->beam_azimuth_rad(b));
+    std::vector<double> ahead_x(static_cast<size_t>(N)), ahead_y(ahead_x), ahead_z(ahead_x);
+    for (int b = 0; b < N; ++b) {
+        const glm::dvec3 a = frame.ahead(sg->beam_azimuth_rad(b));
+        ahead_x[size_t(b)] = a.x, ahead_y[size_t(b)] = a.y, ahead_z[size_t(b)] = a.z;
+    }
     std::vector<double> beam_gain; // a table's relative response per beam (none: every beam 1)
     if (sg->table())
         for (int b = 0; b < N; ++b) beam_gain.push_back(sg->beam_gain(b));
@@ -159,27 +162,41 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
     out.bins = K, out.beams = N;
     out.level_db.resize(cells);
     tbb::parallel_for(0, K, [&](int k) {
+        struct Scratch {
+            std::vector<double> rise, reach, texture;
+            std::vector<std::uint32_t> key;
+            std::vector<float> power, cos_phase, sin_phase;
+        };
+        thread_local Scratch w; // a leaf task's: nothing else runs on this thread while it is in use
         const double r = r_min + (k + 0.5) * dr;
         const double gain = tvg_db(p.tvg, r, alpha) + p.gain_db + peak;
-        // The texture's cells: world points on a grid of half a range bin (or half the beam spacing across).
-        const WorldKeyGrid grid(texture_seed, std::min(dr, r * spacing));
-        for (int b = 0; b < N; ++b) {
-            const size_t c = size_t(k) * N + b;
-            double v = I[c];
-            if (!beam_gain.empty()) v *= beam_gain[size_t(b)];
-            if (k_dist && v > 0) {
-                const std::uint64_t key = grid(frame.point(ahead[size_t(b)], r, inputs->elevation_rad[c]));
-                v *= KeyedRandom(key).gamma(p.speckle_k_shape) / p.speckle_k_shape;
-            }
-            if (noise_power > 0) {
-                // |sqrt(v) + n|^2, n = sigma sqrt(E) e^(i phi): circular complex Gaussian of power sigma^2.
-                const std::uint64_t h = mix64(noise_seed ^ (std::uint64_t(k) << 32 | std::uint64_t(b)));
-                const double E = fast::neg_ln(unit(h)), cphi = fast::cos_turn(unit(h << 32));
-                v = v + noise_power * E + 2 * sigma * std::sqrt(v * E) * cphi;
-            }
-            out.level_db[c] = v > 0 ? float(fast::db(v) + gain) : -std::numeric_limits<float>::infinity();
+        const size_t c0 = size_t(k) * N;
+        double* v = I.data() + c0; // this row's, worked on in place
+        if (!beam_gain.empty())
+            for (int b = 0; b < N; ++b) v[b] *= beam_gain[size_t(b)];
+        w.key.resize(size_t(N));
+        if (k_dist && std::any_of(v, v + N, [](double x) { return x > 0; })) {
+            // The texture's cells: world points on a grid of half a range bin (or half the beam spacing
+            // across).
+            for (auto* a : {&w.rise, &w.reach, &w.texture}) a->resize(size_t(N));
+            frame.raise(r, N, 1, inputs->elevation_rad.data() + c0, w.rise.data(), w.reach.data());
+            WorldKeyGrid(texture_seed, std::min(dr, r * spacing))
+                .keys(N,
+                      frame.points(w.rise.data(), w.reach.data(), ahead_x.data(), ahead_y.data(),
+                                   ahead_z.data()),
+                      w.key.data());
+            keyed::gamma_unit_mean(N, w.key.data(), p.speckle_k_shape, w.texture.data());
+            for (int b = 0; b < N; ++b) v[b] *= w.texture[size_t(b)];
         }
+        if (noise_power > 0) {
+            const std::uint32_t row_key = keyed::fold(mix64(noise_seed ^ std::uint64_t(k)));
+            for (auto* a : {&w.power, &w.cos_phase, &w.sin_phase}) a->resize(size_t(N));
+            add_noise(N, row_key, noise_power, w.key.data(), w.power.data(), w.cos_phase.data(),
+                      w.sin_phase.data(), v);
+        }
+        levels_db(N, v, gain, out.level_db.data() + c0);
     });
+    scratch::give(std::move(I));
     return out;
 }
 

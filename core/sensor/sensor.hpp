@@ -18,26 +18,13 @@ bool sensor_is_ideal(const SceneDesc& scene);
 
 /// The device's image [dB]: L_EN after the receive pattern, range response, speckle and noise, plus TVG
 /// and gain. `inputs` are needed when needs_sensor_inputs(scene). Intensities are carried in double
-/// precision relative to the image's peak, so nothing within 3000 dB of it underflows.
+/// precision relative to the image's peak, so nothing within 3000 dB of it underflows (the speckle field:
+/// single precision within 759 dB of the strongest sample of its 8 range bins, form_speckle).
 PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, const SceneDesc& scene,
                         double alpha_db_per_m);
 
 /// Time-varying gain at range r [dB]: N log10(r / 1 m) + 2 alpha r for the law N log R (0 when off).
 double tvg_db(Tvg law, double range_m, double alpha_db_per_m);
-
-/// Deterministic random numbers keyed by a 64-bit value (a hash of a seed and what the variate belongs to):
-/// the same key always gives the same sequence.
-class KeyedRandom {
-  public:
-    explicit KeyedRandom(std::uint64_t key) : state_(key) {}
-    double uniform();           ///< in (0, 1]
-    double normal();            ///< N(0, 1)
-    double exponential();       ///< Exp(1)
-    double gamma(double shape); ///< Gamma(shape, 1) (Marsaglia and Tsang 2000)
-
-  private:
-    std::uint64_t state_;
-};
 
 /// splitmix64's finaliser: a 64-bit mix.
 inline std::uint64_t mix64(std::uint64_t x) {

@@ -5,8 +5,8 @@
 // pulse length, and the mean is the intensity path's (sum of P I, then the range kernel) exactly.
 #pragma once
 #include "core/base/pose.hpp"
-#include "core/base/fast_math.hpp"
 #include "core/scene/scene.hpp"
+#include "core/sensor/keyed_variates.hpp"
 #include "core/sensor/sensor.hpp"
 #include "core/shading/accumulate.hpp"
 
@@ -19,54 +19,67 @@ namespace sonarsim {
 
 /// Keys of world points: a point is quantised on a grid of 2^q metres, the largest power of two at or below
 /// half of `cell_m` (so the grid is the same at all ranges within an octave and a scatterer keeps its key
-/// while the sonar moves over it); the key hashes the seed, q and the grid cell.
+/// while the sonar moves over it); the key hashes the seed, q and the grid cell (keyed_variates.hpp).
 class WorldKeyGrid {
   public:
     WorldKeyGrid(std::uint64_t seed, double cell_m);
-    std::uint64_t operator()(const glm::dvec3& p) const {
-        auto cell = [&](double x) { return std::uint64_t(fast::floor_int(x * inv_q_)); };
-        return mix64(row_key_ ^ cell(p.x) * 0x9e3779b97f4a7c15ULL ^ cell(p.y) * 0xc2b2ae3d27d4eb4fULL ^
-                     cell(p.z) * 0x165667b19e3779f9ULL);
+    /// The keys of n points.
+    void keys(int n, const keyed::RaisedPoints& p, std::uint32_t* key) const {
+        keyed::world_cell_keys(n, p, inv_q_per_m_, row_seed_, key);
     }
 
   private:
-    std::uint64_t row_key_;
-    double inv_q_;
+    std::uint32_t row_seed_;
+    double inv_q_per_m_;
 };
 
 /// Where the sonar looks from: the world point at range r along a direction of the fan (`ahead`, unit,
-/// horizontal in the sonar frame) raised by the elevation e [rad] (NaN: 0) towards `up`, as
-/// base + scale * ahead with (base, scale) = raised(r, e), shared by every direction at that r and e.
+/// horizontal in the sonar frame) raised by the elevation e [rad] (NaN: 0) towards `up` is
+/// origin + r sin(e) up + r cos(e) ahead.
 struct SonarFrame {
     explicit SonarFrame(const SceneDesc& s);
     glm::dvec3 origin, up;
     glm::dmat3 R;
     glm::dvec3 ahead(double azimuth_rad) const; ///< R (cos a, sin a, 0)
-    std::pair<glm::dvec3, double> raised(double r_m, float elevation_rad) const {
-        const double se = std::isnan(elevation_rad) ? 0.0 : key_sin(elevation_rad),
-                     ce = std::sqrt(1 - se * se);
-        return {origin + r_m * se * up, r_m * ce};
-    }
-    /// sin of an elevation angle |e| <= pi/2 (Taylor to e^9: error below 2e-4 at pi/2, 1e-8 within 0.5 rad):
-    /// only used to place a key, where any fixed function of e does.
+    /// sin and cos of an elevation angle |e| <= pi/2 (Taylor to e^9 and e^10: errors below 2e-4 and 5e-7 at
+    /// pi/2, 1e-8 within 0.5 rad): only used to place a key, where any fixed function of e does.
     static double key_sin(double e) {
         const double e2 = e * e;
-        return e * (1 - e2 / 6 * (1 - e2 / 20 * (1 - e2 / 42 * (1 - e2 / 72))));
+        return e *
+               (1 - e2 * (1.0 / 6) * (1 - e2 * (1.0 / 20) * (1 - e2 * (1.0 / 42) * (1 - e2 * (1.0 / 72)))));
     }
-    glm::dvec3 point(const glm::dvec3& ahead, double r_m, float elevation_rad) const {
-        const auto [base, scale] = raised(r_m, elevation_rad);
-        return base + scale * ahead;
+    static double key_cos(double e) {
+        const double e2 = e * e;
+        return 1 - e2 * 0.5 *
+                       (1 - e2 * (1.0 / 12) *
+                                (1 - e2 * (1.0 / 30) * (1 - e2 * (1.0 / 56) * (1 - e2 * (1.0 / 90)))));
+    }
+    /// A row of cells at range r raised by their beam's elevation: cell j's rise r sin(e) along `up` and
+    /// reach r cos(e) along its direction, e = elevation_rad[j / per_beam] (NaN: 0), a beam's cells sharing
+    /// it.
+    void raise(double r_m, int cells, int per_beam, const float* elevation_rad, double* rise_m,
+               double* reach_m) const;
+    /// The points origin + rise up + reach ahead of n cells (directions ahead_x, ahead_y, ahead_z).
+    keyed::RaisedPoints points(const double* rise_m, const double* reach_m, const double* ahead_x,
+                               const double* ahead_y, const double* ahead_z) const {
+        return {
+            {origin.x, origin.y, origin.z}, {up.x, up.y, up.z}, rise_m, reach_m, ahead_x, ahead_y, ahead_z};
     }
 };
 
-/// The speckled intensity per (range bin, beam) [bin * beams + beam] from the linear intensities `I` per
-/// (range bin, source column) (K x J; J = beams x sub, the fine columns when the receive pattern is formed
-/// from them): the field sqrt(I) z, z ~ CN(0, 1) keyed by the sample's world point (range, column azimuth,
-/// the beam's mean elevation in `inputs`, quantised to half the sample spacing), summed over the columns
-/// with the receive pattern's amplitude (when the window is on), convolved along range with the matched
-/// filter's amplitude response, then |.|^2.
-std::vector<double> form_speckle(const std::vector<double>& I, int K, int J, const SensorInputs& inputs,
+/// The speckled intensity per (range bin, beam) [bin * beams + beam], relative to 10^(peak_db / 10), from the
+/// levels L_EN [dB] of `src` per (range bin, source column) (J = beams x sub columns, the fine ones when the
+/// receive pattern is formed from them; peak_db their largest): the field sqrt(I) z, I = 10^(L_EN / 10),
+/// z ~ CN(0, 1) keyed by the sample's world point (range, column azimuth, the beam's mean elevation in
+/// `inputs`, quantised to half the sample spacing), summed over the columns with the receive pattern's
+/// amplitude (when the window is on), convolved along range with the matched filter's amplitude response,
+/// then |.|^2. The field and the beams are carried in single precision relative to the strongest sample of
+/// each 8 range bins (a sample more than 759 dB below that one counts as 0).
+std::vector<double> form_speckle(const PolarImage& src, double peak_db, const SensorInputs& inputs,
                                  const SceneDesc& scene);
+
+/// The largest of n levels [dB] (-inf when there is none; NaN is passed over).
+float max_level(std::size_t n, const float* level_db);
 
 /// Each row of `rows` (K rows of `width` values) replaced by the h-weighted sum of its neighbours along
 /// range: out_k = sum_t h[t + half] x_(k - t).

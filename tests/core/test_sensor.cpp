@@ -9,6 +9,7 @@
 #include "core/analysis/reference.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/base/fast_math.hpp"
+#include "core/sensor/keyed_variates.hpp"
 #include "core/sensor/sensor.hpp"
 #include "core/sensor/sensor_patterns.hpp"
 #include "core/pipeline/simulator.hpp"
@@ -390,21 +391,82 @@ TEST_CASE("the automatic display range spans the fan's 5th to 99.5th percentile"
 }
 
 TEST_CASE("the sensor's fast elementary functions keep their stated error bounds", "[sensor][fast]") {
-    double worst_exp = 0, worst_log = 0, worst_cos = 0;
+    double worst_exp = 0, worst_log = 0;
     for (int i = 0; i <= 200000; ++i) {
         const double x = -1000.0 * i / 200000 - 1e-3 * (i % 7); // 0 ... -1000, dense and irregular
         worst_exp = std::max(worst_exp, std::abs(fast::exp2_nonpositive(x) / std::exp2(x) - 1));
         const double y = std::exp2(-600.0 * i / 200000) * (1 + 0.37 * (i % 11) / 11); // 1e-180 ... 1.4
         worst_log = std::max(worst_log, std::abs(fast::log2_positive(y) - std::log2(y)));
-        const double u = double(i) / 200000;
-        worst_cos = std::max(worst_cos, std::abs(fast::cos_turn(u) - std::cos(2 * kPi * u)));
     }
-    CHECK(worst_exp < 3e-12);
+    CHECK(worst_exp < 1e-15);
     CHECK(worst_log < 2e-13); // one ulp of results near -512
-    CHECK(worst_cos < 4e-12);
     CHECK(fast::exp2_nonpositive(-1023) == 0.0);
+    CHECK(fast::exp2_nonpositive(-1022) == std::exp2(-1022.0));
+    CHECK(fast::exp2_nonpositive(std::nan("")) == 0.0);
     CHECK(fast::log2_positive(1e-310) == Approx(std::log2(1e-310))); // denormal
-    CHECK(fast::floor_int(-2.5) == -3);
-    CHECK(fast::floor_int(-3.0) == -3);
-    CHECK(fast::floor_int(2.5) == 2);
+}
+
+TEST_CASE("the single-precision lane functions keep their stated error bounds", "[sensor][fast]") {
+    double worst_ln = 0, worst_cos = 0, worst_sin = 0;
+    for (int i = 0; i <= 200000; ++i) {
+        // The uniforms the variates use: (m + 1/2) 2^-24, here spread from 2^-25 to 1 in log and in value.
+        const float u = i % 2 ? float(std::exp2(-25.0 * i / 200000)) : float(i) / 200000 + 0x1.0p-25f;
+        const double ln = std::log(double(u)); // relative to |ln u| where that exceeds 1
+        worst_ln = std::max(worst_ln, std::abs(double(fast::ln_f(u)) - ln) / std::max(1.0, std::abs(ln)));
+        const float t = float(i) / 200000 - 0.5f;
+        float c, s;
+        fast::sincos_turn_f(t, c, s);
+        worst_cos = std::max(worst_cos, std::abs(double(c) - std::cos(2 * kPi * double(t))));
+        worst_sin = std::max(worst_sin, std::abs(double(s) - std::sin(2 * kPi * double(t))));
+    }
+    CHECK(worst_ln < 1.2e-7);
+    CHECK(worst_cos < 3e-7);
+    CHECK(worst_sin < 3e-7);
+    CHECK(worst_ln > 0); // single precision: not exact
+}
+
+TEST_CASE("the output levels' logarithm keeps its error bound over the whole double range",
+          "[sensor][fast]") {
+    double worst = 0;
+    for (int i = 0; i <= 200000; ++i) {
+        const double x =
+            std::exp2(-1070.0 * i / 200000 + 20) * (1 + 0.37 * (i % 11) / 11); // 2^20 ... 2^-1050
+        worst = std::max(worst, std::abs(fast::db_level(x) - 10 * std::log10(x)));
+    }
+    CHECK(worst < 1e-6);
+    CHECK(fast::db_level(1e-310) == Approx(-3100.0).margin(1e-6)); // denormal
+}
+
+TEST_CASE("the single-precision 2^x keeps its error bound down to -126 and is 0 below", "[sensor][fast]") {
+    double worst = 0;
+    for (int i = 0; i <= 200000; ++i) {
+        const float x = -126.0f * float(i) / 200000 - 1e-4f * float(i % 7); // 0 ... -126, dense and irregular
+        if (x < -126.0f) continue;
+        worst = std::max(worst, std::abs(double(fast::exp2_nonpositive_f(x)) / std::exp2(double(x)) - 1));
+    }
+    CHECK(worst < 3e-7);
+    CHECK(worst > 0);
+    CHECK(fast::exp2_nonpositive_f(-126.5f) == 0.0f);
+    CHECK(fast::exp2_nonpositive_f(-std::numeric_limits<float>::infinity()) == 0.0f);
+    CHECK(fast::exp2_nonpositive_f(std::nanf("")) == 0.0f);
+    CHECK(fast::exp2_nonpositive_f(0.0f) == 1.0f);
+}
+
+TEST_CASE("the K texture's gamma draws have the mean and variance of their shape", "[sensor][speckle]") {
+    for (const double shape : {0.3, 1.0, 4.0, 50.0}) {
+        // 2^20 draws: mean 1 and variance 1 / shape within 4.5 standard errors.
+        const int n = 1 << 20;
+        std::vector<std::uint32_t> key(static_cast<size_t>(n));
+        for (int i = 0; i < n; ++i) key[size_t(i)] = keyed::mix32(std::uint32_t(i) * 2654435761U);
+        std::vector<double> g(static_cast<size_t>(n));
+        keyed::gamma_unit_mean(n, key.data(), shape, g.data());
+        double m1 = 0, m2 = 0;
+        for (double v : g) m1 += v, m2 += v * v;
+        m1 /= n, m2 /= n;
+        const double var = m2 - m1 * m1, sd_mean = std::sqrt(1 / shape / n);
+        const double sd_var = std::sqrt((2 + 6 / shape) / n) / shape; // the gamma's kurtosis: 3 + 6 / shape
+        CAPTURE(shape, m1, var);
+        CHECK(std::abs(m1 - 1) < 4.5 * sd_mean);
+        CHECK(std::abs(var - 1 / shape) < 4.5 * sd_var);
+    }
 }

@@ -1,0 +1,52 @@
+#include "core/base/scratch_pool.hpp"
+
+#include <mutex>
+
+namespace sonarsim::scratch {
+namespace {
+
+std::mutex pool_mutex;
+
+/// The kept buffers of an element type, at their last size.
+template <class T> std::vector<std::vector<T>>& pool() {
+    static std::vector<std::vector<T>> kept;
+    return kept;
+}
+
+} // namespace
+
+template <class T> std::vector<T> take(std::size_t n) {
+    std::vector<T> v;
+    {
+        std::lock_guard<std::mutex> lock(pool_mutex);
+        std::vector<std::vector<T>>& kept = pool<T>();
+        // The smallest kept buffer that holds n, else the largest (it grows).
+        std::size_t best = kept.size();
+        for (std::size_t i = 0; i < kept.size(); ++i) {
+            const bool fits = kept[i].size() >= n;
+            if (best == kept.size() ||
+                (fits && (kept[best].size() < n || kept[i].size() < kept[best].size())) ||
+                (!fits && kept[best].size() < n && kept[i].size() > kept[best].size()))
+                best = i;
+        }
+        if (best < kept.size()) {
+            v = std::move(kept[best]);
+            kept.erase(kept.begin() + std::ptrdiff_t(best));
+        }
+    }
+    v.resize(n);
+    return v;
+}
+
+template <class T> void give(std::vector<T>&& v) {
+    std::lock_guard<std::mutex> lock(pool_mutex);
+    if (int(pool<T>().size()) < kScratchPoolBuffers) pool<T>().push_back(std::move(v));
+    v = {};
+}
+
+template std::vector<double> take<double>(std::size_t);
+template std::vector<float> take<float>(std::size_t);
+template void give<double>(std::vector<double>&&);
+template void give<float>(std::vector<float>&&);
+
+} // namespace sonarsim::scratch
