@@ -81,14 +81,16 @@ std::uint64_t Multipath::ghosts(const Hit& h, const Angle& a, const Angle& e, co
         const std::optional<Hit> next = known ? first->hit : trace_on(x, d2, hit.t);
         if (!next) break;
         hit = *next;
-        rays += emit(image, hit, k + 1, chain, a, e, a_lo, a_hi, e_lo, e_hi, out);
+        rays += emit(image, hit, k + 1, chain, a, e, a_lo, a_hi, e_lo, e_hi, out,
+                     known ? &first->direct_leg_blocked : nullptr);
     }
     return rays;
 }
 
 std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, const GhostCell& chain,
                               const Angle& a, const Angle& e, const Angle& a_lo, const Angle& a_hi,
-                              const Angle& e_lo, const Angle& e_hi, std::vector<GhostCell>& out) const {
+                              const Angle& e_lo, const Angle& e_hi, std::vector<GhostCell>& out,
+                              std::int8_t* blocked) const {
     const Cell c = make_cell(image, hit, a, e, a_lo, a_hi, e_lo, e_hi);
     GhostCell g = chain;
     g.cell = c;
@@ -110,8 +112,16 @@ std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, cons
     if (std::abs(a_p) > half_azimuth_rad_ || std::abs(e_p) > half_elevation_rad_) return 0;
     const double b_ray = f_.elevation_weight(e.rad), b_p = f_.elevation_weight(e_p);
     if (!(b_p > 0) || !(b_ray > 0)) return 0;
-    const double eps = offset_m(p);
-    if (first_hit(g_, s_, p + eps * v, v, r1 - 2 * eps)) return 1; // the direct leg is blocked
+    std::uint64_t rays = 0;
+    if (!blocked || *blocked < 0) {
+        const double eps = offset_m(p);
+        const bool b = bool(first_hit(g_, s_, p + eps * v, v, r1 - 2 * eps));
+        rays = 1;
+        if (blocked) *blocked = std::int8_t(b);
+        if (b) return rays; // the direct leg is blocked
+    } else if (*blocked) {
+        return 0;
+    }
     // Half the whole path (the mirrored leg to a footprint edge and back directly) at each edge.
     auto half_path = [&](float leg_m, const Angle& aa, const Angle& ee) {
         const glm::dvec3 q = image.origin + double(leg_m) * image.dir(aa, ee);
@@ -142,7 +152,7 @@ std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, cons
     m.azimuth_width_rad = float(std::clamp(std::abs(z1 - z0), 1e-9, 2 * half_azimuth_rad_));
     g.beam = std::uint32_t(beam_of(a_p));
     out.push_back(g);
-    return 1;
+    return rays;
 }
 
 std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostCell>>& by_source,

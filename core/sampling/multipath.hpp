@@ -26,6 +26,9 @@ class Multipath {
         bool reflected = false;
         std::optional<Hit> hit;
         double cos_at_hit = 0; ///< incidence at what the continuation meets
+        /// Whether the direct leg from what it meets back to the sonar is blocked (-1: not traced yet).
+        /// A cell and the coarser cell around it (the error estimate's) share the ray and this shadow ray.
+        mutable std::int8_t direct_leg_blocked = -1;
     };
     Continuation continuation(const Hit& h, const Angle& a, const Angle& e) const;
 
@@ -37,9 +40,10 @@ class Multipath {
                          const Continuation* first = nullptr) const;
 
   private:
+    /// `blocked`: the cached shadow ray of this scatterer (null: none to share).
     std::uint64_t emit(const RayFrame& image, const Hit& hit, int k, const GhostCell& chain, const Angle& a,
                        const Angle& e, const Angle& a_lo, const Angle& a_hi, const Angle& e_lo,
-                       const Angle& e_hi, std::vector<GhostCell>& out) const;
+                       const Angle& e_hi, std::vector<GhostCell>& out, std::int8_t* blocked) const;
     int beam_of(double azimuth_rad) const;
     bool is_mirror(unsigned material) const;
     /// What the reflected ray from mirror point x along d2 meets, its t the whole path length (`travelled`
