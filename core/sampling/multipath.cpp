@@ -16,7 +16,7 @@ bool multipath_active(const SceneDesc& s) {
 }
 
 Multipath::Multipath(const SceneGeometry& g, const SceneDesc& s, const RayFrame& f)
-    : g_(g), s_(s), f_(f), half_azimuth_rad_(f.grid->half_aperture_rad()),
+    : g_(g), s_(s), f_(f), k_(shade_constants(s)), half_azimuth_rad_(f.grid->half_aperture_rad()),
       half_elevation_rad_(f.elevation_weight.traced_fov_rad() / 2) {}
 
 bool Multipath::is_mirror(unsigned m) const {
@@ -32,6 +32,13 @@ namespace {
 /// precision) [m].
 double offset_m(const glm::dvec3& p) {
     return 1e-5 * (1 + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
+}
+/// The range interval a cell's footprint spans [m].
+double range_lo_m(const Cell& c) {
+    return std::min({c.range_m, c.range_e_lo_m, c.range_e_hi_m, c.range_a_lo_m, c.range_a_hi_m});
+}
+double range_hi_m(const Cell& c) {
+    return std::max({c.range_m, c.range_e_lo_m, c.range_e_hi_m, c.range_a_lo_m, c.range_a_hi_m});
 }
 } // namespace
 
@@ -99,7 +106,8 @@ std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, cons
         g.other_leg_m = c.range_m, g.cos_other = c.cos_incidence;
         g.tx_bounces = g.rx_bounces = std::uint8_t(k);
         g.beam = std::uint32_t(beam_of(a.rad));
-        out.push_back(g);
+        if (!negligible(ghost_echo_db(k_, s_, g), int(g.beam), int(g.beam), range_lo_m(c), range_hi_m(c)))
+            out.push_back(g);
     }
     // Mixed paths need the scatterer to see the sonar, within the aperture.
     const glm::dvec3 p = image.origin + hit.t * image.dir(a, e);
@@ -112,16 +120,6 @@ std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, cons
     if (std::abs(a_p) > half_azimuth_rad_ || std::abs(e_p) > half_elevation_rad_) return 0;
     const double b_ray = f_.elevation_weight(e.rad), b_p = f_.elevation_weight(e_p);
     if (!(b_p > 0) || !(b_ray > 0)) return 0;
-    std::uint64_t rays = 0;
-    if (!blocked || *blocked < 0) {
-        const double eps = offset_m(p);
-        const bool b = bool(first_hit(g_, s_, p + eps * v, v, r1 - 2 * eps));
-        rays = 1;
-        if (blocked) *blocked = std::int8_t(b);
-        if (b) return rays; // the direct leg is blocked
-    } else if (*blocked) {
-        return 0;
-    }
     // Half the whole path (the mirrored leg to a footprint edge and back directly) at each edge.
     auto half_path = [&](float leg_m, const Angle& aa, const Angle& ee) {
         const glm::dvec3 q = image.origin + double(leg_m) * image.dir(aa, ee);
@@ -134,25 +132,57 @@ std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, cons
     m.solid_angle_sr = float(c.solid_angle_sr * std::sqrt(b_p / b_ray)); // one way each: sqrt(B_tx B_rx)
     g.other_leg_m = float(r1);
     g.cos_other = float(std::min(1.0, std::abs(glm::dot(hit.normal, v))));
-    // Out directly, back by the mirrors: arrives along the ray.
     g.tx_bounces = 0, g.rx_bounces = std::uint8_t(k);
-    g.beam = std::uint32_t(beam_of(a.rad));
-    out.push_back(g);
-    // Out by the mirrors, back directly: arrives from the scatterer, over the azimuths from which the
-    // sonar sees the cell's footprint (its azimuth edges on the scatterer's plane). gather_ghosts() shares
-    // it among the beams that interval covers.
-    g.tx_bounces = std::uint8_t(k), g.rx_bounces = 0;
+    // The two mixed paths carry the same echo. Out by the mirrors and back directly, it arrives from the
+    // scatterer, over the azimuths from which the sonar sees the cell's footprint (its azimuth edges on the
+    // scatterer's plane); gather_ghosts() shares it among the beams that interval covers.
     auto azimuth_to = [&](float leg_m, const Angle& aa) {
         const glm::dvec3 w =
             glm::transpose(f_.R) * (image.origin + double(leg_m) * image.dir(aa, e) - f_.origin);
         return std::atan2(w.y, w.x);
     };
     const double z0 = azimuth_to(c.range_a_lo_m, a_lo), z1 = azimuth_to(c.range_a_hi_m, a_hi);
+    const double width_rad = std::clamp(std::abs(z1 - z0), 1e-9, 2 * half_azimuth_rad_);
+    const double mixed_db = cull_.echo_db ? ghost_echo_db(k_, s_, g) : 0;
+    const double r_lo = range_lo_m(m), r_hi = range_hi_m(m);
+    const bool keep_rx = !negligible(mixed_db, beam_of(a.rad), beam_of(a.rad), r_lo, r_hi);
+    const bool keep_tx =
+        !negligible(mixed_db, beam_of(a_p + width_rad / 2), beam_of(a_p - width_rad / 2), r_lo, r_hi);
+    if (!keep_rx && !keep_tx) return 0; // nor their shadow ray
+    std::uint64_t rays = 0;
+    if (!blocked || *blocked < 0) {
+        const double eps = offset_m(p);
+        const bool b = bool(first_hit(g_, s_, p + eps * v, v, r1 - 2 * eps));
+        rays = 1;
+        if (blocked) *blocked = std::int8_t(b);
+        if (b) return rays; // the direct leg is blocked
+    } else if (*blocked) {
+        return 0;
+    }
+    // Out directly, back by the mirrors: arrives along the ray.
+    g.beam = std::uint32_t(beam_of(a.rad));
+    if (keep_rx) out.push_back(g);
+    g.tx_bounces = std::uint8_t(k), g.rx_bounces = 0;
     m.azimuth_rad = float(a_p), m.elevation_rad = float(e_p);
-    m.azimuth_width_rad = float(std::clamp(std::abs(z1 - z0), 1e-9, 2 * half_azimuth_rad_));
+    m.azimuth_width_rad = float(width_rad);
     g.beam = std::uint32_t(beam_of(a_p));
-    out.push_back(g);
+    if (keep_tx) out.push_back(g);
     return rays;
+}
+
+bool Multipath::negligible(double level_db, int beam_lo, int beam_hi, double r_lo_m, double r_hi_m) const {
+    if (!cull_.echo_db || cull_.echo_db->empty() || !(level_db < INFINITY)) return false;
+    const int K = s_.sonar.range_bins;
+    const double bin_m = f_.grid->bin_m;
+    const double b0 = std::max(0.0, std::floor((r_lo_m - s_.sonar.range_min_m) / bin_m));
+    const double b1 = std::min(double(K - 1), std::floor((r_hi_m - s_.sonar.range_min_m) / bin_m));
+    if (!(b0 <= b1) || (b1 - b0 + 1) * (beam_hi - beam_lo + 1) > 256) return false; // none, or too many
+    const float* floor_db = cull_.echo_db->data();
+    for (int i = beam_lo; i <= beam_hi; ++i)
+        for (int b = int(b0); b <= int(b1); ++b)
+            if (!(level_db < floor_db[size_t(i) * size_t(K) + size_t(b)] + cull_.margin_db)) return false;
+    culled_.fetch_add(1, std::memory_order_relaxed);
+    return true;
 }
 
 std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostCell>>& by_source,
