@@ -3,6 +3,8 @@
 #include "core/base/pose.hpp"
 #include "core/shading/shade.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -203,14 +205,27 @@ std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostC
             if (f > 0) add(i, g, f);
         }
     };
-    std::vector<size_t> count(static_cast<size_t>(beams), 0);
-    for (auto& src : by_source)
-        for (auto& g : src) for_each_share(g, [&](int i, const GhostCell&, double) { ++count[size_t(i)]; });
-    for (int i = 0; i < beams; ++i) out[size_t(i)].reserve(count[size_t(i)]);
-    for (auto& src : by_source) {
-        for (auto& g : src)
+    // Counted per source and arrival beam, then written in parallel over the sources, each at its offset
+    // in the arrival beams' lists (sources in order: the same lists as one thread would make).
+    const size_t S = by_source.size(), B = size_t(beams);
+    std::vector<size_t> at(S * B, 0); // [source * beams + arrival beam]: first count, then offset
+    tbb::parallel_for(size_t(0), S, [&](size_t src) {
+        for (const auto& g : by_source[src])
+            for_each_share(g, [&](int i, const GhostCell&, double) { ++at[src * B + size_t(i)]; });
+    });
+    for (size_t i = 0; i < B; ++i) {
+        size_t n = 0;
+        for (size_t src = 0; src < S; ++src) {
+            const size_t c = at[src * B + i];
+            at[src * B + i] = n, n += c;
+        }
+        out[i].resize(n);
+    }
+    tbb::parallel_for(size_t(0), S, [&](size_t src) {
+        for (const auto& g : by_source[src])
             for_each_share(g, [&](int i, const GhostCell& whole, double f) {
-                GhostCell part = whole;
+                GhostCell& part = out[size_t(i)][at[src * B + size_t(i)]++];
+                part = whole;
                 if (f < 1) {
                     const double hi = grid->beam_port_edge_rad(i), lo = hi - grid->beam_width_rad(i);
                     const double a0 =
@@ -222,10 +237,9 @@ std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostC
                     part.cell.solid_angle_sr = float(whole.cell.solid_angle_sr * f);
                 }
                 part.beam = std::uint32_t(i);
-                out[size_t(i)].push_back(part);
             });
-        std::vector<GhostCell>().swap(src);
-    }
+        std::vector<GhostCell>().swap(by_source[src]);
+    });
     return out;
 }
 
