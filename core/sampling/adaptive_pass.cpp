@@ -237,7 +237,8 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
     // Ghosts far below the base image's direct echo are culled (multipath.hpp, kGhostCullShare).
     if (sp.multipath)
         sp.mp.set_cull_floor({&sp.criteria.base_db,
-                              sp.criteria.tolerance_per_bin_db() + 10 * std::log10(detail::kGhostCullShare)});
+                              sp.criteria.tolerance_per_bin_db() + 10 * std::log10(detail::kGhostCullShare),
+                              4, 2});
     tbb::parallel_for(0, N, [&](int i) {
         for (auto& c : beams[size_t(i)]) sp.refine_column(c, M0);
     });

@@ -1,6 +1,7 @@
 #include "core/sampling/multipath.hpp"
 
 #include "core/base/pose.hpp"
+#include "core/shading/footprint.hpp"
 #include "core/shading/shade.hpp"
 
 #include <tbb/parallel_for.h>
@@ -35,12 +36,12 @@ namespace {
 double offset_m(const glm::dvec3& p) {
     return 1e-5 * (1 + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
 }
-/// The range interval a cell's footprint spans [m].
+/// The range interval a cell's echo is spread over [m] (shading's footprint law).
 double range_lo_m(const Cell& c) {
-    return std::min({c.range_m, c.range_e_lo_m, c.range_e_hi_m, c.range_a_lo_m, c.range_a_hi_m});
+    return footprint_of(c).lo;
 }
 double range_hi_m(const Cell& c) {
-    return std::max({c.range_m, c.range_e_lo_m, c.range_e_hi_m, c.range_a_lo_m, c.range_a_hi_m});
+    return footprint_of(c).hi();
 }
 } // namespace
 
@@ -108,8 +109,7 @@ std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, cons
         g.other_leg_m = c.range_m, g.cos_other = c.cos_incidence;
         g.tx_bounces = g.rx_bounces = std::uint8_t(k);
         g.beam = std::uint32_t(beam_of(a.rad));
-        if (!negligible(ghost_echo_db(k_, s_, g), int(g.beam), int(g.beam), range_lo_m(c), range_hi_m(c)))
-            out.push_back(g);
+        if (!negligible(g, int(g.beam), int(g.beam), range_lo_m(c), range_hi_m(c))) out.push_back(g);
     }
     // Mixed paths need the scatterer to see the sonar, within the aperture.
     const glm::dvec3 p = image.origin + hit.t * image.dir(a, e);
@@ -145,11 +145,10 @@ std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, cons
     };
     const double z0 = azimuth_to(c.range_a_lo_m, a_lo), z1 = azimuth_to(c.range_a_hi_m, a_hi);
     const double width_rad = std::clamp(std::abs(z1 - z0), 1e-9, 2 * half_azimuth_rad_);
-    const double mixed_db = cull_.echo_db ? ghost_echo_db(k_, s_, g) : 0;
     const double r_lo = range_lo_m(m), r_hi = range_hi_m(m);
-    const bool keep_rx = !negligible(mixed_db, beam_of(a.rad), beam_of(a.rad), r_lo, r_hi);
+    const bool keep_rx = !negligible(g, beam_of(a.rad), beam_of(a.rad), r_lo, r_hi);
     const bool keep_tx =
-        !negligible(mixed_db, beam_of(a_p + width_rad / 2), beam_of(a_p - width_rad / 2), r_lo, r_hi);
+        !negligible(g, beam_of(a_p + width_rad / 2), beam_of(a_p - width_rad / 2), r_lo, r_hi);
     if (!keep_rx && !keep_tx) return 0; // nor their shadow ray
     std::uint64_t rays = 0;
     if (!blocked || *blocked < 0) {
@@ -172,17 +171,23 @@ std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, cons
     return rays;
 }
 
-bool Multipath::negligible(double level_db, int beam_lo, int beam_hi, double r_lo_m, double r_hi_m) const {
-    if (!cull_.echo_db || cull_.echo_db->empty() || !(level_db < INFINITY)) return false;
+bool Multipath::negligible(const GhostCell& g, int beam_lo, int beam_hi, double r_lo_m, double r_hi_m) const {
+    if (!cull_.echo_db || cull_.echo_db->empty()) return false;
     const int K = s_.sonar.range_bins;
     const double bin_m = f_.grid->bin_m;
-    const double b0 = std::max(0.0, std::floor((r_lo_m - s_.sonar.range_min_m) / bin_m));
-    const double b1 = std::min(double(K - 1), std::floor((r_hi_m - s_.sonar.range_min_m) / bin_m));
+    const double b0 = std::max(0.0, std::floor((r_lo_m - s_.sonar.range_min_m) / bin_m) - cull_.margin_bins);
+    const double b1 =
+        std::min(double(K - 1), std::floor((r_hi_m - s_.sonar.range_min_m) / bin_m) + cull_.margin_bins);
+    beam_lo = std::max(0, beam_lo - cull_.margin_beams);
+    beam_hi = std::min(s_.sonar.beams - 1, beam_hi + cull_.margin_beams);
     if (!(b0 <= b1) || (b1 - b0 + 1) * (beam_hi - beam_lo + 1) > 256) return false; // none, or too many
+    // The least floor first (no direct echo anywhere near: no cull, and no level to evaluate).
     const float* floor_db = cull_.echo_db->data();
+    double least_db = INFINITY;
     for (int i = beam_lo; i <= beam_hi; ++i)
         for (int b = int(b0); b <= int(b1); ++b)
-            if (!(level_db < floor_db[size_t(i) * size_t(K) + size_t(b)] + cull_.margin_db)) return false;
+            least_db = std::min(least_db, double(floor_db[size_t(i) * size_t(K) + size_t(b)]));
+    if (!(least_db > -INFINITY) || !(ghost_echo_db(k_, s_, g) < least_db + cull_.margin_db)) return false;
     culled_.fetch_add(1, std::memory_order_relaxed);
     return true;
 }

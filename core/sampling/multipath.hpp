@@ -29,6 +29,9 @@ constexpr double kGhostCullShare = 1.0 / 8;
 struct GhostCullFloor {
     const std::vector<float>* echo_db = nullptr; ///< null or empty: no culling
     double margin_db = -INFINITY;
+    /// The floor is taken as its least value over the ghost's bins widened by this many bins and beams
+    /// each way (an estimate of the direct echo may misplace it by that much).
+    int margin_bins = 0, margin_beams = 0;
 };
 
 /// Finds the ghosts of single rays.
@@ -75,9 +78,9 @@ class Multipath {
     /// mirror point and sets d2, the reflected direction.
     glm::dvec3 reflect(RayFrame& image, const Hit& hit, const Angle& a, const Angle& e, glm::dvec3& d2) const;
 
-    /// Whether a ghost of echo `level_db` arriving in beams [beam_lo, beam_hi] over ranges [r_lo, r_hi]
-    /// lies below the cull floor in every bin it touches.
-    bool negligible(double level_db, int beam_lo, int beam_hi, double r_lo_m, double r_hi_m) const;
+    /// Whether ghost g, arriving in beams [beam_lo, beam_hi] over ranges [r_lo, r_hi], lies below the cull
+    /// floor in every bin it touches.
+    bool negligible(const GhostCell& g, int beam_lo, int beam_hi, double r_lo_m, double r_hi_m) const;
 
     const SceneGeometry& g_;
     const SceneDesc& s_;
