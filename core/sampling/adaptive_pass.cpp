@@ -238,7 +238,7 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
     if (sp.multipath)
         sp.mp.set_cull_floor({&sp.criteria.base_db,
                               sp.criteria.tolerance_per_bin_db() + 10 * std::log10(detail::kGhostCullShare),
-                              4, 2});
+                              2, 1});
     tbb::parallel_for(0, N, [&](int i) {
         for (auto& c : beams[size_t(i)]) sp.refine_column(c, M0);
     });
