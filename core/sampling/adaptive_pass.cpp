@@ -119,12 +119,14 @@ void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samp
         size_t nodes = 0;
         for (auto& c : cols) nodes += c.nodes.size();
         fine.cells[size_t(i)].reserve(nodes);
+        if (sp.multipath) fine_ghosts[size_t(i)].reserve(3 * nodes); // at most three per cell (bounces 1)
         for (auto& c : cols)
             ghost_rays[size_t(i)] +=
                 sp.cells_of(c, false, c.da, fine.cells[size_t(i)], fine_ghosts[size_t(i)]);
         if (sp.control.preview || slot[size_t(i)] < 0) return;
         auto& coarse_cells = coarse.cells[size_t(slot[size_t(i)])];
         auto& coarse_ghost = coarse_ghosts[size_t(slot[size_t(i)])];
+        if (sp.multipath) coarse_ghost.reserve(3 * nodes);
         for (size_t k = 0; k < cols.size();) {
             if (k + 2 < cols.size() && cols[k].group == cols[k + 1].group &&
                 cols[k].group == cols[k + 2].group) {

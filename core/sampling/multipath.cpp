@@ -181,12 +181,14 @@ bool Multipath::negligible(const GhostCell& g, int beam_lo, int beam_hi, double 
     beam_lo = std::max(0, beam_lo - cull_.margin_beams);
     beam_hi = std::min(s_.sonar.beams - 1, beam_hi + cull_.margin_beams);
     if (!(b0 <= b1) || (b1 - b0 + 1) * (beam_hi - beam_lo + 1) > 256) return false; // none, or too many
-    // The least floor first (no direct echo anywhere near: no cull, and no level to evaluate).
+    // The least floor first (a bin without direct echo: no cull, and no level to evaluate). The ghost's
+    // own bin first: most ghosts lie where there is none.
     const float* floor_db = cull_.echo_db->data();
-    double least_db = INFINITY;
-    for (int i = beam_lo; i <= beam_hi; ++i)
-        for (int b = int(b0); b <= int(b1); ++b)
-            least_db = std::min(least_db, double(floor_db[size_t(i) * size_t(K) + size_t(b)]));
+    const auto at = [&](int i, int b) { return floor_db[size_t(i) * size_t(K) + size_t(b)]; };
+    float least_db = at((beam_lo + beam_hi) / 2, int(0.5 * (b0 + b1)));
+    for (int i = beam_lo; i <= beam_hi && least_db > -INFINITY; ++i)
+        for (int b = int(b0); b <= int(b1) && least_db > -INFINITY; ++b)
+            least_db = std::min(least_db, at(i, b));
     if (!(least_db > -INFINITY) || !(ghost_echo_db(k_, s_, g) < least_db + cull_.margin_db)) return false;
     culled_.fetch_add(1, std::memory_order_relaxed);
     return true;
