@@ -104,12 +104,13 @@ std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, cons
     const Cell c = make_cell(image, hit, a, e, a_lo, a_hi, e_lo, e_hi);
     GhostCell g = chain;
     g.cell = c;
+    const int ray_beam = beam_of(a.rad); // double paths and mixed ones back by the mirrors arrive in it
     // Double path: out and back by the mirrors, along the ray; the image sonar's monostatic echo.
     if (hit.t <= f_.t_max) {
         g.other_leg_m = c.range_m, g.cos_other = c.cos_incidence;
         g.tx_bounces = g.rx_bounces = std::uint8_t(k);
-        g.beam = std::uint32_t(beam_of(a.rad));
-        if (!negligible(g, int(g.beam), int(g.beam), range_lo_m(c), range_hi_m(c))) out.push_back(g);
+        g.beam = std::uint32_t(ray_beam);
+        if (!negligible(g, ray_beam, ray_beam, range_lo_m(c), range_hi_m(c))) out.push_back(g);
     }
     // Mixed paths need the scatterer to see the sonar, within the aperture.
     const glm::dvec3 p = image.origin + hit.t * image.dir(a, e);
@@ -146,8 +147,9 @@ std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, cons
     const double z0 = azimuth_to(c.range_a_lo_m, a_lo), z1 = azimuth_to(c.range_a_hi_m, a_hi);
     const double width_rad = std::clamp(std::abs(z1 - z0), 1e-9, 2 * half_azimuth_rad_);
     const double r_lo = range_lo_m(m), r_hi = range_hi_m(m);
-    const bool keep_rx = !negligible(g, beam_of(a.rad), beam_of(a.rad), r_lo, r_hi);
+    const bool keep_rx = !negligible(g, ray_beam, ray_beam, r_lo, r_hi);
     const bool keep_tx =
+        !cull_.echo_db || cull_.echo_db->empty() ||
         !negligible(g, beam_of(a_p + width_rad / 2), beam_of(a_p - width_rad / 2), r_lo, r_hi);
     if (!keep_rx && !keep_tx) return 0; // nor their shadow ray
     std::uint64_t rays = 0;
@@ -161,7 +163,7 @@ std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, cons
         return 0;
     }
     // Out directly, back by the mirrors: arrives along the ray.
-    g.beam = std::uint32_t(beam_of(a.rad));
+    g.beam = std::uint32_t(ray_beam);
     if (keep_rx) out.push_back(g);
     g.tx_bounces = std::uint8_t(k), g.rx_bounces = 0;
     m.azimuth_rad = float(a_p), m.elevation_rad = float(e_p);
@@ -202,10 +204,11 @@ std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostC
     // A ghost whose azimuth interval spans beams goes to each, with the share of its solid angle that
     // falls in it (the mixed path that arrives from the scatterer); the others lie in their ray's beam.
     auto for_each_share = [&](const GhostCell& g, auto&& add) {
+        if (!g.mixed() || g.rx_bounces != 0) return add(int(g.beam), g, 1.0);
         const double a0 = g.cell.azimuth_rad - 0.5 * g.cell.azimuth_width_rad,
                      a1 = a0 + g.cell.azimuth_width_rad;
         const int i0 = grid->beam_of_azimuth_rad(a1), i1 = grid->beam_of_azimuth_rad(a0);
-        if (i0 == i1 || !g.mixed() || g.rx_bounces != 0) return add(int(g.beam), g, 1.0);
+        if (i0 == i1) return add(int(g.beam), g, 1.0);
         for (int i = i0; i <= i1; ++i) {
             const double hi = grid->beam_port_edge_rad(i), lo = hi - grid->beam_width_rad(i);
             const double f = (std::min(a1, hi) - std::max(a0, lo)) / g.cell.azimuth_width_rad;
