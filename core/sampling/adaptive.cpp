@@ -111,17 +111,25 @@ PolarImage columns_of(const PolarImage& img, const std::vector<int>& beams) {
     return out;
 }
 
-/// The image of `beams` (-1: none) from the cells in `cells`, as an image of their own.
-PolarImage shade_beams(const SceneDesc& s, std::vector<std::vector<Cell>>& cells,
-                       const std::vector<int>& beams) {
+/// The image of `beams` (-1: none) from the cells (and ghosts, with multipath) in `r`, as an image of
+/// their own.
+PolarImage shade_beams(const SceneDesc& s, TraceResult& r, const std::vector<int>& beams) {
     TraceResult sub;
     sub.beams = int(beams.size());
     sub.cells.resize(beams.size());
-    for (size_t k = 0; k < beams.size(); ++k)
-        if (beams[k] >= 0) sub.cells[k] = std::move(cells[size_t(beams[k])]);
+    const bool ghosts = !r.ghosts.empty();
+    if (ghosts) sub.ghosts.resize(beams.size());
+    for (size_t k = 0; k < beams.size(); ++k) {
+        if (beams[k] < 0) continue;
+        sub.cells[k] = std::move(r.cells[size_t(beams[k])]);
+        if (ghosts) sub.ghosts[k] = std::move(r.ghosts[size_t(beams[k])]);
+    }
     PolarImage img = shade(sub, adaptive::sampled_beams_scene(s, sub.beams));
-    for (size_t k = 0; k < beams.size(); ++k)
-        if (beams[k] >= 0) cells[size_t(beams[k])] = std::move(sub.cells[k]);
+    for (size_t k = 0; k < beams.size(); ++k) {
+        if (beams[k] < 0) continue;
+        r.cells[size_t(beams[k])] = std::move(sub.cells[k]);
+        if (ghosts) r.ghosts[size_t(beams[k])] = std::move(sub.ghosts[k]);
+    }
     return img;
 }
 
@@ -204,7 +212,7 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
                 shaded = std::make_shared<const Accumulation>(accumulate(out, s, channels));
                 fine_img = columns_of(*shaded->image, samples);
             } else {
-                fine_img = shade_beams(s, out.cells, samples);
+                fine_img = shade_beams(s, out, samples);
             }
             sp.set_ref_db(fine_img);
             const std::vector<SampleError> shares = adaptive::sample_errors(

@@ -121,12 +121,14 @@ void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samp
         size_t nodes = 0;
         for (auto& c : cols) nodes += c.nodes.size();
         fine.cells[size_t(i)].reserve(nodes);
+        if (sp.multipath) fine_ghosts[size_t(i)].reserve(3 * nodes); // at most three per cell (bounces 1)
         for (auto& c : cols)
             ghost_rays[size_t(i)] +=
                 sp.cells_of(c, false, c.da, fine.cells[size_t(i)], fine_ghosts[size_t(i)]);
         if (sp.control.preview || slot[size_t(i)] < 0) return;
         auto& coarse_cells = coarse.cells[size_t(slot[size_t(i)])];
         auto& coarse_ghost = coarse_ghosts[size_t(slot[size_t(i)])];
+        if (sp.multipath) coarse_ghost.reserve(3 * nodes);
         for (size_t k = 0; k < cols.size();) {
             if (k + 2 < cols.size() && cols[k].group == cols[k + 1].group &&
                 cols[k].group == cols[k + 2].group) {
@@ -236,6 +238,11 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
         }
     }
     set_base_image(sp, beams);
+    // Ghosts far below the base image's direct echo are culled (multipath.hpp, kGhostCullShare).
+    if (sp.multipath)
+        sp.mp.set_cull_floor({&sp.criteria.base_db,
+                              sp.criteria.tolerance_per_bin_db() + 10 * std::log10(detail::kGhostCullShare),
+                              2, 1});
     tbb::parallel_for(0, N, [&](int i) {
         for (auto& c : beams[size_t(i)]) sp.refine_column(c, M0);
     });

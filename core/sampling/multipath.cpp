@@ -1,7 +1,10 @@
 #include "core/sampling/multipath.hpp"
 
 #include "core/base/pose.hpp"
+#include "core/shading/footprint.hpp"
 #include "core/shading/shade.hpp"
+
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -16,7 +19,7 @@ bool multipath_active(const SceneDesc& s) {
 }
 
 Multipath::Multipath(const SceneGeometry& g, const SceneDesc& s, const RayFrame& f)
-    : g_(g), s_(s), f_(f), half_azimuth_rad_(f.grid->half_aperture_rad()),
+    : g_(g), s_(s), f_(f), k_(shade_constants(s)), half_azimuth_rad_(f.grid->half_aperture_rad()),
       half_elevation_rad_(f.elevation_weight.traced_fov_rad() / 2) {}
 
 bool Multipath::is_mirror(unsigned m) const {
@@ -32,6 +35,13 @@ namespace {
 /// precision) [m].
 double offset_m(const glm::dvec3& p) {
     return 1e-5 * (1 + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
+}
+/// The range interval a cell's echo is spread over [m] (shading's footprint law).
+double range_lo_m(const Cell& c) {
+    return footprint_of(c).lo;
+}
+double range_hi_m(const Cell& c) {
+    return footprint_of(c).hi();
 }
 } // namespace
 
@@ -81,23 +91,26 @@ std::uint64_t Multipath::ghosts(const Hit& h, const Angle& a, const Angle& e, co
         const std::optional<Hit> next = known ? first->hit : trace_on(x, d2, hit.t);
         if (!next) break;
         hit = *next;
-        rays += emit(image, hit, k + 1, chain, a, e, a_lo, a_hi, e_lo, e_hi, out);
+        rays += emit(image, hit, k + 1, chain, a, e, a_lo, a_hi, e_lo, e_hi, out,
+                     known ? &first->direct_leg_blocked : nullptr);
     }
     return rays;
 }
 
 std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, const GhostCell& chain,
                               const Angle& a, const Angle& e, const Angle& a_lo, const Angle& a_hi,
-                              const Angle& e_lo, const Angle& e_hi, std::vector<GhostCell>& out) const {
+                              const Angle& e_lo, const Angle& e_hi, std::vector<GhostCell>& out,
+                              std::int8_t* blocked) const {
     const Cell c = make_cell(image, hit, a, e, a_lo, a_hi, e_lo, e_hi);
     GhostCell g = chain;
     g.cell = c;
+    const int ray_beam = beam_of(a.rad); // double paths and mixed ones back by the mirrors arrive in it
     // Double path: out and back by the mirrors, along the ray; the image sonar's monostatic echo.
     if (hit.t <= f_.t_max) {
         g.other_leg_m = c.range_m, g.cos_other = c.cos_incidence;
         g.tx_bounces = g.rx_bounces = std::uint8_t(k);
-        g.beam = std::uint32_t(beam_of(a.rad));
-        out.push_back(g);
+        g.beam = std::uint32_t(ray_beam);
+        if (!negligible(g, ray_beam, ray_beam, range_lo_m(c), range_hi_m(c))) out.push_back(g);
     }
     // Mixed paths need the scatterer to see the sonar, within the aperture.
     const glm::dvec3 p = image.origin + hit.t * image.dir(a, e);
@@ -110,8 +123,6 @@ std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, cons
     if (std::abs(a_p) > half_azimuth_rad_ || std::abs(e_p) > half_elevation_rad_) return 0;
     const double b_ray = f_.elevation_weight(e.rad), b_p = f_.elevation_weight(e_p);
     if (!(b_p > 0) || !(b_ray > 0)) return 0;
-    const double eps = offset_m(p);
-    if (first_hit(g_, s_, p + eps * v, v, r1 - 2 * eps)) return 1; // the direct leg is blocked
     // Half the whole path (the mirrored leg to a footprint edge and back directly) at each edge.
     auto half_path = [&](float leg_m, const Angle& aa, const Angle& ee) {
         const glm::dvec3 q = image.origin + double(leg_m) * image.dir(aa, ee);
@@ -124,25 +135,65 @@ std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, cons
     m.solid_angle_sr = float(c.solid_angle_sr * std::sqrt(b_p / b_ray)); // one way each: sqrt(B_tx B_rx)
     g.other_leg_m = float(r1);
     g.cos_other = float(std::min(1.0, std::abs(glm::dot(hit.normal, v))));
-    // Out directly, back by the mirrors: arrives along the ray.
     g.tx_bounces = 0, g.rx_bounces = std::uint8_t(k);
-    g.beam = std::uint32_t(beam_of(a.rad));
-    out.push_back(g);
-    // Out by the mirrors, back directly: arrives from the scatterer, over the azimuths from which the
-    // sonar sees the cell's footprint (its azimuth edges on the scatterer's plane). gather_ghosts() shares
-    // it among the beams that interval covers.
-    g.tx_bounces = std::uint8_t(k), g.rx_bounces = 0;
+    // The two mixed paths carry the same echo. Out by the mirrors and back directly, it arrives from the
+    // scatterer, over the azimuths from which the sonar sees the cell's footprint (its azimuth edges on the
+    // scatterer's plane); gather_ghosts() shares it among the beams that interval covers.
     auto azimuth_to = [&](float leg_m, const Angle& aa) {
         const glm::dvec3 w =
             glm::transpose(f_.R) * (image.origin + double(leg_m) * image.dir(aa, e) - f_.origin);
         return std::atan2(w.y, w.x);
     };
     const double z0 = azimuth_to(c.range_a_lo_m, a_lo), z1 = azimuth_to(c.range_a_hi_m, a_hi);
+    const double width_rad = std::clamp(std::abs(z1 - z0), 1e-9, 2 * half_azimuth_rad_);
+    const double r_lo = range_lo_m(m), r_hi = range_hi_m(m);
+    const bool keep_rx = !negligible(g, ray_beam, ray_beam, r_lo, r_hi);
+    const bool keep_tx =
+        !cull_.echo_db || cull_.echo_db->empty() ||
+        !negligible(g, beam_of(a_p + width_rad / 2), beam_of(a_p - width_rad / 2), r_lo, r_hi);
+    if (!keep_rx && !keep_tx) return 0; // nor their shadow ray
+    std::uint64_t rays = 0;
+    if (!blocked || *blocked < 0) {
+        const double eps = offset_m(p);
+        const bool b = bool(first_hit(g_, s_, p + eps * v, v, r1 - 2 * eps));
+        rays = 1;
+        if (blocked) *blocked = std::int8_t(b);
+        if (b) return rays; // the direct leg is blocked
+    } else if (*blocked) {
+        return 0;
+    }
+    // Out directly, back by the mirrors: arrives along the ray.
+    g.beam = std::uint32_t(ray_beam);
+    if (keep_rx) out.push_back(g);
+    g.tx_bounces = std::uint8_t(k), g.rx_bounces = 0;
     m.azimuth_rad = float(a_p), m.elevation_rad = float(e_p);
-    m.azimuth_width_rad = float(std::clamp(std::abs(z1 - z0), 1e-9, 2 * half_azimuth_rad_));
+    m.azimuth_width_rad = float(width_rad);
     g.beam = std::uint32_t(beam_of(a_p));
-    out.push_back(g);
-    return 1;
+    if (keep_tx) out.push_back(g);
+    return rays;
+}
+
+bool Multipath::negligible(const GhostCell& g, int beam_lo, int beam_hi, double r_lo_m, double r_hi_m) const {
+    if (!cull_.echo_db || cull_.echo_db->empty()) return false;
+    const int K = s_.sonar.range_bins;
+    const double bin_m = f_.grid->bin_m;
+    const double b0 = std::max(0.0, std::floor((r_lo_m - s_.sonar.range_min_m) / bin_m) - cull_.margin_bins);
+    const double b1 =
+        std::min(double(K - 1), std::floor((r_hi_m - s_.sonar.range_min_m) / bin_m) + cull_.margin_bins);
+    beam_lo = std::max(0, beam_lo - cull_.margin_beams);
+    beam_hi = std::min(s_.sonar.beams - 1, beam_hi + cull_.margin_beams);
+    if (!(b0 <= b1) || (b1 - b0 + 1) * (beam_hi - beam_lo + 1) > 256) return false; // none, or too many
+    // The least floor first (a bin without direct echo: no cull, and no level to evaluate). The ghost's
+    // own bin first: most ghosts lie where there is none.
+    const float* floor_db = cull_.echo_db->data();
+    const auto at = [&](int i, int b) { return floor_db[size_t(i) * size_t(K) + size_t(b)]; };
+    float least_db = at((beam_lo + beam_hi) / 2, int(0.5 * (b0 + b1)));
+    for (int i = beam_lo; i <= beam_hi && least_db > -INFINITY; ++i)
+        for (int b = int(b0); b <= int(b1) && least_db > -INFINITY; ++b)
+            least_db = std::min(least_db, at(i, b));
+    if (!(least_db > -INFINITY) || !(ghost_echo_db(k_, s_, g) < least_db + cull_.margin_db)) return false;
+    culled_.fetch_add(1, std::memory_order_relaxed);
+    return true;
 }
 
 std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostCell>>& by_source,
@@ -153,24 +204,38 @@ std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostC
     // A ghost whose azimuth interval spans beams goes to each, with the share of its solid angle that
     // falls in it (the mixed path that arrives from the scatterer); the others lie in their ray's beam.
     auto for_each_share = [&](const GhostCell& g, auto&& add) {
+        if (!g.mixed() || g.rx_bounces != 0) return add(int(g.beam), g, 1.0);
         const double a0 = g.cell.azimuth_rad - 0.5 * g.cell.azimuth_width_rad,
                      a1 = a0 + g.cell.azimuth_width_rad;
         const int i0 = grid->beam_of_azimuth_rad(a1), i1 = grid->beam_of_azimuth_rad(a0);
-        if (i0 == i1 || !g.mixed() || g.rx_bounces != 0) return add(int(g.beam), g, 1.0);
+        if (i0 == i1) return add(int(g.beam), g, 1.0);
         for (int i = i0; i <= i1; ++i) {
             const double hi = grid->beam_port_edge_rad(i), lo = hi - grid->beam_width_rad(i);
             const double f = (std::min(a1, hi) - std::max(a0, lo)) / g.cell.azimuth_width_rad;
             if (f > 0) add(i, g, f);
         }
     };
-    std::vector<size_t> count(static_cast<size_t>(beams), 0);
-    for (auto& src : by_source)
-        for (auto& g : src) for_each_share(g, [&](int i, const GhostCell&, double) { ++count[size_t(i)]; });
-    for (int i = 0; i < beams; ++i) out[size_t(i)].reserve(count[size_t(i)]);
-    for (auto& src : by_source) {
-        for (auto& g : src)
+    // Counted per source and arrival beam, then written in parallel over the sources, each at its offset
+    // in the arrival beams' lists (sources in order: the same lists as one thread would make).
+    const size_t S = by_source.size(), B = size_t(beams);
+    std::vector<size_t> at(S * B, 0); // [source * beams + arrival beam]: first count, then offset
+    tbb::parallel_for(size_t(0), S, [&](size_t src) {
+        for (const auto& g : by_source[src])
+            for_each_share(g, [&](int i, const GhostCell&, double) { ++at[src * B + size_t(i)]; });
+    });
+    for (size_t i = 0; i < B; ++i) {
+        size_t n = 0;
+        for (size_t src = 0; src < S; ++src) {
+            const size_t c = at[src * B + i];
+            at[src * B + i] = n, n += c;
+        }
+        out[i].resize(n);
+    }
+    tbb::parallel_for(size_t(0), S, [&](size_t src) {
+        for (const auto& g : by_source[src])
             for_each_share(g, [&](int i, const GhostCell& whole, double f) {
-                GhostCell part = whole;
+                GhostCell& part = out[size_t(i)][at[src * B + size_t(i)]++];
+                part = whole;
                 if (f < 1) {
                     const double hi = grid->beam_port_edge_rad(i), lo = hi - grid->beam_width_rad(i);
                     const double a0 =
@@ -182,10 +247,9 @@ std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostC
                     part.cell.solid_angle_sr = float(whole.cell.solid_angle_sr * f);
                 }
                 part.beam = std::uint32_t(i);
-                out[size_t(i)].push_back(part);
             });
-        std::vector<GhostCell>().swap(src);
-    }
+        std::vector<GhostCell>().swap(by_source[src]);
+    });
     return out;
 }
 

@@ -5,7 +5,10 @@
 // along the two mixed paths (one leg by the mirrors, one direct). See core/ARCHITECTURE.md, "Multipath".
 #pragma once
 #include "core/sampling/trace_detail.hpp"
+#include "core/shading/physics.hpp"
 
+#include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -15,10 +18,31 @@ namespace sonarsim::detail {
 /// True when the scene has paths to follow: sampling.bounces > 0 and a mirror in it.
 bool multipath_active(const SceneDesc& scene);
 
+/// A ghost whose whole echo lies this far below what the tolerance allows each bin of its footprint
+/// (sampling.tolerance_db's relative error per bin, over kErrorsPerBin, times the direct echo there) is
+/// culled before its shadow ray and its shading: 1/8 of that allowance (with tolerance_db 0.1: ghosts
+/// 30 dB under the direct echo of every bin they touch).
+constexpr double kGhostCullShare = 1.0 / 8;
+
+/// The direct echo ghosts are culled against: per beam and range bin [dB, as cell_echo_db; -inf: none],
+/// [beam * bins + bin]; and how far below it a ghost's echo must lie to be culled [dB, negative].
+struct GhostCullFloor {
+    const std::vector<float>* echo_db = nullptr; ///< null or empty: no culling
+    double margin_db = -INFINITY;
+    /// The floor is taken as its least value over the ghost's bins widened by this many bins and beams
+    /// each way (an estimate of the direct echo may misplace it by that much).
+    int margin_bins = 0, margin_beams = 0;
+};
+
 /// Finds the ghosts of single rays.
 class Multipath {
   public:
     Multipath(const SceneGeometry& geometry, const SceneDesc& scene, const RayFrame& frame);
+
+    /// Culls ghosts against `floor` from now on (the adaptive sampler's base image; default: none).
+    void set_cull_floor(const GhostCullFloor& floor) { cull_ = floor; }
+    /// Ghosts culled so far (by every thread).
+    std::uint64_t culled() const { return culled_.load(std::memory_order_relaxed); }
     /// The first reflection of the ray (a, e) whose first hit is `h`: what its specular continuation meets
     /// (t: the whole path length from the sonar; nullopt when it meets nothing within reach), or nothing
     /// (`reflected` false) when `h` is no mirror.
@@ -26,6 +50,9 @@ class Multipath {
         bool reflected = false;
         std::optional<Hit> hit;
         double cos_at_hit = 0; ///< incidence at what the continuation meets
+        /// Whether the direct leg from what it meets back to the sonar is blocked (-1: not traced yet).
+        /// A cell and the coarser cell around it (the error estimate's) share the ray and this shadow ray.
+        mutable std::int8_t direct_leg_blocked = -1;
     };
     Continuation continuation(const Hit& h, const Angle& a, const Angle& e) const;
 
@@ -37,9 +64,10 @@ class Multipath {
                          const Continuation* first = nullptr) const;
 
   private:
+    /// `blocked`: the cached shadow ray of this scatterer (null: none to share).
     std::uint64_t emit(const RayFrame& image, const Hit& hit, int k, const GhostCell& chain, const Angle& a,
                        const Angle& e, const Angle& a_lo, const Angle& a_hi, const Angle& e_lo,
-                       const Angle& e_hi, std::vector<GhostCell>& out) const;
+                       const Angle& e_hi, std::vector<GhostCell>& out, std::int8_t* blocked) const;
     int beam_of(double azimuth_rad) const;
     bool is_mirror(unsigned material) const;
     /// What the reflected ray from mirror point x along d2 meets, its t the whole path length (`travelled`
@@ -50,10 +78,17 @@ class Multipath {
     /// mirror point and sets d2, the reflected direction.
     glm::dvec3 reflect(RayFrame& image, const Hit& hit, const Angle& a, const Angle& e, glm::dvec3& d2) const;
 
+    /// Whether ghost g, arriving in beams [beam_lo, beam_hi] over ranges [r_lo, r_hi], lies below the cull
+    /// floor in every bin it touches.
+    bool negligible(const GhostCell& g, int beam_lo, int beam_hi, double r_lo_m, double r_hi_m) const;
+
     const SceneGeometry& g_;
     const SceneDesc& s_;
     const RayFrame& f_;
+    ShadeConstants k_;
     double half_azimuth_rad_, half_elevation_rad_;
+    GhostCullFloor cull_;
+    mutable std::atomic<std::uint64_t> culled_{0};
 };
 
 /// Moves ghosts collected per source beam to the beams they arrive in, in a fixed order (source beam, then

@@ -46,8 +46,19 @@ bool RefineCriteria::via_discontinuous(const Node& x, const Column& cx, const No
     const double reach = x.via->dr_de * x.de + y.via->dr_de * y.de + gap_m_; // what a smooth surface spans
     const bool edge = a.material != b.material || (a.prim != b.prim && std::abs(a.t - b.t) > reach);
     if (edge) return significant_via(x, cx, 0.5) || significant_via(y, cy, 0.5);
-    const double step_db = std::abs(x.via->density_db - y.via->density_db);
-    if (step_db <= jump_db_) return false;
+    double step_db = std::abs(x.via->density_db - y.via->density_db);
+    if (step_db <= jump_db_) {
+        // As for direct cells: a ghost's footprint spanning bins spreads its echo evenly over it, so where
+        // its echo per metre of range steps between neighbours on one plane (grazing at the scatterer)
+        // the ghost needs finer cells.
+        const double fx = x.via->dr_de * x.de, fy = y.via->dr_de * y.de;
+        if (a.prim != b.prim || !(std::max(fx, fy) > bin_m_)) return false;
+        auto per_metre_db = [&](const Node& n, double footprint_m) {
+            return n.via->density_db + 10 * std::log10(n.angle.c * n.de / std::max(footprint_m, bin_m_));
+        };
+        step_db = std::abs(per_metre_db(x, fx) - per_metre_db(y, fy));
+        if (step_db <= range_jump_db_) return false;
+    }
     const double f = 0.5 * (1 - std::pow(10.0, -0.1 * step_db));
     return significant_via(x, cx, f) || significant_via(y, cy, f);
 }

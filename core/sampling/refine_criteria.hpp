@@ -54,6 +54,8 @@ class RefineCriteria {
     bool absorbed_across_azimuth(const Node& n, const Column& c, const Angle& a) const;
 
     const SceneDesc& scene() const { return s_; }
+    /// The relative error per bin the tolerance allows, over kErrorsPerBin [dB].
+    double tolerance_per_bin_db() const { return tol_rel_db_; }
     const ShadeConstants& constants() const { return k_; }
     double bin_m() const { return bin_m_; }
 

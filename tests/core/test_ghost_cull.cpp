@@ -1,0 +1,88 @@
+// Ghost culling (core/sampling/multipath.hpp, kGhostCullShare): a ghost whose whole echo lies below 1/8 of
+// what the tolerance allows every bin it touches (against the direct echo there) is dropped before its
+// shadow ray and its shading. The tank's ghosts on a regular grid, culled against its direct image and not
+// culled: each bin of the image with ghosts changes by less than the tolerance allows it.
+#include "core/sampling/adaptive_node.hpp"
+#include "core/sampling/multipath.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/shading/accumulate.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+using namespace sonarsim;
+
+namespace {
+
+/// The tank's cells on a grid of `rays` elevation rays per beam (as trace_uniform places them) and, when
+/// `mp` is given, their ghosts.
+TraceResult grid_trace(const SceneGeometry& g, const SceneDesc& s, const detail::RayFrame& frame, int rays,
+                       const detail::Multipath* mp) {
+    const int N = s.sonar.beams;
+    const double phi = frame.elevation_weight.traced_fov_rad(), de = phi / rays;
+    TraceResult out;
+    out.beams = N;
+    out.cells.resize(size_t(N));
+    std::vector<std::vector<GhostCell>> ghosts(static_cast<size_t>(N));
+    for (int i = 0; i < N; ++i) {
+        const double a_c = frame.grid->beam_starboard_edge_rad(i) + 0.5 * frame.grid->beam_width_rad(i);
+        const double da = frame.grid->beam_width_rad(i);
+        const detail::Angle a(a_c), a_lo(a_c - da / 2), a_hi(a_c + da / 2);
+        for (int j = 0; j < rays; ++j) {
+            const detail::Angle e(phi / 2 - (j + 0.5) * de), e_lo(phi / 2 - (j + 1) * de),
+                e_hi(phi / 2 - j * de);
+            const auto h = detail::first_hit(g, s, frame.origin, frame.dir(a, e), frame.t_max);
+            if (!h) continue;
+            out.cells[size_t(i)].push_back(detail::make_cell(frame, *h, a, e, a_lo, a_hi, e_lo, e_hi));
+            if (mp) mp->ghosts(*h, a, e, a_lo, a_hi, e_lo, e_hi, ghosts[size_t(i)]);
+        }
+    }
+    if (mp) out.ghosts = detail::gather_ghosts(ghosts, s);
+    return out;
+}
+
+} // namespace
+
+TEST_CASE("culled ghosts change no bin by more than the tolerance allows it", "[multipath]") {
+    SceneDesc s = load_scene(std::string(SONARSIM_ASSETS) + "/scenes/tank.json");
+    s.sampling.bounces = 1;
+    const SceneGeometry g(s);
+    const detail::RayFrame frame(s);
+    const int N = s.sonar.beams, K = s.sonar.range_bins, rays = 303;
+
+    // The floor: the direct image, [beam * bins + bin] (as the sampler's base image).
+    const PolarImage direct = shade(grid_trace(g, s, frame, rays, nullptr), s);
+    std::vector<float> floor_db(size_t(N) * size_t(K));
+    for (int i = 0; i < N; ++i)
+        for (int b = 0; b < K; ++b) floor_db[size_t(i) * size_t(K) + size_t(b)] = direct.at(b, i);
+    // What the tolerance allows a bin, relative to its echo (refine_criteria: tolerance_per_bin_db).
+    const double allowed = (std::pow(10.0, s.sampling.tolerance_db / 10) - 1) / adaptive::kErrorsPerBin;
+
+    const detail::Multipath all(g, s, frame);
+    detail::Multipath culling(g, s, frame);
+    culling.set_cull_floor({&floor_db, 10 * std::log10(allowed * detail::kGhostCullShare)});
+    const PolarImage full = shade(grid_trace(g, s, frame, rays, &all), s);
+    const PolarImage culled = shade(grid_trace(g, s, frame, rays, &culling), s);
+    REQUIRE(all.culled() == 0);
+    INFO("ghosts culled: " << culling.culled());
+    CHECK(culling.culled() > 100); // not a vacuous comparison
+
+    // Per bin, the culled ghosts' echo against the image's; and the image's relative L1 change.
+    double worst = 0, least = 0, num = 0, den = 0;
+    size_t changed = 0;
+    for (size_t n = 0; n < full.level_db.size(); ++n) {
+        const double f = full.level_db[n], c = culled.level_db[n];
+        if (!std::isfinite(f)) continue;
+        const double lf = std::pow(10.0, f / 10), lc = std::isfinite(c) ? std::pow(10.0, c / 10) : 0.0;
+        worst = std::max(worst, (lf - lc) / lf), least = std::min(least, (lf - lc) / lf);
+        num += std::abs(lf - lc), den += lf;
+        changed += lc != lf;
+    }
+    INFO("bins changed " << changed << ", worst relative change " << worst << " (allowed " << allowed
+                         << "), rel L1 " << num / den);
+    CHECK(changed > 0);
+    CHECK(least > -1e-6); // culling only removes echo (float sums aside)
+    CHECK(worst < allowed);
+    // Together well within the image's tolerance: under kGhostCullShare of sampling.tolerance_rel_l1.
+    CHECK(num / den < detail::kGhostCullShare * s.sampling.tolerance_rel_l1);
+}
