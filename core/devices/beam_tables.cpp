@@ -1,5 +1,7 @@
 #include "core/devices/beam_tables.hpp"
 
+#include "core/base/embedded_files.hpp"
+
 #include <algorithm>
 #include <cstdlib>
 #include <map>
@@ -79,16 +81,8 @@ const std::map<std::string, BeamTable>& tables() {
 
 const std::vector<std::string>& beam_table_names() {
     // From the file names alone: the parameter table lists them at start-up, before any table is needed.
-    static const std::vector<std::string> names = [] {
-        std::vector<std::string> out;
-        for (int i = 0; i < detail::kBeamTableFileCount; ++i) {
-            const std::string name = detail::kBeamTableFiles[i][0];
-            if (name.size() > 4 && name.substr(name.size() - 4) == ".csv")
-                out.push_back(name.substr(0, name.size() - 4));
-        }
-        std::sort(out.begin(), out.end());
-        return out;
-    }();
+    static const std::vector<std::string> names =
+        EmbeddedFiles{detail::kBeamTableFiles, detail::kBeamTableFileCount}.names(".csv");
     return names;
 }
 

@@ -1,5 +1,6 @@
 #include "core/devices/devices.hpp"
 
+#include "core/base/embedded_files.hpp"
 #include "core/base/errors.hpp"
 #include "core/scene/params.hpp"
 
@@ -45,33 +46,24 @@ DevicePreset parse_device_preset(const std::string& file, const std::string& tex
     return p;
 }
 
+namespace {
+const EmbeddedFiles kDevices{detail::kDeviceFiles, detail::kDeviceFileCount};
+} // namespace
+
 const std::vector<DevicePreset>& device_presets() {
-    static const std::vector<DevicePreset> presets = [] {
-        std::vector<DevicePreset> out;
-        for (int i = 0; i < detail::kDeviceFileCount; ++i)
-            out.push_back(parse_device_preset(std::string("assets/devices/") + detail::kDeviceFiles[i][0],
-                                              detail::kDeviceFiles[i][1]));
-        std::sort(out.begin(), out.end(), [](auto& a, auto& b) { return a.name < b.name; });
-        return out;
-    }();
+    static const std::vector<DevicePreset> presets =
+        kDevices.parse_all<DevicePreset>("assets/devices", parse_device_preset);
     return presets;
 }
 
 const DevicePreset* find_device(const std::string& name) {
-    for (auto& p : device_presets())
-        if (p.name == name) return &p;
-    return nullptr;
+    return find_by_name(device_presets(), name);
 }
 
 std::vector<std::string> device_choices() {
     // From the embedded files' names, not their contents: the parameter table's sonar.device row lists
     // them, and reading a preset checks it against that table.
-    std::vector<std::string> names;
-    for (int i = 0; i < detail::kDeviceFileCount; ++i) {
-        const std::string file = detail::kDeviceFiles[i][0];
-        names.push_back(file.substr(0, file.size() - 5));
-    }
-    std::sort(names.begin(), names.end());
+    std::vector<std::string> names = kDevices.names(".json");
     names.insert(names.begin(), "none");
     return names;
 }

@@ -1,5 +1,6 @@
 #include "core/materials/materials.hpp"
 
+#include "core/base/embedded_files.hpp"
 #include "core/base/errors.hpp"
 #include "core/scene/params.hpp"
 
@@ -60,32 +61,22 @@ MaterialPreset parse_material_preset(const std::string& file, const std::string&
     return p;
 }
 
+namespace {
+const EmbeddedFiles kMaterials{detail::kMaterialFiles, detail::kMaterialFileCount};
+} // namespace
+
 const std::vector<MaterialPreset>& material_presets() {
-    static const std::vector<MaterialPreset> presets = [] {
-        std::vector<MaterialPreset> out;
-        for (int i = 0; i < detail::kMaterialFileCount; ++i)
-            out.push_back(
-                parse_material_preset(std::string("assets/materials/") + detail::kMaterialFiles[i][0],
-                                      detail::kMaterialFiles[i][1]));
-        std::sort(out.begin(), out.end(), [](auto& a, auto& b) { return a.name < b.name; });
-        return out;
-    }();
+    static const std::vector<MaterialPreset> presets =
+        kMaterials.parse_all<MaterialPreset>("assets/materials", parse_material_preset);
     return presets;
 }
 
 const MaterialPreset* find_material_preset(const std::string& name) {
-    for (auto& p : material_presets())
-        if (p.name == name) return &p;
-    return nullptr;
+    return find_by_name(material_presets(), name);
 }
 
 std::vector<std::string> material_preset_choices() {
-    std::vector<std::string> names;
-    for (int i = 0; i < detail::kMaterialFileCount; ++i) {
-        const std::string file = detail::kMaterialFiles[i][0];
-        names.push_back(file.substr(0, file.size() - 5));
-    }
-    std::sort(names.begin(), names.end());
+    std::vector<std::string> names = kMaterials.names(".json");
     names.insert(names.begin(), "none");
     return names;
 }
