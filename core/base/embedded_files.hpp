@@ -35,6 +35,15 @@ struct EmbeddedFiles {
     }
 };
 
+/// A preset file's name: the file's name without its folder and `extension` (".json").
+inline std::string preset_name_of(const std::string& file, const std::string& extension) {
+    const std::string base = file.substr(file.find_last_of('/') + 1);
+    return base.size() > extension.size() &&
+                   base.compare(base.size() - extension.size(), extension.size(), extension) == 0
+               ? base.substr(0, base.size() - extension.size())
+               : base;
+}
+
 /// The preset called `name` in `presets`, or null.
 template <class Preset>
 const Preset* find_by_name(const std::vector<Preset>& presets, const std::string& name) {

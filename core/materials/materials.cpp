@@ -5,7 +5,6 @@
 #include "core/scene/params.hpp"
 
 #include <algorithm>
-#include <filesystem>
 
 namespace sonarsim {
 namespace detail {
@@ -30,10 +29,7 @@ MaterialPreset parse_material_preset(const std::string& file, const std::string&
     if (j.is_discarded() || !j.is_object()) throw InputError(file, "", "not a JSON object");
     MaterialPreset p;
     p.file = file;
-    const std::string base = std::filesystem::path(file).filename().string();
-    p.name = base.size() > 5 && base.compare(base.size() - 5, 5, ".json") == 0
-                 ? base.substr(0, base.size() - 5)
-                 : base;
+    p.name = preset_name_of(file, ".json");
     if (j.value("name", "") != p.name)
         throw InputError(file, "name", "must be \"" + p.name + "\", the file's name without .json");
     p.title = string_field(j, "title", file, "");
