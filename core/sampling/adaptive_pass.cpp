@@ -230,9 +230,11 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
             if (!out.bumped[size_t(k)]) continue;
             if (carried) carried->resize(size_t(N));
             for (int i : groups[size_t(k)]) {
-                // To a denser base grid, unrefined here: its rays are kept when `carried` takes them.
-                if (carried) (*carried)[size_t(i)] = std::move(beams[size_t(i)]);
-                for (auto& c : beams[size_t(i)]) out.fine.rays_traced += c.rays;
+                // To a denser base grid, unrefined here: `carried` keeps its rays (counted when collected).
+                if (carried)
+                    (*carried)[size_t(i)] = std::move(beams[size_t(i)]);
+                else
+                    for (auto& c : beams[size_t(i)]) out.fine.rays_traced += c.rays;
                 beams[size_t(i)].clear();
             }
         }
@@ -251,9 +253,7 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
     std::vector<int> samples(static_cast<size_t>(G), -1);
     for (int k = 0; k < G; ++k)
         if (!out.bumped[size_t(k)]) samples[size_t(k)] = groups[size_t(k)].front();
-    const std::uint64_t bumped_rays = out.fine.rays_traced;
-    collect_cells(sp, beams, samples, out.fine, out.coarse);
-    out.fine.rays_traced += bumped_rays;
+    collect_cells(sp, beams, samples, out.fine, out.coarse); // adds the refined beams' rays
     out.fine.preview = sp.control.preview;
     return out;
 }
