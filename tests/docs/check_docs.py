@@ -59,32 +59,29 @@ def check_parameters(sonarsim, repo, update):
     return 1
 
 
-def check_devices(sonarsim, repo):
-    table = run(sonarsim, "devices", "--markdown").strip()
-    text = (repo / "docs" / "devices.md").read_text(encoding="utf-8")
+def check_generated_table(sonarsim, repo, command, doc, first, last, what):
+    """Whether docs/`doc` holds the current output of `sonarsim COMMAND --markdown` (its table runs from the
+    line starting `first` to the line holding `last`); prints how to mend it when not."""
+    table = run(sonarsim, command, "--markdown").strip()
+    text = (repo / "docs" / doc).read_text(encoding="utf-8")
     if table in text:
-        print("docs/devices.md holds the current `sonarsim devices --markdown` table")
+        print(f"docs/{doc} holds the current `sonarsim {command} --markdown` table")
         return 0
-    start = text.find("| name |")
-    end = text.find("\n\n", text.find("? = unsure", start)) if start >= 0 else -1
-    show_diff(table, text[start:end] if start >= 0 else "", "docs/devices.md")
-    print("docs/devices.md is stale: replace its table (from `| name |` to the `? = unsure` line) with the output of\n"
-          "  build/sonarsim devices --markdown")
+    start = text.find(first)
+    end = text.find("\n", text.find(last, start)) if start >= 0 else -1
+    show_diff(table, text[start:end] if start >= 0 else "", f"docs/{doc}")
+    print(f"docs/{doc} is stale: replace its {what} (from `{first}` to the `{last}` line) with the output of\n"
+          f"  build/sonarsim {command} --markdown")
     return 1
+
+
+def check_devices(sonarsim, repo):
+    return check_generated_table(sonarsim, repo, "devices", "devices.md", "| name |", "? = unsure", "table")
 
 
 def check_materials(sonarsim, repo):
-    table = run(sonarsim, "materials", "--markdown").strip()
-    text = (repo / "docs" / "model.md").read_text(encoding="utf-8")
-    if table in text:
-        print("docs/model.md holds the current `sonarsim materials --markdown` table")
-        return 0
-    start = text.find("| preset |")
-    end = text.find("\n", text.find("`-`: not set", start)) if start >= 0 else -1
-    show_diff(table, text[start:end] if start >= 0 else "", "docs/model.md")
-    print("docs/model.md is stale: replace its presets table (from `| preset |` to the `-`: not set line) with the\n"
-          "output of\n  build/sonarsim materials --markdown")
-    return 1
+    return check_generated_table(sonarsim, repo, "materials", "model.md", "| preset |", "`-`: not set",
+                                 "presets table")
 
 
 def anchors(md):
