@@ -18,10 +18,10 @@ using detail::Angle;
 constexpr int kElevationLevels = 5; // ternary splits: cells down to 1/243 of the base width
 constexpr int kAzimuthLevels = 3; // columns split in three locally: down to 1/27 of the base width (specular)
 constexpr int kEdgeAzimuthLevels = 2; // ... and down to 1/9 where neighbouring columns see different surfaces
-constexpr int kMaxPasses = 3;         // base refinements (x3) when the error estimate misses the tolerance
-/// A pass whose base grid alone is estimated this many times a tolerance off goes to the next base grid
-/// without refining (refinement at edges does not close such a gap). 1 rather than 3: a third fewer rays on
-/// the device bench's terrains at the same errors (docs/accuracy-and-speed.md).
+constexpr int kMaxPasses = 3;         // base grids a group may have: elevation_rays x 1, 3, 9 (adaptive.cpp)
+/// Before refining, a pass sends the groups with the largest shares of its base grid's own estimated error
+/// to the next base grid unrefined (refinement at edges does not close such a gap), until the rest would
+/// meet kSkipFactor x each tolerance.
 constexpr double kSkipFactor = 1;
 /// Cells whose errors may add up in one bin: a pair is worth refining when its possible error exceeds
 /// 1 / kErrorsPerBin of what the tolerance allows the bin.
