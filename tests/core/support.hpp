@@ -3,6 +3,7 @@
 #include "core/shading/shade.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -11,6 +12,8 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 namespace sonarsim::test {
 
@@ -44,6 +47,18 @@ inline std::vector<std::uint8_t> read_file_bytes(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) return {};
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// Writes text to path through a file of this process's own and a rename, so that tests running at the
+/// same time (ctest -j) that write the same file never read it half-written.
+inline void write_text_atomically(const std::string& path, const std::string& text) {
+    const std::string tmp = path + ".tmp" + std::to_string(::getpid());
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        out << text;
+        if (!out) throw std::runtime_error("cannot write " + tmp);
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) throw std::runtime_error("cannot rename " + tmp);
 }
 
 inline void write_file_bytes(const std::string& path, const std::vector<std::uint8_t>& bytes) {

@@ -9,7 +9,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <fstream>
+#include <sstream>
 
 using namespace sonarsim;
 using sonarsim::test::out_path;
@@ -19,7 +19,7 @@ namespace {
 /// A smooth heightfield (a few metres of gentle relief over 16 x 16 m) as an OFF file with n x n vertices.
 std::string smooth_terrain_off(int n) {
     const std::string path = out_path("terrain_" + std::to_string(n) + ".off");
-    std::ofstream f(path);
+    std::ostringstream f;
     f << "OFF\n" << n * n << " " << 2 * (n - 1) * (n - 1) << " 0\n";
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
@@ -31,13 +31,14 @@ std::string smooth_terrain_off(int n) {
             const int a = j * n + i, b = a + 1, c = a + n, d = c + 1;
             f << "3 " << a << " " << b << " " << d << "\n3 " << a << " " << d << " " << c << "\n";
         }
+    sonarsim::test::write_text_atomically(path, f.str());
     return path;
 }
 
 /// A rough heightfield: the smooth relief plus ripples of 0.7 and 0.45 m wavelength (n x n vertices).
 std::string rough_terrain_off(int n) {
     const std::string path = out_path("rough_terrain_" + std::to_string(n) + ".off");
-    std::ofstream f(path);
+    std::ostringstream f;
     f << "OFF\n" << n * n << " " << 2 * (n - 1) * (n - 1) << " 0\n";
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
@@ -52,6 +53,7 @@ std::string rough_terrain_off(int n) {
             const int a = j * n + i, b = a + 1, c = a + n, d = c + 1;
             f << "3 " << a << " " << b << " " << d << "\n3 " << a << " " << d << " " << c << "\n";
         }
+    sonarsim::test::write_text_atomically(path, f.str());
     return path;
 }
 

@@ -53,12 +53,17 @@ TriMesh icosphere(int levels) {
 
 std::string write_obj(const TriMesh& m, const std::string& name) {
     const std::string path = out_path(name);
-    FILE* f = std::fopen(path.c_str(), "w");
-    REQUIRE(f);
-    for (const auto& v : m.vertices)
-        std::fprintf(f, "v %.9g %.9g %.9g\n", double(v.x), double(v.y), double(v.z));
-    for (const auto& t : m.triangles) std::fprintf(f, "f %u %u %u\n", t.x + 1, t.y + 1, t.z + 1);
-    std::fclose(f);
+    std::string text;
+    char line[128];
+    for (const auto& v : m.vertices) {
+        std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", double(v.x), double(v.y), double(v.z));
+        text += line;
+    }
+    for (const auto& t : m.triangles) {
+        std::snprintf(line, sizeof line, "f %u %u %u\n", t.x + 1, t.y + 1, t.z + 1);
+        text += line;
+    }
+    write_text_atomically(path, text); // two test cases write the coarse sphere, maybe at the same time
     return path;
 }
 
