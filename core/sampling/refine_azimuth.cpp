@@ -97,7 +97,8 @@ void split_column(const Sampler& sp, Column&& c, const std::vector<char>& marked
         mid.a = c.a, mid.da = da, mid.beam = c.beam, mid.j0 = lo, mid.j1 = hi;
         mid.nodes.reserve(c.nodes.size());
         for (size_t k = 0; k < c.nodes.size(); ++k)
-            if (c.nodes[k].j >= lo && c.nodes[k].j < hi) mid.nodes.push_back(c.nodes[k]), moved[k] = 1;
+            if (c.nodes[k].j >= lo && c.nodes[k].j < hi)
+                mid.nodes.push_back(std::move(c.nodes[k])), moved[k] = 1;
         mid.base.assign(c.base.begin() + (lo - c.j0), c.base.begin() + (hi - c.j0));
         Column port = sp.trace_column(c.a + da, da, M0, c.beam, lo, hi); // port side first
         sp.refine_column(port, M0);
@@ -111,11 +112,13 @@ void split_column(const Sampler& sp, Column&& c, const std::vector<char>& marked
     }
     // What stays of c: its cells outside the runs, never merged with others in the coarse image.
     Column rest = std::move(c);
-    std::vector<Node> kept;
-    kept.reserve(rest.nodes.size());
+    size_t kept = 0; // in place: the nodes not moved to a middle column, in order
     for (size_t k = 0; k < rest.nodes.size(); ++k)
-        if (!moved[k]) kept.push_back(std::move(rest.nodes[k]));
-    rest.nodes.swap(kept);
+        if (!moved[k]) {
+            if (kept != k) rest.nodes[kept] = std::move(rest.nodes[k]);
+            ++kept;
+        }
+    rest.nodes.erase(rest.nodes.begin() + long(kept), rest.nodes.end());
     rest.group = next_group++, rest.sibling = false;
     if (rest.nodes.empty() && !triples.empty())
         triples[1].rays += rest.rays; // the middle column of the first run took them all

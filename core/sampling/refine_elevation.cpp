@@ -117,40 +117,35 @@ size_t Sampler::mark_for_split(Column& col, const Angle& a, double de_min) const
 }
 
 void Sampler::split_marked(Column& col, const Angle& a, size_t marked, int& next_group) const {
-    // In place, from the back: node k moves to k + 2 x (marked nodes before it), a marked one becomes
-    // three. Groups are numbered in column order, as the splits are met from the top.
-    auto& nodes = col.nodes;
-    size_t src = nodes.size(), dst = nodes.size() + 2 * marked;
-    int grp = next_group + int(marked);
-    next_group = grp;
-    nodes.resize(dst);
+    // Into a new vector, in column order: a marked node becomes three (the middle one is the node itself),
+    // whose group numbers follow the column's order from the top.
+    std::vector<Node> out;
+    out.reserve(col.nodes.size() + 2 * marked);
     // Cells come in a few widths: keep sin and cos of the last third's.
     double h_de = 0;
     Angle h;
-    while (src > 0) {
-        Node& n = nodes[--src];
+    for (Node& n : col.nodes) {
         if (!n.refine) {
-            if (--dst != src) nodes[dst] = std::move(n);
+            out.push_back(std::move(n));
             continue;
         }
         const double de = n.de / 3;
-        --grp;
+        const int grp = next_group++, j = n.j;
         if (de != h_de) h_de = de, h = Angle(de);
         const Angle up(n.angle.rad + de, n.angle, h, +1), down(n.angle.rad - de, n.angle, h, -1);
-        const int j = n.j;
-        nodes[--dst] = trace_node(a, down, de, grp);
-        nodes[dst].j = j;
-        Node& mid = nodes[--dst];
-        if (dst != src) mid = std::move(n);
+        out.push_back(trace_node(a, up, de, grp));
+        out.back().j = j;
+        Node& mid = out.emplace_back(std::move(n));
         mid.group = grp, mid.refine = false, mid.alone_checked = false;
         if (mid.hit)
             set_width(mid, de, criteria.bin_m());
         else
             mid.de = de, mid.fresh = true;
-        nodes[--dst] = trace_node(a, up, de, grp);
-        nodes[dst].j = j;
+        out.push_back(trace_node(a, down, de, grp));
+        out.back().j = j;
         col.rays += 2;
     }
+    col.nodes.swap(out);
 }
 
 void Sampler::refine_column(Column& col, int M0) const {
