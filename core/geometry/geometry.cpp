@@ -3,10 +3,12 @@
 #include "core/base/errors.hpp"
 #include "core/base/shared_registry.hpp"
 #include "core/geometry/mesh_cache.hpp"
+#include "core/geometry/phong_surface.hpp"
 #include "core/geometry/shading_normals.hpp"
 
 #include <embree3/rtcore.h>
 #include <glm/gtc/matrix_inverse.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -169,6 +171,7 @@ struct SceneGeometry::Impl {
         std::optional<Vec3d> box_m; ///< ... or box size
         std::shared_ptr<const Blas> blas;
         std::shared_ptr<const ShadingNormals> normals; ///< null or not smooth(): face normals
+        double phong_alpha = 0; ///< > 0 with smooth normals: hits on the curved surface (phong_surface.hpp)
         RTCGeometry instance = nullptr;
         Placement placement;
     };
@@ -211,6 +214,7 @@ SceneGeometry::SceneGeometry(const SceneDesc& s) : impl_(std::make_unique<Impl>(
         }
         ob.placement = place(o, *ob.blas, s.source_file, key);
         ob.normals = shared_corner_normals(ob.blas->mesh, o.crease_angle_deg);
+        ob.phong_alpha = o.phong_alpha;
         g.objects.push_back(std::move(ob));
     }
     if (g.objects.empty()) return;
@@ -271,6 +275,7 @@ bool SceneGeometry::update_transforms(const SceneDesc& s) {
     embree_error_text().clear();
     for (size_t i = 0; i < g.objects.size(); ++i) {
         g.objects[i].normals = std::move(normals[i]);
+        g.objects[i].phong_alpha = s.objects[i].phong_alpha;
         g.objects[i].placement = placements[i];
         set_instance_transform(g.objects[i].instance, placements[i].transform);
     }
@@ -279,6 +284,35 @@ bool SceneGeometry::update_transforms(const SceneDesc& s) {
     g.update_bounds();
     return true;
 }
+
+namespace {
+
+/// Moves a hit on a bent triangle of a smooth object onto its Phong surface (phong_surface.hpp, in the
+/// object's own coordinates, where the ray keeps its parameter t): the range becomes where the ray meets
+/// the curved surface, and the face normal the curved surface's there, so footprints and the sampler's
+/// edge test lie on it too. A ray grazing the surface, where the solve does not settle, keeps its flat hit.
+template <class Object>
+void curve(const Object& ob, const RTCRayHit& rh, const glm::dvec3& o, const glm::dvec3& d, double t_max,
+           Hit& h) {
+    const TriMesh& m = *ob.blas->mesh;
+    const glm::uvec3 tri = m.triangles[rh.hit.primID];
+    const glm::vec3* corner = &ob.normals->corner[3 * size_t(rh.hit.primID)];
+    const glm::dvec3 p[3] = {m.vertices[tri.x], m.vertices[tri.y], m.vertices[tri.z]};
+    const glm::dvec3 n[3] = {corner[0], corner[1], corner[2]};
+    // The ray in the object's coordinates: the inverse of the linear part is the normal matrix transposed.
+    const glm::dmat3 to_local = glm::transpose(ob.placement.normal);
+    const glm::dvec3 o_local = to_local * (o - glm::dvec3(ob.placement.transform[3]));
+    const std::optional<PhongHit> c =
+        phong_hit(p, n, rh.hit.u, rh.hit.v, ob.phong_alpha, o_local, to_local * d, h.t);
+    if (!c || !(c->t >= kMinHitRange_m && c->t <= t_max)) return;
+    const glm::dvec3 normal = ob.placement.normal * c->normal;
+    const double len = glm::length(normal);
+    if (!(len > 0) || !std::isfinite(len)) return;
+    h.t = c->t;
+    h.face_normal = glm::dot(normal, h.face_normal) < 0 ? -normal / len : normal / len; // Embree's side
+}
+
+} // namespace
 
 std::optional<Hit> SceneGeometry::intersect(const glm::dvec3& o, const glm::dvec3& d, double t_max) const {
     const Impl& g = *impl_;
@@ -314,6 +348,7 @@ std::optional<Hit> SceneGeometry::intersect(const glm::dvec3& o, const glm::dvec
             ob.placement.normal * glm::dvec3(ob.normals->at(rh.hit.primID, rh.hit.u, rh.hit.v));
         const double n_len = glm::length(n);
         if (n_len > 0 && std::isfinite(n_len)) h.normal = n / n_len;
+        if (ob.phong_alpha > 0 && ob.normals->bent[rh.hit.primID]) curve(ob, rh, o, d, t_max, h);
     }
     h.material = object + 1;
     h.prim = rh.hit.primID;

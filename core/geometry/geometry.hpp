@@ -21,14 +21,17 @@ constexpr unsigned kFloorMaterial = 0;
 constexpr unsigned kSurfaceMaterial = 0xFFFFFFFEu;
 
 struct Hit {
-    double t = 0; ///< range along the unit ray [m]
+    /// range along the unit ray [m]; on a smooth object with `phong_alpha` > 0, where the ray meets its
+    /// curved (Phong) surface (phong_surface.hpp)
+    double t = 0;
     /// unit normal in world space (either side): the face's, or on a smooth object (crease_angle_deg) the
     /// shading normal interpolated from its corner normals
     glm::dvec3 normal{0};
     unsigned material = 0; ///< kFloorMaterial or object index + 1
     unsigned prim = 0;     ///< triangle index within its object (floor: 0)
     /// unit normal of the face hit, in world space (either side): the plane the hit point lies on (the
-    /// adaptive sampler's continuity test); equals `normal` unless the object is smooth
+    /// adaptive sampler's continuity test, range footprints); equals `normal` unless the object is smooth.
+    /// On a curved hit (`phong_alpha` > 0) the curved surface's normal at its point
     glm::dvec3 face_normal{0};
 };
 
@@ -50,11 +53,11 @@ class SceneGeometry {
     /// True when `scene` has the same shapes: as many objects, each with the same mesh file (resolved path)
     /// or box size. Then only poses differ, and update_transforms() can take them.
     bool same_shapes(const SceneDesc& scene) const;
-    /// Places the objects as in `scene` (position, orientation, scale, crease angle): new instance
-    /// transforms, a re-commit of the top-level scene and, for a new crease angle, the mesh's shared corner
-    /// normals for it (shading_normals.hpp); no file is read and no mesh BVH rebuilt. Returns false, changing
-    /// nothing, when the shapes differ (same_shapes()). Throws InputError, changing nothing, when an object
-    /// would leave single precision.
+    /// Places the objects as in `scene` (position, orientation, scale, crease angle, Phong alpha): new
+    /// instance transforms, a re-commit of the top-level scene and, for a new crease angle, the mesh's shared
+    /// corner normals for it (shading_normals.hpp); no file is read and no mesh BVH rebuilt. Returns false,
+    /// changing nothing, when the shapes differ (same_shapes()). Throws InputError, changing nothing, when an
+    /// object would leave single precision.
     bool update_transforms(const SceneDesc& scene);
 
     /// First hit of the ray o + t d, t in (0, t_max]; d must be unit length.

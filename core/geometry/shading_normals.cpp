@@ -69,7 +69,8 @@ ShadingNormals corner_normals(const TriMesh& m, double crease_angle_deg) {
         for (int k = 0; k < 3; ++k) corners_at[fill[rep[m.triangles[t][k]]]++] = unsigned(3 * t + size_t(k));
 
     out.corner.assign(3 * T, glm::vec3(0));
-    std::vector<char> bent(T, 0); // a corner normal differs from its face normal
+    std::vector<unsigned char>& bent = out.bent; // a corner normal differs from its face normal
+    bent.assign(T, 0);
     tbb::parallel_for(size_t(0), T, [&](size_t t) {
         const glm::dvec3 nf = face[t];
         if (nf == glm::dvec3(0)) return;
@@ -89,7 +90,7 @@ ShadingNormals corner_normals(const TriMesh& m, double crease_angle_deg) {
     });
     // Nothing bent (a box, or a crease angle below every dihedral angle): the face normals, exactly as Embree
     // reports them, and no memory.
-    if (std::find(bent.begin(), bent.end(), 1) == bent.end()) out.corner = {};
+    if (std::find(bent.begin(), bent.end(), 1) == bent.end()) out.corner = {}, out.bent = {};
     return out;
 }
 

@@ -16,6 +16,9 @@ struct ShadingNormals {
     std::shared_ptr<const TriMesh> mesh; ///< the mesh they belong to (kept alive: its address names it)
     double crease_angle_deg = 0;
     std::vector<glm::vec3> corner;
+    /// per triangle (when smooth()): 1 when a corner normal differs from the face's normal, so that the
+    /// face is part of a curved surface (phong_surface.hpp); 0 on a flat part or along a crease
+    std::vector<unsigned char> bent;
     bool smooth() const { return !corner.empty(); }
     /// The shading normal at barycentric (u, v) of triangle `prim` (point = (1 - u - v) v0 + u v1 + v v2),
     /// not normalised; only when smooth().

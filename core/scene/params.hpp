@@ -44,8 +44,8 @@ void set_material(Material& m, const std::string& field, const json& value, cons
 /// "nu_db, q, mu, h_deg, reflection_db, ...": the material number keys, for error messages.
 std::string material_keys_text();
 
-/// Object keys (mesh, box, position, orientation_deg, scale, crease_angle_deg, name): stage Geometry (name:
-/// None).
+/// Object keys (mesh, box, position, orientation_deg, scale, crease_angle_deg, phong_alpha, name): stage
+/// Geometry (name: None).
 const std::vector<ObjectSpec>& object_params();
 /// Seafloor keys (height_m).
 const std::vector<SeafloorSpec>& seafloor_params();

@@ -158,6 +158,9 @@ struct ObjectDesc {
     /// Shading normals interpolated from corner normals that average the faces within this angle of each
     /// other (shading_normals.hpp); 0: face normals [deg]
     double crease_angle_deg = 60.0;
+    /// Phong tessellation's shape factor: hits on a smooth object's bent faces move onto the curved surface
+    /// through its vertices and corner normals (phong_surface.hpp); 0: on the flat faces [none, 0..1]
+    double phong_alpha = 0.0;
     Material material;
     std::string name; ///< a label (not written to the metadata)
 };

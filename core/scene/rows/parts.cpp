@@ -1,6 +1,6 @@
 // The rows of a scene's parts: an object (a mesh file or a box, placed by position, orientation and scale,
-// with its smoothing angle and a label) and the seafloor (a flat plane at a height). Each part's material is
-// the material rows (rows/material.cpp).
+// with its smoothing angle, its curved-surface factor and a label) and the seafloor (a flat plane at a
+// height). Each part's material is the material rows (rows/material.cpp).
 #include "core/scene/param_rows.hpp"
 
 #include "core/base/errors.hpp"
@@ -90,6 +90,18 @@ std::vector<ObjectSpec> object_rows() {
     };
     crease.section = Section::Object;
     t.push_back(crease);
+    ObjectSpec phong =
+        part<ObjectDesc>("phong_alpha", "", ParamType::Number, 0, 1, false, Stage::Geometry,
+                         "Curved surfaces (Phong tessellation's shape factor): rays meet a smooth object's "
+                         "faces on the surface p* = (1 - alpha) p + alpha sum_i b_i (p - ((p - p_i).n_i) "
+                         "n_i) (barycentric b_i, corners p_i, corner normals n_i), so a coarse mesh's "
+                         "ranges follow the smooth shape; 0.5 follows a sphere, 1 bulges out of it. Faces "
+                         "whose corners share one normal (a box, a crease) stay flat. 0: the flat faces");
+    phong.get = [](const ObjectDesc& o) { return json(o.phong_alpha); };
+    phong.put = [](ObjectDesc& o, const json& v, const std::string&) { o.phong_alpha = v.get<double>(); };
+    phong.section = Section::Object;
+    phong.omitted_at_default = true;
+    t.push_back(phong);
     ObjectSpec name = part<ObjectDesc>("name", "", ParamType::String, 0, 0, false, Stage::None, "A label");
     name.get = [](const ObjectDesc& o) { return json(o.name); };
     name.put = [](ObjectDesc& o, const json& v, const std::string&) { o.name = v.get<std::string>(); };
