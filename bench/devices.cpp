@@ -37,11 +37,6 @@ namespace sonarsim::bench {
 namespace {
 
 constexpr double kPitchDeg = 15; // the terrain case's look-down angle
-// Reference: spread, this many elevation rays per beam in this many azimuth columns. 729 x 3 was not
-// enough: on the wide sonars over the wreck it was itself ~1 % off (rel L1 1.3-1.7 % against it, 0.65 %
-// against 2187 x 9, the sampler unchanged).
-constexpr int kReferenceRays = 2187;
-constexpr int kReferenceColumns = 9;
 
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());

@@ -2,15 +2,20 @@
 // floor and surface mirrors) and the shipwreck under a surface, traced and shaded with sampling.bounces 0, 1
 // and 2 (median of repeats, the pose nudged between repeats so that every render re-traces): the adaptive
 // sampler at its tolerance (it refines where ghosts need it, so its rays grow too), and the spread scheme on
-// fixed rays (the cost per ray of the continuations and shadow rays alone). Also the error estimate.
+// fixed rays (the cost per ray of the continuations and shadow rays alone). For the adaptive sampler also
+// its error against a dense spread reference with the same bounces (kReferenceRays x kReferenceColumns, at
+// the last repeat's pose) and its own estimate of it.
 #include "bench.hpp"
 
+#include "core/analysis/reference.hpp"
 #include "core/scene/sampling_scheme.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/pipeline/simulator.hpp"
 
 #include <algorithm>
 #include <cstdio>
+#include <memory>
+#include <string>
 #include <vector>
 
 namespace sonarsim::bench {
@@ -26,8 +31,10 @@ int run_multipath_bench(const std::string& repo, int repeats) {
     wreck.water.surface_height_m = wreck.sonar.pose.position_m[2] + 1.0;
     wreck.seafloor->material.reflection_db = 10;
     cases.push_back({"shipwreck + surface 1 m above, floor mirror", wreck});
-    std::printf("%-44s %-9s %7s %10s %10s %11s %9s %9s\n", "scene", "scheme", "bounces", "rays", "mp rays",
-                "trace+shade", "ratio", "median dB");
+    std::printf("reference: spread %d x %d with the same bounces (adaptive rows)\n", kReferenceRays,
+                kReferenceColumns);
+    std::printf("%-44s %-9s %7s %10s %10s %11s %9s %9s %9s %9s\n", "scene", "scheme", "bounces", "rays",
+                "mp rays", "trace+shade", "ratio", "rel L1 %", "est. %", "est. dB");
     for (auto& c : cases)
         for (SamplingScheme scheme : {SamplingScheme::Adaptive, SamplingScheme::Spread}) {
             double direct_ms = 0;
@@ -37,23 +44,35 @@ int run_multipath_bench(const std::string& repo, int repeats) {
                 s.sampling.bounces = bounces;
                 Simulator sim(s);
                 std::vector<double> ms;
-                std::uint64_t rays = 0, mp_rays = 0;
-                double err = 0;
+                std::shared_ptr<const Frame> f;
                 for (int i = 0; i < repeats; ++i) {
                     s.sonar.pose.orientation_deg[2] = c.scene.sonar.pose.orientation_deg[2] + 0.01 * i;
                     sim.set_scene(s);
-                    const auto f = sim.render();
+                    f = sim.render();
                     ms.push_back(f->trace_ms + f->shade_ms);
-                    rays = f->hits().rays_traced, mp_rays = f->hits().multipath_rays;
-                    err = f->hits().error_estimate.median_abs_db;
                 }
                 std::sort(ms.begin(), ms.end());
                 const double med = ms[ms.size() / 2];
                 if (bounces == 0) direct_ms = med;
-                std::printf("%-44s %-9s %7d %10llu %10llu %8.1f ms %8.2fx %9.3f\n", c.name.c_str(),
-                            scheme_name(scheme), bounces, (unsigned long long)rays,
-                            (unsigned long long)mp_rays, med, med / direct_ms,
-                            scheme == SamplingScheme::Adaptive ? err : 0.0);
+                const auto& est = f->hits().error_estimate;
+                std::string errors = "        -         -         -";
+                if (scheme == SamplingScheme::Adaptive) {
+                    SceneDesc ref = s; // the last repeat's pose
+                    set_scheme(ref.sampling, SamplingScheme::Spread);
+                    ref.sampling.elevation_rays = kReferenceRays,
+                    ref.sampling.azimuth_rays = kReferenceColumns;
+                    status_line(c.name + ", bounces " + std::to_string(bounces) + ": reference");
+                    const ImageError e = compare_images(f->ideal(), Simulator(ref).render()->ideal());
+                    status_line("");
+                    char buf[64];
+                    std::snprintf(buf, sizeof buf, "%9.2f %9.2f %9.3f", 100 * e.rel_l1, 100 * est.rel_l1,
+                                  est.median_abs_db);
+                    errors = buf;
+                }
+                std::printf("%-44s %-9s %7d %10llu %10llu %8.1f ms %8.2fx %s\n", c.name.c_str(),
+                            scheme_name(scheme), bounces, (unsigned long long)f->hits().rays_traced,
+                            (unsigned long long)f->hits().multipath_rays, med, med / direct_ms,
+                            errors.c_str());
                 std::fflush(stdout);
             }
         }
