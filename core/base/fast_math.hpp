@@ -20,16 +20,21 @@
 
 namespace sonarsim::fast {
 
-/// The bits of a double, and a double from its bits (plain moves, also inside vectorised loops).
+/// The same bits as another type of the same size (C++20's std::bit_cast; a plain move, also inside
+/// vectorised loops).
+template <class To, class From> inline To bit_cast(const From& x) {
+    static_assert(sizeof(To) == sizeof(From), "bit_cast between types of one size");
+    To out;
+    std::memcpy(&out, &x, sizeof out);
+    return out;
+}
+
+/// The bits of a double, and a double from its bits.
 inline std::uint64_t bits_of(double x) {
-    std::uint64_t u;
-    std::memcpy(&u, &x, sizeof u);
-    return u;
+    return bit_cast<std::uint64_t>(x);
 }
 inline double double_of(std::uint64_t u) {
-    double x;
-    std::memcpy(&x, &u, sizeof x);
-    return x;
+    return bit_cast<double>(u);
 }
 
 /// 2^x for x <= 0; 0 below -1022 (3077 dB below the reference) and for NaN. 2^n from the exponent bits (n the
@@ -68,16 +73,12 @@ inline double log2_positive(double x) {
     return e + 2 * s * p * 1.4426950408889634;
 }
 
-/// The bits of a float, and a float from its bits (plain moves, also inside vectorised loops).
+/// The bits of a float, and a float from its bits.
 inline std::int32_t bits_of(float x) {
-    std::int32_t i;
-    std::memcpy(&i, &x, sizeof i);
-    return i;
+    return bit_cast<std::int32_t>(x);
 }
 inline float float_of(std::int32_t i) {
-    float x;
-    std::memcpy(&x, &i, sizeof x);
-    return x;
+    return bit_cast<float>(i);
 }
 
 /// ln(x) in single precision for normal x > 0, without branches (so a loop of it vectorises): the exponent
