@@ -134,9 +134,9 @@ glm::dvec3 RefineCriteria::normal_direction_sonar(const Node& n) const {
     return glm::transpose(frame_.R) * v;
 }
 
-bool RefineCriteria::needs_split_alone(const Node& n, const Column& c, const Angle& a) const {
+bool RefineCriteria::needs_split_alone(const Node& n, const Angle& a) const {
     if (!n.hit) return false;
-    if (absorbed_across(n, c, n.footprint_m)) return true;
+    if (absorbed_across(n.footprint_m)) return true;
     const Material& m = material_of(s_, n.hit->material);
     if (m.mu > 0 && n.de > deg2rad(m.h_deg) / 4) {
         const glm::dvec3 v = normal_direction_sonar(n);
@@ -162,16 +162,9 @@ bool RefineCriteria::needs_split_alone(const Node& n, const Column& c, const Ang
 /// Absorption alone changes the echo by more than the range-spreading threshold across a cell's range
 /// footprint, which spreads its echo evenly (very high frequencies: at 10 MHz, 110 dB per metre of range;
 /// where a bin holds few cells, at the aperture's edges, the split of a cell's echo between bins must then
-/// follow the level within it), and the error that leaves is significant against the image: as for a level
-/// step between neighbours, half the difference of the levels at the footprint's two ends, per bin (the
-/// cells of one surface tile its range, so a bin's level is its cells' own: no image-wide share bounds it).
-bool RefineCriteria::absorbed_across(const Node& n, const Column& c, double footprint_m) const {
-    const double tilt_db = 2 * k_.alpha_db_per_m * footprint_m;
-    if (!(tilt_db > range_jump_db_) || !n.hit) return false;
-    if (base_db.empty()) return true;
-    return significant_at(n.density_db, n.hit->t, footprint_m, n, c,
-                          0.5 * (1 - std::pow(10.0, -0.1 * tilt_db)),
-                          /*shared=*/false);
+/// follow the level within it).
+bool RefineCriteria::absorbed_across(double footprint_m) const {
+    return 2 * k_.alpha_db_per_m * footprint_m > range_jump_db_;
 }
 
 bool RefineCriteria::absorbed_across_azimuth(const Node& n, const Column& c, const Angle& a) const {
@@ -179,7 +172,7 @@ bool RefineCriteria::absorbed_across_azimuth(const Node& n, const Column& c, con
     const glm::dvec3 d = frame_.dir(a, n.angle);
     const glm::dvec3 d_a = frame_.R * glm::dvec3(-n.angle.c * a.s, n.angle.c * a.c, 0);
     const glm::dvec3& nf = n.hit->face_normal; // the footprint's plane, as in make_cell
-    return absorbed_across(n, c, std::abs(n.hit->t * glm::dot(nf, d_a) / glm::dot(nf, d)) * c.da);
+    return absorbed_across(std::abs(n.hit->t * glm::dot(nf, d_a) / glm::dot(nf, d)) * c.da);
 }
 
 bool RefineCriteria::specular_in_azimuth(const Node& n, double a_lo, double a_hi, double da) const {

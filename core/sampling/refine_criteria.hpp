@@ -42,16 +42,15 @@ class RefineCriteria {
     bool discontinuous(const Node& x, const Column& cx, const Node& y, const Column& cy,
                        const EdgeRay& edge) const;
 
-    /// A cell (of column c) that must split on its own: absorption across its footprint where the error of
-    /// spreading its echo evenly is significant, a specular lobe narrower than the cell centred inside it,
-    /// or a plane horizon inside it. `a`: the column's azimuth (c.a) as an angle.
-    bool needs_split_alone(const Node& n, const Column& c, const Angle& a) const;
+    /// A cell that must split on its own: absorption across its footprint, a specular lobe narrower than
+    /// the cell centred inside it, or a plane horizon inside it. `a`: the column's azimuth.
+    bool needs_split_alone(const Node& n, const Angle& a) const;
 
     /// A specular lobe whose azimuth falls inside the beam [a_lo, a_hi] and is narrower than its columns.
     bool specular_in_azimuth(const Node& n, double a_lo, double a_hi, double da) const;
 
     /// Absorption alone changes the echo by more than the range-spreading threshold across the column's
-    /// azimuth width, by an error significant against the image; `a`: the column's azimuth (c.a).
+    /// azimuth width; `a`: the column's azimuth (c.a) as an angle.
     bool absorbed_across_azimuth(const Node& n, const Column& c, const Angle& a) const;
 
     const SceneDesc& scene() const { return s_; }
@@ -79,7 +78,7 @@ class RefineCriteria {
     bool significant_via(const Node& n, const Column& c, double f) const;
     bool significant_at(double density_db, double r, double footprint_m, const Node& n, const Column& c,
                         double f, bool shared = true) const;
-    bool absorbed_across(const Node& n, const Column& c, double footprint_m) const;
+    bool absorbed_across(double footprint_m) const;
     glm::dvec3 normal_direction_sonar(const Node& n) const;
 
     const SceneDesc& s_;

@@ -111,7 +111,7 @@ size_t Sampler::mark_for_split(Column& col, const Angle& a, double de_min) const
     for (auto& n : col.nodes)
         if (!n.refine && !n.alone_checked) {
             n.alone_checked = true;
-            if (criteria.needs_split_alone(n, col, a)) mark(n);
+            if (criteria.needs_split_alone(n, a)) mark(n);
         }
     return marked;
 }

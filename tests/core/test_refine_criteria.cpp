@@ -195,38 +195,15 @@ TEST_CASE("criteria: a cell with a plane horizon or a specular lobe inside split
     // A floor 0.2 m below seen at -0.5 deg in a 2 deg cell: the cell's upper edge (+0.5 deg) never meets it.
     const Node horizon =
         plane_node(f, crit, 0, deg2rad(-0.5), de, {0, 0, -0.2}, {0, 0, 1}, kFloorMaterial, 0, 40);
-    CHECK(crit.needs_split_alone(horizon, column(de), Angle(0)));
+    CHECK(crit.needs_split_alone(horizon, Angle(0)));
     const Node below =
         plane_node(f, crit, 0, deg2rad(-20), de, {0, 0, -0.2}, {0, 0, 1}, kFloorMaterial, 0, 40);
-    CHECK_FALSE(crit.needs_split_alone(below, column(de), Angle(0)));
+    CHECK_FALSE(crit.needs_split_alone(below, Angle(0)));
     // A specular wall (lobe 0.5 deg) seen at normal incidence inside a 2 deg cell; a lobe far outside: no.
     const Node specular = plane_node(f, crit, 0, deg2rad(0.3), de, {3, 0, 0}, {-1, 0, 0}, 1, 0, 40);
-    CHECK(crit.needs_split_alone(specular, column(de), Angle(0)));
+    CHECK(crit.needs_split_alone(specular, Angle(0)));
     const Node tilted = plane_node(f, crit, 0, deg2rad(0.3), de, {3, 0, 0}, {-1, 0, 0.5}, 1, 0, 40);
-    CHECK_FALSE(crit.needs_split_alone(tilted, column(de), Angle(0)));
-}
-
-TEST_CASE("criteria: absorption across a cell's footprint splits it unless its bin is far brighter",
-          "[sampling][criteria]") {
-    SceneDesc s = criteria_scene();
-    s.sonar.frequency_khz = 3000; // ~2.4 dB/m at 10 degC: a 0.3 m footprint tilts by ~1.5 dB
-    const detail::RayFrame f(s);
-    RefineCriteria crit(s, f, false);
-    const double de = deg2rad(2.0);
-    const Column c = column(de);
-    // A floor 0.5 m below, seen 10 deg down: the 2 deg cell spans ~0.3 m of range.
-    const Node n = plane_node(f, crit, 0, deg2rad(-10), de, {0, 0, -0.5}, {0, 0, 1}, kFloorMaterial, 0, 40);
-    REQUIRE(2 * crit.constants().alpha_db_per_m * n.footprint_m > 4 * s.sampling.tolerance_db);
-    CHECK(crit.needs_split_alone(n, c, Angle(0))); // no base image yet: every tilt counts
-    const int bin = int(std::floor((n.hit->t - s.sonar.range_min_m) / crit.bin_m()));
-    crit.base_db.assign(size_t(s.sonar.range_bins), -std::numeric_limits<float>::infinity());
-    crit.base_db[size_t(bin)] = 0.0f; // the cell is the bin's echo: its tilt is the bin's error
-    CHECK(crit.needs_split_alone(n, c, Angle(0)));
-    crit.base_db[size_t(bin)] = 80.0f; // another surface 40 dB brighter fills the bin
-    CHECK_FALSE(crit.needs_split_alone(n, c, Angle(0)));
-    s.sonar.frequency_khz = 100; // ~0.03 dB/m: no tilt worth a split whatever the bin
-    const RefineCriteria low(s, f, false);
-    CHECK_FALSE(low.needs_split_alone(n, c, Angle(0)));
+    CHECK_FALSE(crit.needs_split_alone(tilted, Angle(0)));
 }
 
 TEST_CASE(
