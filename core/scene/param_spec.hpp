@@ -129,9 +129,6 @@ template <class Part> struct PartSpec : ValueSpec, RowColumns<PartSpec<Part>> {
     /// Validation beyond validate_value (a mesh path, a name, a scale given as one number); null: none.
     std::function<json(const ValueSpec&, const json&, const std::string& file, const std::string& key)> check;
     bool written = true; ///< scene_to_json writes it (a name is a label only)
-    /// scene_to_json leaves it out while it has its default value (a key added after the metadata of
-    /// existing scenes was fixed: they stay byte-identical); reading it back gives the default
-    bool omitted_at_default = false;
     /// The value checked against the row: `check`, else validate_value.
     json validated(const json& value, const std::string& file, const std::string& key) const {
         return check ? check(*this, value, file, key) : validate_value(*this, value, file, key);

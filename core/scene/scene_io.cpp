@@ -272,10 +272,9 @@ json scene_to_json(const SceneDesc& s) {
     if (s.water.surface_height_m) j["water"]["surface_material"] = material(s.water.surface_material);
     auto part = [&](const auto& rows, const auto& x) {
         json o;
-        using Part = std::decay_t<decltype(x)>;
         for (auto& p : rows) {
             const json v = p.get(x);
-            if (p.written && !v.is_null() && !(p.omitted_at_default && v == p.get(Part{}))) o[p.key] = v;
+            if (p.written && !v.is_null()) o[p.key] = v;
         }
         return o;
     };

@@ -302,7 +302,7 @@ TEST_CASE("faces whose corners share one normal do not move: a box renders byte 
     CHECK(b.t - a.t > 1e-3); // rounded into the fold: below both planes, farther from a sonar above
 }
 
-TEST_CASE("phong_alpha is written only when set, read back, and changed in place", "[smooth][curved]") {
+TEST_CASE("phong_alpha is written like every key, read back, and changed in place", "[smooth][curved]") {
     const std::string coarse = write_obj(icosphere(2), "icosphere_320.obj");
     // A simulator whose scene changes only phong_alpha re-places its objects (no new BVH) and renders
     // what a new one renders.
@@ -314,7 +314,7 @@ TEST_CASE("phong_alpha is written only when set, read back, and changed in place
     CHECK(std::memcmp(changed.data(), fresh.data(), fresh.size() * sizeof(float)) == 0);
     CHECK(std::memcmp(changed.data(), flat.data(), flat.size() * sizeof(float)) != 0);
     SceneDesc s = sphere_scene("sphere.obj", 60);
-    CHECK_FALSE(scene_to_json(s)["objects"][0].contains("phong_alpha")); // existing metadata stays as it was
+    CHECK(scene_to_json(s)["objects"][0]["phong_alpha"] == 0.0); // every effective parameter, the default too
     s.objects[0].phong_alpha = 0.75;
     const json j = scene_to_json(s);
     CHECK(j["objects"][0]["phong_alpha"] == 0.75);

@@ -100,7 +100,6 @@ std::vector<ObjectSpec> object_rows() {
     phong.get = [](const ObjectDesc& o) { return json(o.phong_alpha); };
     phong.put = [](ObjectDesc& o, const json& v, const std::string&) { o.phong_alpha = v.get<double>(); };
     phong.section = Section::Object;
-    phong.omitted_at_default = true;
     t.push_back(phong);
     ObjectSpec name = part<ObjectDesc>("name", "", ParamType::String, 0, 0, false, Stage::None, "A label");
     name.get = [](const ObjectDesc& o) { return json(o.name); };
