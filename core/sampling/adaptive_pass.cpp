@@ -177,7 +177,7 @@ std::uint64_t Sampler::cells_of(const Column& c, bool coarse, double da, std::ve
         lo.rad = e.rad - h.rad, lo.c = e.c * h.c + e.s * h.s, lo.s = e.s * h.c - e.c * h.s;
         hi.rad = e.rad + h.rad, hi.c = e.c * h.c - e.s * h.s, hi.s = e.s * h.c + e.c * h.s;
         out.push_back(detail::make_cell(frame, *n.hit, a, e, a_lo, a_hi, lo, hi));
-        if (multipath) rays += mp.ghosts(*n.hit, a, e, a_lo, a_hi, lo, hi, ghosts, n.via);
+        if (multipath) rays += mp.ghosts(*n.hit, a, e, a_lo, a_hi, lo, hi, c.beam, ghosts, n.via);
     };
     for (size_t n = 0; n < c.nodes.size();) {
         if (coarse && n + 2 < c.nodes.size() && c.nodes[n].group == c.nodes[n + 1].group &&

@@ -74,7 +74,7 @@ std::optional<Hit> Multipath::trace_on(const glm::dvec3& x, const glm::dvec3& d2
 }
 
 std::uint64_t Multipath::ghosts(const Hit& h, const Angle& a, const Angle& e, const Angle& a_lo,
-                                const Angle& a_hi, const Angle& e_lo, const Angle& e_hi,
+                                const Angle& a_hi, const Angle& e_lo, const Angle& e_hi, int beam,
                                 std::vector<GhostCell>& out, const Continuation* first) const {
     RayFrame image = f_; // the sonar mirrored in each mirror of the chain so far
     Hit hit = h;         // t: path length from the image sonar
@@ -91,7 +91,7 @@ std::uint64_t Multipath::ghosts(const Hit& h, const Angle& a, const Angle& e, co
         const std::optional<Hit> next = known ? first->hit : trace_on(x, d2, hit.t);
         if (!next) break;
         hit = *next;
-        rays += emit(image, hit, k + 1, chain, a, e, a_lo, a_hi, e_lo, e_hi, out,
+        rays += emit(image, hit, k + 1, chain, a, e, a_lo, a_hi, e_lo, e_hi, beam, out,
                      known ? &first->direct_leg_blocked : nullptr);
     }
     return rays;
@@ -99,13 +99,13 @@ std::uint64_t Multipath::ghosts(const Hit& h, const Angle& a, const Angle& e, co
 
 std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, const GhostCell& chain,
                               const Angle& a, const Angle& e, const Angle& a_lo, const Angle& a_hi,
-                              const Angle& e_lo, const Angle& e_hi, std::vector<GhostCell>& out,
+                              const Angle& e_lo, const Angle& e_hi, int ray_beam, std::vector<GhostCell>& out,
                               std::int8_t* blocked) const {
     const Cell c = make_cell(image, hit, a, e, a_lo, a_hi, e_lo, e_hi);
     GhostCell g = chain;
     g.cell = c;
-    const int ray_beam = beam_of(a.rad); // double paths and mixed ones back by the mirrors arrive in it
-    // Double path: out and back by the mirrors, along the ray; the image sonar's monostatic echo.
+    // Double path: out and back by the mirrors, along the ray (in its beam, as mixed paths back by the
+    // mirrors); the image sonar's monostatic echo.
     if (hit.t <= f_.t_max) {
         g.other_leg_m = c.range_m, g.cos_other = c.cos_incidence;
         g.tx_bounces = g.rx_bounces = std::uint8_t(k);

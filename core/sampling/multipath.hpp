@@ -57,17 +57,19 @@ class Multipath {
     Continuation continuation(const Hit& h, const Angle& a, const Angle& e) const;
 
     /// Appends the ghosts of the ray (a, e) standing for the cell [a_lo, a_hi] x [e_lo, e_hi] whose first
-    /// hit is `h` (each with the beam it arrives in) to `out`; returns the rays it traced. `first`: the
-    /// ray's continuation() when already traced.
+    /// hit is `h` (each with the beam it arrives in) to `out`; returns the rays it traced. `beam`: the beam
+    /// whose slice holds azimuth a (the ray's own). `first`: the ray's continuation() when already traced.
     std::uint64_t ghosts(const Hit& h, const Angle& a, const Angle& e, const Angle& a_lo, const Angle& a_hi,
-                         const Angle& e_lo, const Angle& e_hi, std::vector<GhostCell>& out,
+                         const Angle& e_lo, const Angle& e_hi, int beam, std::vector<GhostCell>& out,
                          const Continuation* first = nullptr) const;
 
   private:
-    /// `blocked`: the cached shadow ray of this scatterer (null: none to share).
+    /// `ray_beam`: the ray's beam (ghosts()). `blocked`: the cached shadow ray of this scatterer (null: none
+    /// to share).
     std::uint64_t emit(const RayFrame& image, const Hit& hit, int k, const GhostCell& chain, const Angle& a,
                        const Angle& e, const Angle& a_lo, const Angle& a_hi, const Angle& e_lo,
-                       const Angle& e_hi, std::vector<GhostCell>& out, std::int8_t* blocked) const;
+                       const Angle& e_hi, int ray_beam, std::vector<GhostCell>& out,
+                       std::int8_t* blocked) const;
     int beam_of(double azimuth_rad) const;
     bool is_mirror(unsigned material) const;
     /// What the reflected ray from mirror point x along d2 meets, its t the whole path length (`travelled`

@@ -88,7 +88,7 @@ TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s, const Trac
                 if (multipath)
                     ghost_rays[size_t(i)] +=
                         mp.ghosts(*h, a, e_mid[size_t(j)], a_lo, a_hi, e_edge[size_t(j) + 1],
-                                  e_edge[size_t(j)], ghosts[size_t(i)]);
+                                  e_edge[size_t(j)], i, ghosts[size_t(i)]);
                 if (paper) {
                     const size_t gi = size_t(i * K + k) * M + size_t(j);
                     grid_point[gi] = glm::vec3(h->t * d), grid_hit[gi] = 1; // p - o

@@ -34,7 +34,7 @@ TraceResult grid_trace(const SceneGeometry& g, const SceneDesc& s, const detail:
             const auto h = detail::first_hit(g, s, frame.origin, frame.dir(a, e), frame.t_max);
             if (!h) continue;
             out.cells[size_t(i)].push_back(detail::make_cell(frame, *h, a, e, a_lo, a_hi, e_lo, e_hi));
-            if (mp) mp->ghosts(*h, a, e, a_lo, a_hi, e_lo, e_hi, ghosts[size_t(i)]);
+            if (mp) mp->ghosts(*h, a, e, a_lo, a_hi, e_lo, e_hi, i, ghosts[size_t(i)]);
         }
     }
     if (mp) out.ghosts = detail::gather_ghosts(ghosts, s);
