@@ -19,8 +19,11 @@ bool multipath_active(const SceneDesc& s) {
 }
 
 Multipath::Multipath(const SceneGeometry& g, const SceneDesc& s, const RayFrame& f)
-    : g_(g), s_(s), f_(f), k_(shade_constants(s)), half_azimuth_rad_(f.grid->half_aperture_rad()),
-      half_elevation_rad_(f.elevation_weight.traced_fov_rad() / 2) {}
+    : g_(g), s_(s), f_(f), image_start_(f), k_(shade_constants(s)),
+      half_azimuth_rad_(f.grid->half_aperture_rad()),
+      half_elevation_rad_(f.elevation_weight.traced_fov_rad() / 2) {
+    image_start_.grid.reset();
+}
 
 bool Multipath::is_mirror(unsigned m) const {
     return m == kSurfaceMaterial || material_of(s_, m).is_mirror();
@@ -59,7 +62,7 @@ Multipath::Continuation Multipath::continuation(const Hit& h, const Angle& a, co
     Continuation c;
     if (!is_mirror(h.material)) return c;
     c.reflected = true;
-    RayFrame image = f_;
+    RayFrame image = image_start_;
     glm::dvec3 d2;
     const glm::dvec3 x = reflect(image, h, a, e, d2);
     if ((c.hit = trace_on(x, d2, h.t))) c.cos_at_hit = std::min(1.0, std::abs(glm::dot(c.hit->normal, d2)));
@@ -76,8 +79,8 @@ std::optional<Hit> Multipath::trace_on(const glm::dvec3& x, const glm::dvec3& d2
 std::uint64_t Multipath::ghosts(const Hit& h, const Angle& a, const Angle& e, const Angle& a_lo,
                                 const Angle& a_hi, const Angle& e_lo, const Angle& e_hi, int beam,
                                 std::vector<GhostCell>& out, const Continuation* first) const {
-    RayFrame image = f_; // the sonar mirrored in each mirror of the chain so far
-    Hit hit = h;         // t: path length from the image sonar
+    RayFrame image = image_start_; // the sonar mirrored in each mirror of the chain so far
+    Hit hit = h;                   // t: path length from the image sonar
     GhostCell chain;
     std::uint64_t rays = 0;
     for (int k = 0; k < s_.sampling.bounces && is_mirror(hit.material); ++k) {

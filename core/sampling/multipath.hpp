@@ -87,6 +87,9 @@ class Multipath {
     const SceneGeometry& g_;
     const SceneDesc& s_;
     const RayFrame& f_;
+    /// f_ without its grid, copied for each ray as the frame of its image sonars: copying the grid's
+    /// shared_ptr would have every thread write its count, one cache line they all contend for.
+    RayFrame image_start_;
     ShadeConstants k_;
     double half_azimuth_rad_, half_elevation_rad_;
     GhostCullFloor cull_;
