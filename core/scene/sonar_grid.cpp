@@ -31,6 +31,11 @@ SonarGrid::SonarGrid(const SonarParams& s)
     fov_rad = fov_deg * to_rad;
     spacing_rad = fov_rad / beams;
     fan_half_rad = std::max(std::abs(port_rad_.front()), std::abs(stbd_rad_.back()));
+    // Four buckets per beam on average: beam_of_stbd_rad rarely steps more than one beam.
+    bucket_beam_.resize(size_t(4 * beams));
+    buckets_per_rad_ = double(bucket_beam_.size()) / fov_rad;
+    for (size_t b = 0; b < bucket_beam_.size(); ++b)
+        bucket_beam_[b] = beam_of_table(port_rad_.front() - double(b) / buckets_per_rad_, stbd_rad_);
 }
 
 std::string beam_table_problem(const SonarParams& s) {

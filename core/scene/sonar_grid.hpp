@@ -88,7 +88,7 @@ class SonarGrid {
     }
     /// The beam whose slice holds azimuth a [rad], clamped to the fan.
     int beam_of_azimuth_rad(double a_rad) const {
-        if (table_) return beam_of_table(a_rad, stbd_rad_);
+        if (table_) return beam_of_stbd_rad(a_rad);
         return std::clamp(int(std::floor((fov_rad / 2 - a_rad) / spacing_rad)), 0, beams - 1);
     }
     /// Fractional beam index of azimuth a [deg], beam centres at integers, linear between them (the fan's
@@ -150,9 +150,21 @@ class SonarGrid {
             std::lower_bound(lower.begin(), lower.end(), a, [](double v, double x) { return v > x; });
         return std::min(int(it - lower.begin()), beams - 1);
     }
+    /// beam_of_table(a, stbd_rad_) (multipath asks it for every ghost): from the beam the bucket index gives
+    /// for a, stepped to the one whose lower edge is the first at most a; the same answer for every a.
+    int beam_of_stbd_rad(double a) const {
+        const double x = (port_rad_.front() - a) * buckets_per_rad_; // NaN: bucket 0, stepped to beam 0
+        int i = bucket_beam_[x > 0 ? size_t(std::min(x, double(bucket_beam_.size() - 1))) : 0];
+        while (i > 0 && !(stbd_rad_[size_t(i) - 1] > a)) --i;
+        while (i < beams - 1 && stbd_rad_[size_t(i)] > a) ++i;
+        return i;
+    }
 
     const BeamTable* table_ = nullptr;
     std::vector<double> centre_rad_, port_rad_, stbd_rad_; ///< the table's angles [rad]
+    /// The table's fan cut into equal buckets from its port edge: the beam of each bucket's port end.
+    std::vector<int> bucket_beam_;
+    double buckets_per_rad_ = 0;
     double narrowest_rad_ = 0, widest_rad_ = 0;
 };
 

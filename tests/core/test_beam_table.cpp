@@ -129,6 +129,29 @@ TEST_CASE("a grid from a table has the table's angles and its lookups invert the
     }
 }
 
+TEST_CASE("the beam of an azimuth in radians is the first whose starboard edge is at most it, clamped",
+          "[beam_table]") {
+    for (const std::string& name : beam_table_names()) {
+        SonarParams s;
+        s.beams = find_beam_table(name)->beams(), s.beam_table = name;
+        const SonarGrid g(s);
+        auto first_below = [&](double a) { // a linear search over the starboard edges
+            int i = 0;
+            while (i < g.beams - 1 && g.beam_starboard_edge_rad(i) > a) ++i;
+            return i;
+        };
+        std::vector<double> az = {INFINITY, -INFINITY, NAN, 0.0, 1.0, -1.0};
+        for (int i = 0; i < g.beams; ++i)
+            for (double e : {g.beam_starboard_edge_rad(i), g.beam_port_edge_rad(i), g.beam_azimuth_rad(i)})
+                az.insert(az.end(), {e, std::nextafter(e, 1.0), std::nextafter(e, -1.0)});
+        for (int k = 0; k <= 10000; ++k) az.push_back((k / 5000.0 - 1) * (g.fan_half_rad + 0.01));
+        int wrong = 0;
+        for (double a : az) wrong += g.beam_of_azimuth_rad(a) != first_below(a);
+        INFO(name);
+        CHECK(wrong == 0);
+    }
+}
+
 TEST_CASE("a pole at a table's beam centre lands in that beam and the metadata lists the table's angles",
           "[beam_table]") {
     // ARIS 1800 LF / 1200 (48 beams): the edge beams are narrower than the middle ones, so beam 9's centre
