@@ -53,8 +53,7 @@ template <bool Img, bool Sens, bool Gt, bool Ord, bool Str> class BeamPass {
 
     void run() {
         const double x_max = contribution_levels(cells_, p_.s, p_.k, x_, p_.texture);
-        if constexpr (Ord) orders();
-        if (x_max == kNegInf) return; // nothing echoes in this beam
+        if (x_max == kNegInf) return; // nothing echoes in this beam (nor in any path order)
         const size_t K = size_t(p_.K);
         const bool fine = Sens && p_.inputs->sub > 1, elevation = Sens && !p_.inputs->elevation_rad.empty();
         if constexpr (Img) lin_.assign(K, 0.0), hit_.assign(K, 0);
@@ -80,6 +79,7 @@ template <bool Img, bool Sens, bool Gt, bool Ord, bool Str> class BeamPass {
             [[maybe_unused]] std::uint64_t key = 0;
             [[maybe_unused]] unsigned bit = 0;
             [[maybe_unused]] double inc = 0, cos_a = 0, sin_a = 0;
+            [[maybe_unused]] double inside = 0; // the share of the echo inside the window
             if constexpr (Gt) { // the azimuth's sine and cosine once per cell (sonar_direction's products)
                 cos_a = std::cos(double(c.azimuth_rad)), sin_a = std::sin(double(c.azimuth_rad));
                 key = std::uint64_t(ghost ? ghost->order() : 0) << 32 | c.material;
@@ -89,6 +89,7 @@ template <bool Img, bool Sens, bool Gt, bool Ord, bool Str> class BeamPass {
             detail::for_each_bin(c, p_.spread, p_.K, p_.r_min, p_.r_max, p_.dr, [&](int b, double frac) {
                 const size_t bb = size_t(b);
                 const double v = w * frac;
+                if constexpr (Ord) inside += frac;
                 if constexpr (Img) lin_[bb] += v, hit_[bb] = 1;
                 if (fine)
                     for (int q = 0; q < p_.S; ++q)
@@ -107,6 +108,7 @@ template <bool Img, bool Sens, bool Gt, bool Ord, bool Str> class BeamPass {
                 if constexpr (Str)
                     if (v > best_[bb]) best_[bb] = v, best_n_[bb] = std::int32_t(n);
             });
+            if constexpr (Ord) add_order(n, inside);
         }
         if constexpr (Img) write_image(x_max);
         if (Sens) write_inputs(x_max, fine, elevation);
@@ -117,18 +119,12 @@ template <bool Img, bool Sens, bool Gt, bool Ord, bool Str> class BeamPass {
     }
 
   private:
-    /// Echo per path order: each contribution's share inside the window, summed in the log domain.
-    void orders() {
-        auto& mine = (*p_.orders)[size_t(i_)];
-        for (size_t n = 0; n < cells_.size(); ++n) {
-            if (x_[n] == kNegInf) continue;
-            double inside = 0;
-            detail::for_each_bin(cells_[n], p_.spread, p_.K, p_.r_min, p_.r_max, p_.dr,
-                                 [&](int, double f) { inside += f; });
-            const GhostCell* g = cells_.ghost(n);
-            const size_t order = std::min(p_.order_count - 1, size_t(g ? g->order() : 0));
-            if (inside > 0) mine[order].add(x_[n] + std::log(inside));
-        }
+    /// Echo per path order: contribution n's share `inside` the window (summed over its bins in run()),
+    /// summed in the log domain.
+    void add_order(size_t n, double inside) {
+        const GhostCell* g = cells_.ghost(n);
+        const size_t order = std::min(p_.order_count - 1, size_t(g ? g->order() : 0));
+        if (inside > 0) (*p_.orders)[size_t(i_)][order].add(x_[n] + std::log(inside));
     }
 
     void write_image(double x_max) {
