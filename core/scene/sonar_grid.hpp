@@ -150,8 +150,8 @@ class SonarGrid {
             std::lower_bound(lower.begin(), lower.end(), a, [](double v, double x) { return v > x; });
         return std::min(int(it - lower.begin()), beams - 1);
     }
-    /// beam_of_table(a, stbd_rad_) (multipath asks it for every ghost): from the beam the bucket index gives
-    /// for a, stepped to the one whose lower edge is the first at most a; the same answer for every a.
+    /// beam_of_table(a, stbd_rad_) (multipath asks it for each mixed ghost): from the beam the bucket index
+    /// gives for a, stepped to the one whose lower edge is the first at most a; the same answer for every a.
     int beam_of_stbd_rad(double a) const {
         const double x = (port_rad_.front() - a) * buckets_per_rad_; // NaN: bucket 0, stepped to beam 0
         int i = bucket_beam_[x > 0 ? size_t(std::min(x, double(bucket_beam_.size() - 1))) : 0];
@@ -164,7 +164,7 @@ class SonarGrid {
     std::vector<double> centre_rad_, port_rad_, stbd_rad_; ///< the table's angles [rad]
     /// The table's fan cut into equal buckets from its port edge: the beam of each bucket's port end.
     std::vector<int> bucket_beam_;
-    double buckets_per_rad_ = 0;
+    double buckets_per_rad_ = 0; ///< [1/rad]
     double narrowest_rad_ = 0, widest_rad_ = 0;
 };
 
