@@ -141,7 +141,10 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
             {"tolerance_met",
              est.median_abs_db <= s.sampling.tolerance_db && est.rel_l1 <= s.sampling.tolerance_rel_l1},
             {"method",
-             "half the difference to the same cells one refinement level coarser (bins echoing in both)"}};
+             "half the difference to the same cells one refinement level coarser (bins echoing in both)"},
+            // What it cannot see, said where the number is read (docs/accuracy-and-speed.md measures it).
+            {"not_seen", "how the scene varies across a ray column's azimuth width where the column was not "
+                         "split (more columns per beam, sampling.azimuth_rays, reduce that error)"}};
     else
         j["sampling_error_estimate"] = nullptr;
     j["time_ms"] = {{"trace", f.trace_ms},

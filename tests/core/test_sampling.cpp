@@ -176,6 +176,9 @@ TEST_CASE("the sampler stops on both the median and the rel L1 estimate", "[samp
     Simulator sim(strict);
     const json meta = frame_metadata(strict, *sim.render());
     CHECK(meta["sampling_error_estimate"]["tolerance_met"] == true);
+    // The report says what it cannot see beside the number (one ray column's azimuth width).
+    CHECK(meta["sampling_error_estimate"]["not_seen"].get<std::string>().find("azimuth") !=
+          std::string::npos);
 }
 
 TEST_CASE("no holes on a grazing rough floor against a dense reference", "[sampling]") {
