@@ -7,6 +7,12 @@
 #include <string>
 #include <vector>
 
+namespace sonarsim {
+struct Frame;
+struct ImageError;
+struct SceneDesc;
+} // namespace sonarsim
+
 namespace sonarsim::bench {
 
 using json = nlohmann::json;
@@ -16,6 +22,9 @@ using json = nlohmann::json;
 /// 1.3-1.7 % against it, 0.65 % against 2187 x 9, the sampler unchanged).
 constexpr int kReferenceRays = 2187;
 constexpr int kReferenceColumns = 9;
+/// The ideal image of `f` against the reference of its scene `at_pose` (the pose f was rendered from):
+/// spread, kReferenceRays x kReferenceColumns, the same bounces (devices.cpp).
+ImageError error_against_reference(const Frame& f, SceneDesc at_pose);
 
 /// Where things are.
 struct Paths {

@@ -138,9 +138,7 @@ Row measure(SceneDesc s, const std::string& device, int repeats) {
     // The reference: the last frame's pose, the ideal sensor, a dense spread grid.
     SceneDesc ref = s;
     ref.sonar.pose.orientation_deg[2] = s.sonar.pose.orientation_deg[2] + 0.01 * repeats;
-    set_scheme(ref.sampling, SamplingScheme::Spread);
-    ref.sampling.elevation_rays = kReferenceRays, ref.sampling.azimuth_rays = kReferenceColumns;
-    row.err = compare_images(f->ideal(), Simulator(ref).render()->ideal());
+    row.err = error_against_reference(*f, ref);
 
     // The floor: as many rays as the default used, on a plain grid (spread, one column per beam).
     SceneDesc grid = s;
@@ -162,6 +160,12 @@ Row measure(SceneDesc s, const std::string& device, int repeats) {
 }
 
 } // namespace
+
+ImageError error_against_reference(const Frame& f, SceneDesc at_pose) {
+    set_scheme(at_pose.sampling, SamplingScheme::Spread);
+    at_pose.sampling.elevation_rays = kReferenceRays, at_pose.sampling.azimuth_rays = kReferenceColumns;
+    return compare_images(f.ideal(), Simulator(at_pose).render()->ideal());
+}
 
 int run_devices_bench(const Paths& p, int repeats, const std::vector<std::string>& only) {
     const std::string work = p.work.empty() ? "build/bench" : p.work;

@@ -57,12 +57,8 @@ int run_multipath_bench(const std::string& repo, int repeats) {
                 const auto& est = f->hits().error_estimate;
                 std::string errors = "        -         -         -";
                 if (scheme == SamplingScheme::Adaptive) {
-                    SceneDesc ref = s; // the last repeat's pose
-                    set_scheme(ref.sampling, SamplingScheme::Spread);
-                    ref.sampling.elevation_rays = kReferenceRays,
-                    ref.sampling.azimuth_rays = kReferenceColumns;
                     status_line(c.name + ", bounces " + std::to_string(bounces) + ": reference");
-                    const ImageError e = compare_images(f->ideal(), Simulator(ref).render()->ideal());
+                    const ImageError e = error_against_reference(*f, s); // s: the last repeat's pose
                     status_line("");
                     char buf[64];
                     std::snprintf(buf, sizeof buf, "%9.2f %9.2f %9.3f", 100 * e.rel_l1, 100 * est.rel_l1,
