@@ -202,40 +202,65 @@ bool Multipath::negligible(const GhostCell& g, int beam_lo, int beam_hi, double 
 std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostCell>>& by_source,
                                                   const SceneDesc& s) {
     const std::shared_ptr<const SonarGrid> grid = sonar_grid(s.sonar);
-    const int beams = grid->beams;
-    std::vector<std::vector<GhostCell>> out(static_cast<size_t>(beams));
+    const size_t S = by_source.size(), B = size_t(grid->beams);
+    std::vector<std::vector<GhostCell>> out(B);
     // A ghost whose azimuth interval spans beams goes to each, with the share of its solid angle that
-    // falls in it (the mixed path that arrives from the scatterer); the others lie in their ray's beam.
-    auto for_each_share = [&](const GhostCell& g, auto&& add) {
-        if (!g.mixed() || g.rx_bounces != 0) return add(int(g.beam), g, 1.0);
+    // falls in it (the mixed path that arrives from the scatterer); the others lie in beam g.beam.
+    auto beams_of = [&](const GhostCell& g, int& i0, int& i1) {
+        if (!g.mixed() || g.rx_bounces != 0) return false;
         const double a0 = g.cell.azimuth_rad - 0.5 * g.cell.azimuth_width_rad,
                      a1 = a0 + g.cell.azimuth_width_rad;
-        const int i0 = grid->beam_of_azimuth_rad(a1), i1 = grid->beam_of_azimuth_rad(a0);
-        if (i0 == i1) return add(int(g.beam), g, 1.0);
+        i0 = grid->beam_of_azimuth_rad(a1), i1 = grid->beam_of_azimuth_rad(a0);
+        return i0 != i1;
+    };
+    auto for_each_share = [&](const GhostCell& g, auto&& add) {
+        int i0 = 0, i1 = 0;
+        if (!beams_of(g, i0, i1)) return add(int(g.beam), g, 1.0);
+        const double a0 = g.cell.azimuth_rad - 0.5 * g.cell.azimuth_width_rad,
+                     a1 = a0 + g.cell.azimuth_width_rad;
         for (int i = i0; i <= i1; ++i) {
             const double hi = grid->beam_port_edge_rad(i), lo = hi - grid->beam_width_rad(i);
             const double f = (std::min(a1, hi) - std::max(a0, lo)) / g.cell.azimuth_width_rad;
             if (f > 0) add(i, g, f);
         }
     };
-    // Counted per source and arrival beam, then written in parallel over the sources, each at its offset
-    // in the arrival beams' lists (sources in order: the same lists as one thread would make).
-    const size_t S = by_source.size(), B = size_t(beams);
+    // Most ghosts arrive wholly in the beam whose list found them (the double path and the mixed path back
+    // by the mirrors arrive along their ray): they stay in that list, in order, which becomes the beam's.
+    // The others move to `away` and are appended to their arrival beams' lists after those, by source.
+    std::vector<std::vector<GhostCell>> away(S);
+    tbb::parallel_for(size_t(0), S, [&](size_t src) {
+        auto& v = by_source[src];
+        size_t kept = 0;
+        for (size_t k = 0; k < v.size(); ++k) {
+            int i0 = 0, i1 = 0;
+            if (src < B && v[k].beam == src && !beams_of(v[k], i0, i1)) {
+                if (kept != k) v[kept] = v[k];
+                ++kept;
+            } else {
+                away[src].push_back(v[k]);
+            }
+        }
+        v.resize(kept);
+    });
+    // The moving ghosts' shares, counted per source and arrival beam, then written in parallel over the
+    // sources, each at its offset in the arrival beams' lists (sources in order: the same lists as one
+    // thread would make).
     std::vector<size_t> at(S * B, 0); // [source * beams + arrival beam]: first count, then offset
     tbb::parallel_for(size_t(0), S, [&](size_t src) {
-        for (const auto& g : by_source[src])
+        for (const auto& g : away[src])
             for_each_share(g, [&](int i, const GhostCell&, double) { ++at[src * B + size_t(i)]; });
     });
-    for (size_t i = 0; i < B; ++i) {
-        size_t n = 0;
+    tbb::parallel_for(size_t(0), B, [&](size_t i) {
+        if (i < S) out[i] = std::move(by_source[i]);
+        size_t n = out[i].size();
         for (size_t src = 0; src < S; ++src) {
             const size_t c = at[src * B + i];
             at[src * B + i] = n, n += c;
         }
         out[i].resize(n);
-    }
+    });
     tbb::parallel_for(size_t(0), S, [&](size_t src) {
-        for (const auto& g : by_source[src])
+        for (const auto& g : away[src])
             for_each_share(g, [&](int i, const GhostCell& whole, double f) {
                 GhostCell& part = out[size_t(i)][at[src * B + size_t(i)]++];
                 part = whole;
@@ -251,8 +276,9 @@ std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostC
                 }
                 part.beam = std::uint32_t(i);
             });
-        std::vector<GhostCell>().swap(by_source[src]);
+        std::vector<GhostCell>().swap(away[src]);
     });
+    for (size_t src = B; src < S; ++src) std::vector<GhostCell>().swap(by_source[src]);
     return out;
 }
 

@@ -96,8 +96,10 @@ class Multipath {
     mutable std::atomic<std::uint64_t> culled_{0};
 };
 
-/// Moves ghosts collected per source beam to the beams they arrive in, in a fixed order (source beam, then
-/// as produced), so that the result does not depend on threading.
+/// Moves ghosts collected per source (list k: found by the rays of one beam, or of one sample beam) to the
+/// beams they arrive in, in a fixed order so that the result does not depend on threading: beam i's list
+/// is list i's ghosts that arrive wholly in beam i (most: they stay where they are), as produced, then the
+/// others arriving in it, by source and as produced.
 /// A ghost arriving over several beams' azimuths is shared among them by the part of its interval in each.
 std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostCell>>& by_source,
                                                   const SceneDesc& scene);

@@ -86,3 +86,55 @@ TEST_CASE("culled ghosts change no bin by more than the tolerance allows it", "[
     // Together well within the image's tolerance: under kGhostCullShare of sampling.tolerance_rel_l1.
     CHECK(num / den < detail::kGhostCullShare * s.sampling.tolerance_rel_l1);
 }
+
+TEST_CASE(
+    "gathered ghosts arrive with each beam's own first and the rest by source and keep their solid angle",
+    "[multipath]") {
+    SceneDesc s; // even beams: the share of an interval in each is the part of it in each
+    s.sonar.beams = 16;
+    const auto grid = sonar_grid(s.sonar);
+    auto ghost = [&](int beam, float solid_angle_sr, std::uint8_t tx, std::uint8_t rx, double azimuth_rad,
+                     double width_rad) {
+        GhostCell g{};
+        g.beam = std::uint32_t(beam), g.tx_bounces = tx, g.rx_bounces = rx;
+        g.cell.solid_angle_sr = solid_angle_sr;
+        g.cell.azimuth_rad = float(azimuth_rad), g.cell.azimuth_width_rad = float(width_rad);
+        return g;
+    };
+    auto centre = [&](int i) { return grid->beam_port_edge_rad(i) - 0.5 * grid->beam_width_rad(i); };
+    // Beam 7's edge to beam 8 (beam 8 lies to starboard of beam 7: lower azimuth).
+    const double edge = grid->beam_port_edge_rad(7) - grid->beam_width_rad(7);
+    const double w8 = grid->beam_width_rad(8);
+    std::vector<std::vector<GhostCell>> by_source(size_t(grid->beams));
+    by_source[7] = {
+        ghost(7, 1, 1, 1, centre(7), 1e-4),      // a double path: stays in 7
+        ghost(8, 2, 1, 0, centre(8), 1e-4),      // arrives from the scatterer, in beam 8
+        ghost(7, 3, 0, 1, centre(7), 1e-4),      // back by the mirror: stays in 7
+        ghost(8, 4, 1, 0, edge - 0.25 * w8, w8), // three quarters in 8, a quarter in 7
+    };
+    by_source[8] = {ghost(8, 5, 1, 1, centre(8), 1e-4)};
+    by_source[3] = {ghost(8, 6, 1, 1, centre(8), 1e-4)}; // found in beam 3's list, arriving in 8
+    const auto out = detail::gather_ghosts(by_source, s);
+    REQUIRE(out.size() == size_t(grid->beams));
+    auto solid_angles = [&](int i) {
+        std::vector<double> v;
+        for (const auto& g : out[size_t(i)]) {
+            CHECK(g.beam == std::uint32_t(i));
+            v.push_back(g.cell.solid_angle_sr);
+        }
+        return v;
+    };
+    const auto in7 = solid_angles(7), in8 = solid_angles(8);
+    REQUIRE(in7.size() == 3);
+    CHECK(in7[0] == 1);
+    CHECK(in7[1] == 3);
+    CHECK(in7[2] == Approx(4 * 0.25).epsilon(1e-4)); // the straddling ghost's share in beam 7
+    REQUIRE(in8.size() == 4);
+    CHECK(in8[0] == 5); // beam 8's own, then the others by source (3, then 7 in its order)
+    CHECK(in8[1] == 6);
+    CHECK(in8[2] == 2);
+    CHECK(in8[3] == Approx(4 * 0.75).epsilon(1e-4));
+    for (int i = 0; i < grid->beams; ++i)
+        if (i != 7 && i != 8) CHECK(out[size_t(i)].empty());
+    for (const auto& src : by_source) CHECK(src.empty()); // moved out
+}
