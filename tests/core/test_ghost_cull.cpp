@@ -1,7 +1,8 @@
 // Ghost culling (core/sampling/multipath.hpp, kGhostCullShare): a ghost whose whole echo lies below 1/8 of
 // what the tolerance allows every bin it touches (against the direct echo there) is dropped before its
 // shadow ray and its shading. The tank's ghosts on a regular grid, culled against its direct image and not
-// culled: each bin of the image with ghosts changes by less than the tolerance allows it.
+// culled: each bin of the image with ghosts changes by less than the tolerance allows it. And the gathering
+// of ghosts into the beams they arrive in (gather_ghosts): its order, and a ghost's shares across beams.
 #include "core/sampling/adaptive_node.hpp"
 #include "core/sampling/multipath.hpp"
 #include "core/scene/scene_io.hpp"
