@@ -206,21 +206,23 @@ std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostC
     std::vector<std::vector<GhostCell>> out(B);
     // A ghost whose azimuth interval spans beams goes to each, with the share of its solid angle that
     // falls in it (the mixed path that arrives from the scatterer); the others lie in beam g.beam.
-    auto beams_of = [&](const GhostCell& g, int& i0, int& i1) {
+    struct Span {
+        double a0 = 0, a1 = 0; ///< the ghost's azimuth interval [rad]
+        int i0 = 0, i1 = 0;    ///< the beams it falls in (i0: the port-most)
+    };
+    auto spans_beams = [&](const GhostCell& g, Span& span) {
         if (!g.mixed() || g.rx_bounces != 0) return false;
-        const double a0 = g.cell.azimuth_rad - 0.5 * g.cell.azimuth_width_rad,
-                     a1 = a0 + g.cell.azimuth_width_rad;
-        i0 = grid->beam_of_azimuth_rad(a1), i1 = grid->beam_of_azimuth_rad(a0);
-        return i0 != i1;
+        span.a0 = g.cell.azimuth_rad - 0.5 * g.cell.azimuth_width_rad;
+        span.a1 = span.a0 + g.cell.azimuth_width_rad;
+        span.i0 = grid->beam_of_azimuth_rad(span.a1), span.i1 = grid->beam_of_azimuth_rad(span.a0);
+        return span.i0 != span.i1;
     };
     auto for_each_share = [&](const GhostCell& g, auto&& add) {
-        int i0 = 0, i1 = 0;
-        if (!beams_of(g, i0, i1)) return add(int(g.beam), g, 1.0);
-        const double a0 = g.cell.azimuth_rad - 0.5 * g.cell.azimuth_width_rad,
-                     a1 = a0 + g.cell.azimuth_width_rad;
-        for (int i = i0; i <= i1; ++i) {
+        Span span;
+        if (!spans_beams(g, span)) return add(int(g.beam), g, 1.0);
+        for (int i = span.i0; i <= span.i1; ++i) {
             const double hi = grid->beam_port_edge_rad(i), lo = hi - grid->beam_width_rad(i);
-            const double f = (std::min(a1, hi) - std::max(a0, lo)) / g.cell.azimuth_width_rad;
+            const double f = (std::min(span.a1, hi) - std::max(span.a0, lo)) / g.cell.azimuth_width_rad;
             if (f > 0) add(i, g, f);
         }
     };
@@ -232,8 +234,8 @@ std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostC
         auto& v = by_source[src];
         size_t kept = 0;
         for (size_t k = 0; k < v.size(); ++k) {
-            int i0 = 0, i1 = 0;
-            if (src < B && v[k].beam == src && !beams_of(v[k], i0, i1)) {
+            Span span;
+            if (src < B && v[k].beam == src && !spans_beams(v[k], span)) {
                 if (kept != k) v[kept] = v[k];
                 ++kept;
             } else {
