@@ -140,11 +140,17 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
             {"max_rays", s.sampling.max_rays},
             {"tolerance_met",
              est.median_abs_db <= s.sampling.tolerance_db && est.rel_l1 <= s.sampling.tolerance_rel_l1},
-            {"method",
-             "half the difference to the same cells one refinement level coarser (bins echoing in both)"},
+            {"method", est.strict ? "strict: the difference to the same cells one refinement level coarser "
+                                    "(bins echoing in both), half of it where merged cells straddle an edge "
+                                    "and an eighth on one smooth surface, plus an azimuth probe (three ray "
+                                    "columns against one)"
+                                  : "half the difference to the same cells one refinement level coarser "
+                                    "(bins echoing in both)"},
             // What it cannot see, said where the number is read (docs/accuracy-and-speed.md measures it).
-            {"not_seen", "how the scene varies across a ray column's azimuth width where the column was not "
-                         "split (more columns per beam, sampling.azimuth_rays, reduce that error)"}};
+            {"not_seen", est.strict ? "the azimuth probe samples every third cell of a sampled beam's columns"
+                                    : "how the scene varies across a ray column's azimuth width where the "
+                                      "column was not split (more columns per beam, sampling.azimuth_rays, "
+                                      "or sampling.estimate strict, reduce or see that error)"}};
     else
         j["sampling_error_estimate"] = nullptr;
     j["time_ms"] = {{"trace", f.trace_ms},

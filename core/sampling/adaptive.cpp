@@ -55,7 +55,7 @@ Choice choose(const SceneDesc& s, const std::vector<const SampleError*>& errs,
     const float lim = float(2 * s.sampling.tolerance_db); // estimates are half the difference
     for (size_t g = 0; g < G; ++g) {
         if (!errs[g]) continue;
-        num += errs[g]->scale * errs[g]->num, den += errs[g]->den, n += double(errs[g]->diffs_db.size());
+        num += errs[g]->share(), den += errs[g]->den, n += double(errs[g]->diffs_db.size());
         for (float d : errs[g]->diffs_db) ex[g] += errs[g]->scale * d > lim;
         excess += ex[g];
     }
@@ -70,12 +70,12 @@ Choice choose(const SceneDesc& s, const std::vector<const SampleError*>& errs,
         }
         budget_left -= cost[g];
         c.take[g] = 1;
-        num -= (1 - kRefinedShare) * errs[g]->scale * errs[g]->num;
+        num -= (1 - kRefinedShare) * errs[g]->share();
         excess -= (1 - kRefinedShare) * ex[g];
     };
     std::vector<size_t> order(G);
     std::iota(order.begin(), order.end(), size_t(0));
-    auto share = [&](size_t g) { return errs[g] ? errs[g]->scale * errs[g]->num : 0.0; };
+    auto share = [&](size_t g) { return errs[g] ? errs[g]->share() : 0.0; };
     std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return share(a) > share(b); });
     for (size_t g : order) {
         if (num <= num_aim) break;
@@ -145,6 +145,8 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
     std::vector<char> pending(G, 1), has_err(G, 0);
     std::vector<SampleError> err(G);
     std::vector<double> prev_num(G, 0.0); // a group's last |fine - coarse| sum, at the level below
+    std::vector<int> az_mult(G, 1);       // a group's columns per beam, in multiples of azimuth_rays (strict)
+    if (sp.strict) sp.column_mult.assign(size_t(N), 1);
     TraceResult out;
     out.beams = N;
     out.cells.resize(size_t(N));
@@ -161,7 +163,8 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
     auto budget_left = [&] { return double(s.sampling.max_rays) - double(sp.rays.load()); };
     // The rays of group g's base grid one level denser (negative: none).
     auto next_cost = [&](size_t g) {
-        return denser(level[g]) ? sp.base_rays(M0_of(level[g] + 1), int(groups[g].size())) : -1.0;
+        return denser(level[g]) ? sp.base_rays(M0_of(level[g] + 1), int(groups[g].size())) * az_mult[g]
+                                : -1.0;
     };
     int passes = 0; // base grids traced (trace_pass calls)
     for (int pass = 1;; ++pass) {
@@ -215,14 +218,23 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
                 fine_img = shade_beams(s, out, samples);
             }
             sp.set_ref_db(fine_img);
-            const std::vector<SampleError> shares = adaptive::sample_errors(
-                shade(pc.coarse, adaptive::sampled_beams_scene(s, int(idx.size()))), fine_img, sp.ref_db);
+            const SceneDesc sampled_scene = adaptive::sampled_beams_scene(s, int(idx.size()));
+            PolarImage edges_img;
+            if (!pc.coarse_edges.cells.empty()) edges_img = shade(pc.coarse_edges, sampled_scene);
+            std::vector<SampleError> shares = adaptive::sample_errors(
+                shade(pc.coarse, sampled_scene), pc.coarse_edges.cells.empty() ? nullptr : &edges_img,
+                fine_img, sp.ref_db);
+            if (!pc.az_one.cells.empty()) { // the azimuth probe: three columns against one
+                const auto az = adaptive::sample_errors(shade(pc.az_one, sampled_scene), nullptr,
+                                                        shade(pc.az_three, sampled_scene), sp.ref_db);
+                for (size_t k = 0; k < idx.size(); ++k) shares[k].az_num = adaptive::kProbeEvery * az[k].num;
+            }
             for (size_t k = 0; k < idx.size(); ++k) {
                 if (samples[k] < 0) continue;
                 SampleError& e = err[idx[k]];
-                e = shares[k], has_err[idx[k]] = 1;
+                e = std::move(shares[k]), has_err[idx[k]] = 1;
                 // Richardson: the ratio of this level's difference to the last one's shows the order.
-                if (prev_num[idx[k]] > 0) {
+                if (prev_num[idx[k]] > 0 && !sp.strict) {
                     const double rho = std::clamp(e.num / prev_num[idx[k]], 1.0 / 9, 1.0 / 3);
                     e.scale = 2 * rho / (1 - rho);
                 }
@@ -243,8 +255,18 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
         if (sp.multipath && std::find(c.take.begin(), c.take.end(), 1) != c.take.end())
             for (size_t k = 0; k < G; ++k) c.take[k] = cost[k] >= 0;
         bool any = false;
-        for (size_t k = 0; k < G; ++k)
-            if (c.take[k]) pending[k] = 1, ++level[k], prev_num[k] = err[k].num, any = true;
+        for (size_t k = 0; k < G; ++k) {
+            if (!c.take[k]) continue;
+            pending[k] = 1, any = true;
+            if (az_mult[k] == 1 && 2 * err[k].az_num > err[k].scale * err[k].num) {
+                // Azimuth is the larger share: three columns per beam at the same base grid (their coarse
+                // image merges them, so the estimate sees azimuth from now on); no Richardson across.
+                az_mult[k] = 3, prev_num[k] = 0;
+                for (int i : groups[k]) sp.column_mult[size_t(i)] = 3;
+            } else {
+                ++level[k], prev_num[k] = err[k].num;
+            }
+        }
         if (!any) {
             est.budget_reached = c.budget_short;
             break;
@@ -252,6 +274,7 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
         shaded.reset(); // the image changes
     }
     est.budget_reached = est.budget_reached || sp.budget_hit.load();
+    est.strict = sp.strict;
     if (!control.preview) out.error_estimate = est;
     if (!shaded) shaded = std::make_shared<const Accumulation>(accumulate(out, s, channels));
     out.shaded = std::move(shaded);

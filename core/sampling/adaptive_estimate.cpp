@@ -16,19 +16,25 @@ SceneDesc sampled_beams_scene(const SceneDesc& s, int n) {
     return out;
 }
 
-std::vector<SampleError> sample_errors(const PolarImage& coarse, const PolarImage& fine, double ref_db) {
+std::vector<SampleError> sample_errors(const PolarImage& coarse, const PolarImage* coarse_edges,
+                                       const PolarImage& fine, double ref_db) {
     const int N = fine.beams, K = fine.bins;
     if (std::isnan(ref_db)) ref_db = 0; // no echo estimated yet: any fixed level does
+    auto linear = [&](float v) { return v > -INFINITY ? std::exp((double(v) - ref_db) * kLn10Over10) : 0.0; };
     std::vector<SampleError> out(static_cast<size_t>(N));
     for (int i = 0; i < N; ++i) {
         SampleError& e = out[size_t(i)];
         for (int b = 0; b < K; ++b) {
-            const double a = coarse.at(b, i), f = fine.at(b, i);
-            const bool ea = a > -INFINITY, ef = f > -INFINITY;
-            const double lf = ef ? std::exp((f - ref_db) * kLn10Over10) : 0.0;
-            const double la = a == f ? lf : ea ? std::exp((a - ref_db) * kLn10Over10) : 0.0;
-            e.num += std::abs(la - lf), e.den += lf;
-            if (ea && ef) e.diffs_db.push_back(float(std::abs(a - f)));
+            const float a = coarse.at(b, i), f = fine.at(b, i), m = coarse_edges ? coarse_edges->at(b, i) : a;
+            const double lf = linear(f);
+            const double la = a == f ? lf : linear(a), lm = m == f ? lf : m == a ? la : linear(m);
+            // What the edges' merges change in full, the smooth merges' (a against m) at kSmoothShare.
+            const double d = std::abs(lm - lf) + kSmoothShare * std::abs(la - lm);
+            e.num += d, e.den += lf;
+            if (!(a > -INFINITY && f > -INFINITY)) continue;
+            const double lc = la >= lf ? lf + d : lf - d; // the same change in dB, on the coarse level's side
+            const double d_db = coarse_edges && lc > 0 ? 10 * std::log10(lc / lf) : double(a) - double(f);
+            e.diffs_db.push_back(float(std::abs(d_db)));
         }
     }
     return out;
@@ -37,7 +43,7 @@ std::vector<SampleError> sample_errors(const PolarImage& coarse, const PolarImag
 TraceResult::ErrorEstimate combine_errors(const std::vector<const SampleError*>& errors) {
     double num = 0, den = 0;
     size_t n = 0;
-    for (const SampleError* e : errors) num += e->scale * e->num, den += e->den, n += e->diffs_db.size();
+    for (const SampleError* e : errors) num += e->share(), den += e->den, n += e->diffs_db.size();
     std::vector<float> diffs;
     diffs.reserve(n);
     for (const SampleError* e : errors)

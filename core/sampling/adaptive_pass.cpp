@@ -24,14 +24,16 @@ double column_azimuth(const SonarGrid& grid, int i, int k, int K) {
 Beams trace_base_grid(const Sampler& sp, int M0, Beams* carried) {
     const SceneDesc& s = sp.s;
     const SonarGrid& grid = *sp.frame.grid;
-    const int N = grid.beams, K0 = s.sampling.azimuth_rays;
+    const int N = grid.beams;
     Beams beams(static_cast<size_t>(N));
     auto kept = [&](int i) {
         return carried && size_t(i) < carried->size() && !(*carried)[size_t(i)].empty();
     };
     double rays = 0; // the base grid is always traced
     for (int i = 0; i < N; ++i)
-        if (sp.traces(i)) rays += kept(i) ? sp.base_rays(M0, 1) * 2 / 3 : sp.base_rays(M0, 1);
+        if (sp.traces(i))
+            rays += (kept(i) ? sp.base_rays(M0, 1) * 2 / 3 : sp.base_rays(M0, 1)) *
+                    (sp.columns(i) / s.sampling.azimuth_rays);
     sp.rays.fetch_add(std::uint64_t(rays));
     tbb::parallel_for(0, N, [&](int i) {
         if (!sp.traces(i)) return; // left without columns, so without cells
@@ -41,6 +43,7 @@ Beams trace_base_grid(const Sampler& sp, int M0, Beams* carried) {
             for (auto& c : beams[size_t(i)]) sp.densify_column(c, M0);
             return;
         }
+        const int K0 = sp.columns(i);
         for (int k = 0; k < K0; ++k) {
             beams[size_t(i)].push_back(
                 sp.trace_column(column_azimuth(grid, i, k, K0), grid.beam_width_rad(i) / K0, M0, i, 0, M0));
@@ -101,11 +104,34 @@ void set_base_image(Sampler& sp, const Beams& beams) {
         peak + 10 * std::log10(kCellShare * s.sampling.tolerance_rel_l1 * sum / cells);
 }
 
+/// The coarse cells of one beam's columns (sibling column triples -> the middle column, 3 da; within each
+/// column, the sibling elevation triples `merge` picks -> the middle cell). Returns the ghosts' rays.
+std::uint64_t coarse_cells_of(const Sampler& sp, const std::vector<Column>& cols, Merge merge,
+                              std::vector<Cell>& cells, std::vector<GhostCell>& ghosts) {
+    std::uint64_t rays = 0;
+    for (size_t k = 0; k < cols.size();) {
+        if (k + 2 < cols.size() && cols[k].group == cols[k + 1].group && cols[k].group == cols[k + 2].group) {
+            if (merge == Merge::kEdges && sp.smooth_column_triple(cols, k)) {
+                for (size_t t = k; t < k + 3; ++t)
+                    rays += sp.cells_of(cols[t], merge, cols[t].da, cells, ghosts);
+            } else {
+                rays += sp.cells_of(cols[k + 1], merge, 3 * cols[k + 1].da, cells, ghosts);
+            }
+            k += 3;
+        } else {
+            rays += sp.cells_of(cols[k], merge, cols[k].da, cells, ghosts);
+            ++k;
+        }
+    }
+    return rays;
+}
+
 /// The cells of the refined columns (fine) and, on the `samples` beams (slot k: samples[k]; -1: none)
-/// unless previewing, the same cells one level coarser: sibling column triples -> the middle column
-/// (3 da), and within each column sibling elevation triples -> the middle cell. Frees the columns.
+/// unless previewing, the same cells one level coarser (`coarse`, coarse_cells_of) and, without
+/// multipath, the same with only the triples that are not smooth merged (`coarse_edges`). Frees the
+/// columns.
 void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samples, TraceResult& fine,
-                   TraceResult& coarse) {
+                   TraceResult& coarse, TraceResult& coarse_edges) {
     const SceneDesc& s = sp.s;
     const int N = s.sonar.beams, sampled = int(samples.size());
     std::vector<int> slot(static_cast<size_t>(N), -1); // beam -> its slot
@@ -113,6 +139,7 @@ void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samp
         if (samples[size_t(k)] >= 0) slot[size_t(samples[size_t(k)])] = k;
     fine.beams = N, coarse.beams = sampled;
     coarse.cells.resize(size_t(sampled)), fine.cells.resize(size_t(N));
+    if (sp.strict) coarse_edges.beams = sampled, coarse_edges.cells.resize(size_t(sampled));
     std::vector<std::vector<GhostCell>> fine_ghosts(static_cast<size_t>(N)),
         coarse_ghosts(static_cast<size_t>(sampled));
     std::vector<std::uint64_t> ghost_rays(static_cast<size_t>(N), 0);
@@ -124,22 +151,14 @@ void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samp
         if (sp.multipath) fine_ghosts[size_t(i)].reserve(3 * nodes); // at most three per cell (bounces 1)
         for (auto& c : cols)
             ghost_rays[size_t(i)] +=
-                sp.cells_of(c, false, c.da, fine.cells[size_t(i)], fine_ghosts[size_t(i)]);
+                sp.cells_of(c, Merge::kNone, c.da, fine.cells[size_t(i)], fine_ghosts[size_t(i)]);
         if (sp.control.preview || slot[size_t(i)] < 0) return;
-        auto& coarse_cells = coarse.cells[size_t(slot[size_t(i)])];
-        auto& coarse_ghost = coarse_ghosts[size_t(slot[size_t(i)])];
-        if (sp.multipath) coarse_ghost.reserve(3 * nodes);
-        for (size_t k = 0; k < cols.size();) {
-            if (k + 2 < cols.size() && cols[k].group == cols[k + 1].group &&
-                cols[k].group == cols[k + 2].group) {
-                ghost_rays[size_t(i)] +=
-                    sp.cells_of(cols[k + 1], true, 3 * cols[k + 1].da, coarse_cells, coarse_ghost);
-                k += 3;
-            } else {
-                ghost_rays[size_t(i)] += sp.cells_of(cols[k], true, cols[k].da, coarse_cells, coarse_ghost);
-                ++k;
-            }
-        }
+        const size_t k = size_t(slot[size_t(i)]);
+        if (sp.multipath) coarse_ghosts[k].reserve(3 * nodes);
+        ghost_rays[size_t(i)] += coarse_cells_of(sp, cols, Merge::kAll, coarse.cells[k], coarse_ghosts[k]);
+        if (!sp.strict) return;
+        std::vector<GhostCell> none;
+        coarse_cells_of(sp, cols, Merge::kEdges, coarse_edges.cells[k], none);
     });
     if (sp.multipath) {
         fine.ghosts = detail::gather_ghosts(fine_ghosts, s);
@@ -154,7 +173,7 @@ void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samp
 
 } // namespace
 
-std::uint64_t Sampler::cells_of(const Column& c, bool coarse, double da, std::vector<Cell>& out,
+std::uint64_t Sampler::cells_of(const Column& c, Merge merge, double da, std::vector<Cell>& out,
                                 std::vector<GhostCell>& ghosts) const {
     std::uint64_t rays = 0;
     const Angle a(c.a), a_lo(c.a - da / 2), a_hi(c.a + da / 2);
@@ -180,8 +199,8 @@ std::uint64_t Sampler::cells_of(const Column& c, bool coarse, double da, std::ve
         if (multipath) rays += mp.ghosts(*n.hit, a, e, a_lo, a_hi, lo, hi, c.beam, ghosts, n.via);
     };
     for (size_t n = 0; n < c.nodes.size();) {
-        if (coarse && n + 2 < c.nodes.size() && c.nodes[n].group == c.nodes[n + 1].group &&
-            c.nodes[n].group == c.nodes[n + 2].group) {
+        if (merge != Merge::kNone && n + 2 < c.nodes.size() && c.nodes[n].group == c.nodes[n + 1].group &&
+            c.nodes[n].group == c.nodes[n + 2].group && (merge == Merge::kAll || !smooth_triple(c, n))) {
             emit(c.nodes[n + 1], 3 * c.nodes[n + 1].de);
             n += 3;
         } else {
@@ -192,26 +211,100 @@ std::uint64_t Sampler::cells_of(const Column& c, bool coarse, double da, std::ve
     return rays;
 }
 
+bool Sampler::smooth_triple(const Column& c, size_t n) const {
+    const Node *x = &c.nodes[n], *m = &c.nodes[n + 1], *y = &c.nodes[n + 2];
+    if (!x->hit || !m->hit || !y->hit) return false;
+    const Angle a(c.a);
+    const EdgeRay upper{a, x->angle.rad - x->de / 2, nullptr, &x->angle, x->de};
+    const EdgeRay lower{a, m->angle.rad - m->de / 2, nullptr, &m->angle, m->de};
+    if (criteria.edge_between(*x, *m, upper) || criteria.edge_between(*m, *y, lower)) return false;
+    Node merged = *m; // the triple as one cell
+    merged.de = 3 * m->de, merged.footprint_m = 3 * m->footprint_m;
+    return !criteria.needs_split_alone(merged, a);
+}
+
+bool Sampler::smooth_column_triple(const std::vector<Column>& cols, size_t k) const {
+    const Column &l = cols[k], &m = cols[k + 1], &r = cols[k + 2];
+    if (l.base.empty() || m.base.empty() || r.base.empty()) return false;
+    const int j0 = std::max({l.j0, m.j0, r.j0}), j1 = std::min({l.j1, m.j1, r.j1});
+    if (j0 != m.j0 || j1 != m.j1) return false;
+    const Angle port(0.5 * (l.a + m.a)), starboard(0.5 * (m.a + r.a));
+    const double a_lo = std::min(l.a, r.a) - m.da / 2, a_hi = std::max(l.a, r.a) + m.da / 2;
+    for (int j = j0; j < j1; ++j) {
+        const Node &x = l.base[size_t(j - l.j0)], &y = m.base[size_t(j - m.j0)],
+                   &z = r.base[size_t(j - r.j0)];
+        if (!x.hit || !y.hit || !z.hit) return false;
+        if (criteria.edge_between(x, y, EdgeRay{port, 0, &x.angle}) ||
+            criteria.edge_between(y, z, EdgeRay{starboard, 0, &y.angle}))
+            return false;
+        if (criteria.specular_in_azimuth(y, a_lo, a_hi, 3 * m.da)) return false;
+    }
+    return true;
+}
+
 /// The base grid's own error on each group's sample beam, estimated as the refined image's is (against
 /// its sibling triples merged): the error that refinement, which works only at discontinuities, starts
 /// from.
 static std::vector<SampleError> base_errors(Sampler& sp, const Beams& beams, const BeamGroups& groups) {
     const SceneDesc& s = sp.s;
     const int sampled = int(groups.size());
-    TraceResult fine, coarse;
-    fine.beams = coarse.beams = sampled;
+    TraceResult fine, coarse, coarse_edges;
+    fine.beams = coarse.beams = coarse_edges.beams = sampled;
     fine.cells.resize(size_t(sampled)), coarse.cells.resize(size_t(sampled));
+    if (sp.strict) coarse_edges.cells.resize(size_t(sampled));
     tbb::parallel_for(0, sampled, [&](int k) {
         std::vector<GhostCell> ghosts; // not used with multipath
         for (const auto& c : beams[size_t(groups[size_t(k)].front())]) {
-            sp.cells_of(c, false, c.da, fine.cells[size_t(k)], ghosts);
-            sp.cells_of(c, true, c.da, coarse.cells[size_t(k)], ghosts);
+            sp.cells_of(c, Merge::kNone, c.da, fine.cells[size_t(k)], ghosts);
+            sp.cells_of(c, Merge::kAll, c.da, coarse.cells[size_t(k)], ghosts);
+            if (sp.strict) sp.cells_of(c, Merge::kEdges, c.da, coarse_edges.cells[size_t(k)], ghosts);
         }
     });
     const SceneDesc sampled_scene = sampled_beams_scene(s, sampled);
     const PolarImage f = shade(fine, sampled_scene);
     sp.set_ref_db(f);
-    return sample_errors(shade(coarse, sampled_scene), f, sp.ref_db);
+    PolarImage e;
+    if (sp.strict) e = shade(coarse_edges, sampled_scene);
+    return sample_errors(shade(coarse, sampled_scene), sp.strict ? &e : nullptr, f, sp.ref_db);
+}
+
+/// The azimuth probe of a sample beam's columns `cols` (refined): on every kProbeEvery-th cell of each
+/// column still at the beam's base width (not split in azimuth), two more rays at a third of the width each
+/// side; those cells as one column (`one`) and as three (`three`), appended. Returns the rays traced.
+std::uint64_t azimuth_probe(const Sampler& sp, const std::vector<Column>& cols, std::vector<Cell>& one,
+                            std::vector<Cell>& three) {
+    const double base_da = sp.frame.grid->beam_width_rad(cols.empty() ? 0 : cols.front().beam) /
+                           sp.columns(cols.empty() ? 0 : cols.front().beam);
+    std::uint64_t rays = 0;
+    for (const Column& c : cols) {
+        if (c.sibling || !(c.da > 0.999 * base_da)) continue; // split: its triple holds the difference
+        const double d3 = c.da / 3;
+        const Angle a(c.a), a_lo(c.a - c.da / 2), a_hi(c.a + c.da / 2);
+        const Angle m_lo(c.a - d3 / 2), m_hi(c.a + d3 / 2), p(c.a + d3), p_hi(c.a + c.da / 2), st(c.a - d3),
+            st_lo(c.a - c.da / 2);
+        for (size_t t = kProbeEvery / 2; t < c.nodes.size(); t += kProbeEvery) {
+            const Node& b = c.nodes[t];
+            const Angle& e = b.angle;
+            const Angle h(b.de / 2);
+            Angle lo, hi; // e -+ de/2
+            lo.rad = e.rad - h.rad, lo.c = e.c * h.c + e.s * h.s, lo.s = e.s * h.c - e.c * h.s;
+            hi.rad = e.rad + h.rad, hi.c = e.c * h.c - e.s * h.s, hi.s = e.s * h.c + e.c * h.s;
+            if (!sp.reserve(2)) return rays;
+            rays += 2;
+            if (b.hit) {
+                one.push_back(detail::make_cell(sp.frame, *b.hit, a, e, a_lo, a_hi, lo, hi));
+                three.push_back(detail::make_cell(sp.frame, *b.hit, a, e, m_lo, m_hi, lo, hi));
+            }
+            const auto side = [&](const Angle& as, const Angle& as_lo, const Angle& as_hi) {
+                const auto hit =
+                    detail::first_hit(sp.g, sp.s, sp.frame.origin, sp.frame.dir(as, e), sp.frame.t_max);
+                if (hit) three.push_back(detail::make_cell(sp.frame, *hit, as, e, as_lo, as_hi, lo, hi));
+            };
+            side(p, m_hi, p_hi);
+            side(st, st_lo, m_lo);
+        }
+    }
+    return rays;
 }
 
 PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRule* bump, Beams* carried) {
@@ -253,7 +346,24 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
     std::vector<int> samples(static_cast<size_t>(G), -1);
     for (int k = 0; k < G; ++k)
         if (!out.bumped[size_t(k)]) samples[size_t(k)] = groups[size_t(k)].front();
-    collect_cells(sp, beams, samples, out.fine, out.coarse); // adds the refined beams' rays
+    // The azimuth probe, on sample beams of a single column (or two) per beam: neither the coarse image nor
+    // the refinement's neighbour tests see how the scene varies across a column's width.
+    const bool probe = sp.strict && !sp.control.preview && s.sampling.azimuth_rays % 3 != 0;
+    std::uint64_t probe_rays = 0;
+    if (probe) {
+        out.az_one.beams = out.az_three.beams = G;
+        out.az_one.cells.resize(size_t(G)), out.az_three.cells.resize(size_t(G));
+        std::vector<std::uint64_t> r(static_cast<size_t>(G), 0);
+        tbb::parallel_for(0, G, [&](int k) {
+            const int i = samples[size_t(k)];
+            if (i < 0 || sp.columns(i) != s.sampling.azimuth_rays) return;
+            r[size_t(k)] = azimuth_probe(sp, beams[size_t(i)], out.az_one.cells[size_t(k)],
+                                         out.az_three.cells[size_t(k)]);
+        });
+        for (auto x : r) probe_rays += x;
+    }
+    collect_cells(sp, beams, samples, out.fine, out.coarse, out.coarse_edges); // adds the refined rays
+    out.fine.rays_traced += probe_rays;
     out.fine.preview = sp.control.preview;
     return out;
 }

@@ -19,12 +19,18 @@
 
 namespace sonarsim::adaptive {
 
+/// Which sibling triples a column's cells merge (Sampler::cells_of).
+enum class Merge { kNone, kAll, kEdges };
+
 struct Sampler {
     const SceneGeometry& g;
     const SceneDesc& s;
     const TraceControl& control;
     detail::RayFrame frame;
     bool multipath; ///< ghosts to find (sampling.bounces and a mirror)
+    /// sampling.estimate strict (not with multipath, whose ghosts are not told apart): smooth triples and
+    /// the azimuth probe (SampleError)
+    bool strict;
     detail::Multipath mp;
     RefineCriteria criteria;
     double phi; ///< the traced elevation aperture [rad]
@@ -57,7 +63,15 @@ struct Sampler {
 
     /// Whether beam i is traced in the current pass.
     bool traces(int i) const { return pass_beams.empty() ? control.traces(i) : pass_beams[size_t(i)] != 0; }
-    /// Rays of a base grid of M0 elevation rays over n beams (default: every traced beam).
+    /// Per beam: its base grid's columns, in multiples of sampling.azimuth_rays (1, or 3 for a group whose
+    /// estimate found azimuth the larger share of its error); empty: 1 each.
+    std::vector<int> column_mult;
+    /// The base grid's columns of beam i.
+    int columns(int i) const {
+        return s.sampling.azimuth_rays * (column_mult.empty() ? 1 : column_mult[size_t(i)]);
+    }
+    /// Rays of a base grid of M0 elevation rays over n beams (default: every traced beam), at
+    /// sampling.azimuth_rays columns each.
     double base_rays(int M0, int n = -1) const {
         return double(M0) * double(n < 0 ? int(traced.size()) : n) * s.sampling.azimuth_rays;
     }
@@ -80,10 +94,18 @@ struct Sampler {
     void refine_azimuth(Beams& beams, int M0) const;
 
     // adaptive_pass.cpp
-    /// Cells of a column, and their multipath ghosts (with multipath); `coarse` merges every complete
-    /// sibling triple into its middle cell (one level up). Returns the ghosts' rays.
-    std::uint64_t cells_of(const Column& c, bool coarse, double da, std::vector<Cell>& out,
+    /// Cells of a column, and their multipath ghosts (with multipath); Merge::kAll merges every complete
+    /// sibling triple into its middle cell (one level up), Merge::kEdges only the triples that are not
+    /// smooth (smooth_triple). Returns the ghosts' rays.
+    std::uint64_t cells_of(const Column& c, Merge merge, double da, std::vector<Cell>& out,
                            std::vector<GhostCell>& ghosts) const;
+    /// Whether the sibling triple at nodes [n, n + 3) of c lies on one smooth surface: every cell hits, no
+    /// step between neighbours (RefineCriteria::edge_between) and no reason for the merged cell to split
+    /// alone. Merging it changes the image in second order of the cell width; other triples, first order.
+    bool smooth_triple(const Column& c, size_t n) const;
+    /// The same for the sibling column triple cols[k, k + 3), from their base cells: every one hits, no
+    /// edge between neighbouring columns and no specular lobe narrower than the merged column.
+    bool smooth_column_triple(const std::vector<Column>& cols, size_t k) const;
 
   private:
     void trace_continuation(Node& n, const Angle& a) const;
@@ -96,12 +118,26 @@ struct Sampler {
 /// The error estimate's share of one group of beams: its sample beam's image against the same cells one
 /// level coarser (adaptive_estimate.cpp). Linear sums are relative to a fixed level (Estimator::ref_db).
 struct SampleError {
-    double num = 0, den = 0;     ///< sum |coarse - fine| and sum fine over the bins, linear
-    std::vector<float> diffs_db; ///< |coarse - fine| [dB] over bins echoing in both
+    /// sum |coarse - fine| and sum fine over the bins, linear, where each bin's |coarse - fine| counts
+    /// what merging the triples that are not smooth changes in full and what merging the smooth ones
+    /// changes times kSmoothShare (sample_errors)
+    double num = 0, den = 0;
+    std::vector<float> diffs_db; ///< |coarse - fine| [dB] over bins echoing in both, counted as num is
     /// The fine error is taken as scale x |fine - coarse| / 2: 1 for first-order convergence (the slowest
     /// case), down to 1/4 for second order, as the group's last two levels show (Richardson).
     double scale = 1;
+    /// Sum |three columns - one| over the bins of the azimuth probe (azimuth_probe): the error of a single
+    /// column per beam across its width, which the coarse image (columns merge only in split triples) does
+    /// not see; 0 where the beam has column triples of its own.
+    double az_num = 0;
+    /// Twice the group's estimated error (the sums' unit): scale x num, plus the azimuth probe's.
+    double share() const { return scale * num + 2 * az_num; }
 };
+
+/// What merging a smooth triple changes counts this much in the estimate: the midpoint rule converges in
+/// second order on one smooth surface, so the fine cells' error is |fine - coarse| / 8 there, against the
+/// |fine - coarse| / 2 the estimate takes for first order (edges, misses, level steps).
+constexpr double kSmoothShare = 1.0 / 4;
 
 /// The beams of an image in groups: every stride-th traced beam is a group's sample (the beam whose error
 /// is estimated), the traced beams after it up to the next sample belong to its group.
@@ -111,7 +147,11 @@ using BeamGroups = std::vector<std::vector<int>>;
 struct PassCells {
     TraceResult fine;         ///< cells (and ghosts) per beam of the image; empty for beams not refined
     TraceResult coarse;       ///< per group passed in (slot k: group k's sample beam), one level coarser
+    TraceResult coarse_edges; ///< the same with only the triples that are not smooth merged (no multipath)
     std::vector<char> bumped; ///< per group passed in: left unrefined, for a denser base grid
+    /// The azimuth probe (slot k: group k's sample beam; empty unless probed): its one-column and
+    /// three-column base images over the base cells its columns did not split.
+    TraceResult az_one, az_three;
 };
 
 /// Which of some groups' base grids to leave for a denser one, from their base grids' own errors.
@@ -126,8 +166,11 @@ using BumpRule = std::function<std::vector<char>(const std::vector<SampleError>&
 PassCells trace_pass(Sampler& sampler, int M0, const BeamGroups& groups, const BumpRule* bump,
                      Beams* carried);
 
-/// Per sample beam (column k of both images: the same beams), the estimate's share (adaptive_estimate.cpp).
-std::vector<SampleError> sample_errors(const PolarImage& coarse, const PolarImage& fine, double ref_db);
+/// Per sample beam (column k of the images: the same beams), the estimate's share (adaptive_estimate.cpp).
+/// coarse_edges: the coarse image with only the triples that are not smooth merged (null: every triple
+/// counts as not smooth).
+std::vector<SampleError> sample_errors(const PolarImage& coarse, const PolarImage* coarse_edges,
+                                       const PolarImage& fine, double ref_db);
 
 /// The image's error estimated from its groups' shares: fine error ~ scale x |fine - coarse| / 2 (with
 /// scale 1, the coarse image's error taken as three times the fine one's: first order at

@@ -4,6 +4,7 @@
 #include "core/shading/shade.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace sonarsim::adaptive {
 
@@ -20,18 +21,29 @@ bool RefineCriteria::discontinuous(const Node& x, const Column& cx, const Node& 
 
 bool RefineCriteria::discontinuous_direct(const Node& x, const Column& cx, const Node& y, const Column& cy,
                                           const EdgeRay& edge) const {
-    if (bool(x.hit) != bool(y.hit)) return worth_refining(x, cx, y, cy, -1);
-    if (!x.hit) return false;
-    if (surface_edge(*x.hit, x.p, *y.hit, y.p, edge)) return worth_refining(x, cx, y, cy, -1);
+    const double step_db = direct_step_db(x, y, edge);
+    return step_db == step_db && worth_refining(x, cx, y, cy, step_db);
+}
+
+bool RefineCriteria::edge_between(const Node& x, const Node& y, const EdgeRay& edge) const {
+    const double step_db = direct_step_db(x, y, edge);
+    return step_db == step_db;
+}
+
+double RefineCriteria::direct_step_db(const Node& x, const Node& y, const EdgeRay& edge) const {
+    constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+    if (bool(x.hit) != bool(y.hit)) return -1;
+    if (!x.hit) return kNone;
+    if (surface_edge(*x.hit, x.p, *y.hit, y.p, edge)) return -1;
     const double density_step_db = std::abs(x.density_db - y.density_db);
-    if (density_step_db > jump_db_) return worth_refining(x, cx, y, cy, density_step_db);
+    if (density_step_db > jump_db_) return density_step_db;
     // Cells whose range footprint spans bins spread their echo evenly over it; where the echo per metre
     // of range changes between neighbours on one plane (grazing incidence: r(e) is far from linear over
     // the cell), that spreading needs finer cells. Between the facets of a smooth tessellated surface
     // the change is the facets' own (their normals step), and the density test above bounds it.
-    if (x.hit->prim != y.hit->prim || !(std::max(x.footprint_m, y.footprint_m) > bin_m_)) return false;
+    if (x.hit->prim != y.hit->prim || !(std::max(x.footprint_m, y.footprint_m) > bin_m_)) return kNone;
     const double per_metre_step_db = std::abs(x.per_metre_db - y.per_metre_db);
-    return per_metre_step_db > range_jump_db_ && worth_refining(x, cx, y, cy, per_metre_step_db);
+    return per_metre_step_db > range_jump_db_ ? per_metre_step_db : kNone;
 }
 
 /// Multipath: the continuations of neighbouring mirror cells x and y meet different surfaces, or one

@@ -42,6 +42,11 @@ class RefineCriteria {
     bool discontinuous(const Node& x, const Column& cx, const Node& y, const Column& cy,
                        const EdgeRay& edge) const;
 
+    /// Whether the integrand is not smooth between neighbouring cells x and y in one column: one misses, a
+    /// surface edge lies between them, or their levels step (discontinuous() without the significance
+    /// test). The error estimate takes a merged triple without such a step to converge in second order.
+    bool edge_between(const Node& x, const Node& y, const EdgeRay& edge) const;
+
     /// A cell that must split on its own: absorption across its footprint, a specular lobe narrower than
     /// the cell centred inside it, or a plane horizon inside it. `a`: the column's azimuth.
     bool needs_split_alone(const Node& n, const Angle& a) const;
@@ -69,6 +74,9 @@ class RefineCriteria {
   private:
     bool discontinuous_direct(const Node& x, const Column& cx, const Node& y, const Column& cy,
                               const EdgeRay& edge) const;
+    /// What steps between x and y: -1 an edge (a miss or a surface edge), else the level step [dB] that
+    /// exceeds its threshold; NaN: none.
+    double direct_step_db(const Node& x, const Node& y, const EdgeRay& edge) const;
     bool via_discontinuous(const Node& x, const Column& cx, const Node& y, const Column& cy) const;
     bool surface_edge(const Hit& x, const glm::dvec3& px, const Hit& y, const glm::dvec3& py,
                       const EdgeRay& edge) const;

@@ -71,6 +71,9 @@ struct TraceResult {
         double rel_l1 = 0, median_abs_db = 0, p95_abs_db = 0;
         int passes = 0;
         bool budget_reached = false; ///< refinement stopped at sampling.max_rays before the tolerance was met
+        /// sampling.estimate strict was applied (not with multipath): smooth cells at second order and the
+        /// azimuth probe
+        bool strict = false;
     } error_estimate;
     bool preview = false; ///< a coarse pass only (TraceControl::preview): no refinement, no error estimate
     double trace_ms = 0;

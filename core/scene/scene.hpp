@@ -81,6 +81,10 @@ enum class NormalSource { Mesh, Paper };
 enum class RayPlacement { Grid, Adaptive };
 /// Where a ray's echo goes: the bin of its range, or spread over its cell's range footprint (shade.cpp).
 enum class EchoBinning { Point, Footprint };
+/// How the adaptive sampler estimates its error (adaptive_estimate.cpp, docs/model.md): fast counts every
+/// coarse-to-fine difference at first order and does not see the error of one ray column across a beam;
+/// strict tells smooth cells (second order) from edges and measures that azimuth error with a probe.
+enum class ErrorEstimate { Fast, Strict };
 /// The named combinations of placement and binning (sampling.scheme; see scene/sampling_scheme.hpp).
 enum class SamplingScheme { Uniform, Spread, Adaptive };
 
@@ -93,6 +97,7 @@ struct SamplingParams {
     double tolerance_db = 0.1;      ///< adaptive placement's target median |dB error|
     double tolerance_rel_l1 = 0.01; ///< ... and its target relative L1 error of the linear image
     int max_rays = 2000000;         ///< adaptive placement's budget of rays per image, refinement included
+    ErrorEstimate estimate = ErrorEstimate::Fast; ///< adaptive placement's error estimate
     int bounces = 0; ///< specular reflections followed per leg (multipath); 0: direct paths only
 };
 

@@ -45,6 +45,13 @@ std::vector<ParamSpec> sampling_rows() {
                        [](S s) -> double& { return s.sampling.tolerance_rel_l1; })
                     .with_log_slider(0.001, 0.2)
                     .with_label("rel L1 tolerance"));
+    t.push_back(enumeration<ErrorEstimate>(
+        "sampling.estimate", {"fast", "strict"}, Stage::Trace,
+        "adaptive: how the sampler estimates its error. fast: every difference to the next coarser cells "
+        "at first order, blind to the error of one ray column across a beam; strict: second order on "
+        "smooth surfaces, first at edges, plus an azimuth probe and three columns per beam where it finds "
+        "azimuth the larger error (above the measured error on every benchmark scene, at up to 5x the rays)",
+        [](S s) -> ErrorEstimate& { return s.sampling.estimate; }));
     t.push_back(integer("sampling.max_rays", 1000, kMaxRaysPerImage, Stage::Trace,
                         "adaptive: budget of rays per image, refinement and passes included; when reached, "
                         "refinement stops and the metadata says so (about 300 bytes of memory per ray)",
