@@ -219,16 +219,15 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
             }
             sp.set_ref_db(fine_img);
             const SceneDesc sampled_scene = adaptive::sampled_beams_scene(s, int(idx.size()));
-            PolarImage edges_img;
+            PolarImage edges_img, az_one, az_three; // sampling.estimate strict
             if (!pc.coarse_edges.cells.empty()) edges_img = shade(pc.coarse_edges, sampled_scene);
-            std::vector<SampleError> shares = adaptive::sample_errors(
-                shade(pc.coarse, sampled_scene), pc.coarse_edges.cells.empty() ? nullptr : &edges_img,
-                fine_img, sp.ref_db);
-            if (!pc.az_one.cells.empty()) { // the azimuth probe: three columns against one
-                const auto az = adaptive::sample_errors(shade(pc.az_one, sampled_scene), nullptr,
-                                                        shade(pc.az_three, sampled_scene), sp.ref_db);
-                for (size_t k = 0; k < idx.size(); ++k) shares[k].az_num = adaptive::kProbeEvery * az[k].num;
-            }
+            if (!pc.az_one.cells.empty())
+                az_one = shade(pc.az_one, sampled_scene), az_three = shade(pc.az_three, sampled_scene);
+            const bool probed = !pc.az_one.cells.empty();
+            std::vector<SampleError> shares =
+                adaptive::sample_errors(shade(pc.coarse, sampled_scene), fine_img, sp.ref_db,
+                                        {pc.coarse_edges.cells.empty() ? nullptr : &edges_img,
+                                         probed ? &az_one : nullptr, probed ? &az_three : nullptr});
             for (size_t k = 0; k < idx.size(); ++k) {
                 if (samples[k] < 0) continue;
                 SampleError& e = err[idx[k]];

@@ -16,24 +16,29 @@ SceneDesc sampled_beams_scene(const SceneDesc& s, int n) {
     return out;
 }
 
-std::vector<SampleError> sample_errors(const PolarImage& coarse, const PolarImage* coarse_edges,
-                                       const PolarImage& fine, double ref_db) {
+std::vector<SampleError> sample_errors(const PolarImage& coarse, const PolarImage& fine, double ref_db,
+                                       const StrictImages& strict) {
     const int N = fine.beams, K = fine.bins;
     if (std::isnan(ref_db)) ref_db = 0; // no echo estimated yet: any fixed level does
     auto linear = [&](float v) { return v > -INFINITY ? std::exp((double(v) - ref_db) * kLn10Over10) : 0.0; };
+    const PolarImage *edges = strict.coarse_edges, *one = strict.az_one, *three = strict.az_three;
     std::vector<SampleError> out(static_cast<size_t>(N));
     for (int i = 0; i < N; ++i) {
         SampleError& e = out[size_t(i)];
         for (int b = 0; b < K; ++b) {
-            const float a = coarse.at(b, i), f = fine.at(b, i), m = coarse_edges ? coarse_edges->at(b, i) : a;
+            const float a = coarse.at(b, i), f = fine.at(b, i), m = edges ? edges->at(b, i) : a;
             const double lf = linear(f);
             const double la = a == f ? lf : linear(a), lm = m == f ? lf : m == a ? la : linear(m);
             // What the edges' merges change in full, the smooth merges' (a against m) at kSmoothShare.
             const double d = std::abs(lm - lf) + kSmoothShare * std::abs(la - lm);
-            e.num += d, e.den += lf;
+            // The azimuth probe's |three columns - one| over its cells, every kProbeEvery-th: the error.
+            const double az =
+                one && three ? kProbeEvery * std::abs(linear(three->at(b, i)) - linear(one->at(b, i))) : 0.0;
+            e.num += d, e.az_num += az, e.den += lf;
             if (!(a > -INFINITY && f > -INFINITY)) continue;
-            const double lc = la >= lf ? lf + d : lf - d; // the same change in dB, on the coarse level's side
-            const double d_db = coarse_edges && lc > 0 ? 10 * std::log10(lc / lf) : double(a) - double(f);
+            // Both in dB (twice the error, as d), on the coarse level's side.
+            const double d_all = d + 2 * az, lc = la >= lf ? lf + d_all : lf - d_all;
+            const double d_db = edges && lc > 0 ? 10 * std::log10(lc / lf) : double(a) - double(f);
             e.diffs_db.push_back(float(std::abs(d_db)));
         }
     }

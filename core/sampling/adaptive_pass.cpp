@@ -265,7 +265,7 @@ static std::vector<SampleError> base_errors(Sampler& sp, const Beams& beams, con
     sp.set_ref_db(f);
     PolarImage e;
     if (sp.strict) e = shade(coarse_edges, sampled_scene);
-    return sample_errors(shade(coarse, sampled_scene), sp.strict ? &e : nullptr, f, sp.ref_db);
+    return sample_errors(shade(coarse, sampled_scene), f, sp.ref_db, {sp.strict ? &e : nullptr});
 }
 
 /// The azimuth probe of a sample beam's columns `cols` (refined): on every kProbeEvery-th cell of each

@@ -166,11 +166,18 @@ using BumpRule = std::function<std::vector<char>(const std::vector<SampleError>&
 PassCells trace_pass(Sampler& sampler, int M0, const BeamGroups& groups, const BumpRule* bump,
                      Beams* carried);
 
+/// sampling.estimate strict's images of the same sample beams (null: none): the coarse image with only the
+/// triples that are not smooth merged, and the azimuth probe's cells as one column and as three.
+struct StrictImages {
+    const PolarImage* coarse_edges = nullptr;
+    const PolarImage* az_one = nullptr;
+    const PolarImage* az_three = nullptr;
+};
+
 /// Per sample beam (column k of the images: the same beams), the estimate's share (adaptive_estimate.cpp).
-/// coarse_edges: the coarse image with only the triples that are not smooth merged (null: every triple
-/// counts as not smooth).
-std::vector<SampleError> sample_errors(const PolarImage& coarse, const PolarImage* coarse_edges,
-                                       const PolarImage& fine, double ref_db);
+/// Without `strict`, every triple counts as not smooth and nothing is probed.
+std::vector<SampleError> sample_errors(const PolarImage& coarse, const PolarImage& fine, double ref_db,
+                                       const StrictImages& strict = {});
 
 /// The image's error estimated from its groups' shares: fine error ~ scale x |fine - coarse| / 2 (with
 /// scale 1, the coarse image's error taken as three times the fine one's: first order at
