@@ -128,8 +128,10 @@ std::string write_reports(const json& input, const std::string& dir) {
        << " at the end: the machine is shared, so times carry that noise (a busy core roughly doubles them). "
        << "Whole run: " << sig(get(m, "wall_s") / 60, 2) << " min. Command: `" << m.value("command", "")
        << "`.\n\n"
-       << "How to read this: every scene is rendered with its own (default) sampling, with the paper's "
-          "uniform 281-ray sampling and with a ladder of `spread` settings; each image is compared with a "
+       << "How to read this: every scene is rendered with its own (default) sampling, the same with the "
+          "strict "
+          "error estimate (`sampling.estimate` strict), with the paper's uniform 281-ray sampling and with a "
+          "ladder of `spread` settings; each image is compared with a "
           "dense reference of the same scene. *warm ms* is one image (trace + shade + sector image) with the "
           "scene already loaded, median of repeats; *first image ms* is a whole `sonarsim render` process "
           "(mesh loading, BVH build, one image, writing its files). Errors are against the reference: rel L1 "

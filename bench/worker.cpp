@@ -24,14 +24,23 @@ using Clock = std::chrono::steady_clock;
 
 struct Setting {
     Sampling sampling;
-    std::string role; ///< "default" (the scene's own), "paper" (uniform 281), "spread" (the ladder)
+    /// "default" (the scene's own), "strict" (the same with sampling.estimate strict), "paper" (uniform
+    /// 281), "spread" (the ladder)
+    std::string role;
+    ErrorEstimate estimate = ErrorEstimate::Fast;
+    std::string label() const {
+        return sampling.label() + (estimate == ErrorEstimate::Strict ? " strict" : "");
+    }
 };
 
-/// Default (the scene's sampling), the paper's uniform 281 and the spread ladder.
+/// Default (the scene's sampling), with an adaptive default the same with the strict estimate, the paper's
+/// uniform 281 and the spread ladder.
 std::vector<Setting> settings(const SceneDesc& s, bool quick) {
     using S = SamplingScheme;
     const Sampling own{*scheme_of(s.sampling), s.sampling.elevation_rays, s.sampling.azimuth_rays};
-    std::vector<Setting> v = {{own, "default"}};
+    std::vector<Setting> v = {{own, "default", s.sampling.estimate}};
+    if (own.scheme == S::Adaptive && s.sampling.estimate == ErrorEstimate::Fast)
+        v.push_back({own, "strict", ErrorEstimate::Strict});
     auto add = [&](Sampling m, const char* role) {
         for (const Setting& x : v)
             if (x.sampling.scheme == m.scheme && x.sampling.elevation_rays == m.elevation_rays &&
@@ -142,8 +151,9 @@ int run_worker(const WorkerOptions& o) {
         set_scheme(s.sampling, st.sampling.scheme);
         s.sampling.elevation_rays = st.sampling.elevation_rays;
         s.sampling.azimuth_rays = st.sampling.azimuth_rays;
+        s.sampling.estimate = st.estimate;
         status_line("  " + o.name + ": [" + std::to_string(n + 1) + "/" + std::to_string(list.size()) + "] " +
-                    st.sampling.label());
+                    st.label());
         // The first image warms caches and the allocator; its image is the one compared with the reference.
         const Timed first = render_once(g, s, resampler);
         const int repeats = std::clamp(int(budget_ms / std::max(first.total(), 1e-3)), 1, max_repeats);
@@ -154,11 +164,12 @@ int run_worker(const WorkerOptions& o) {
                 im.push_back(t.image_ms);
         }
         const auto& e = first.estimate;
-        rows.push_back({{"label", st.sampling.label()},
+        rows.push_back({{"label", st.label()},
                         {"role", st.role},
                         {"scheme", scheme_name(st.sampling.scheme)},
                         {"elevation_rays", st.sampling.elevation_rays},
                         {"azimuth_rays", st.sampling.azimuth_rays},
+                        {"sampling_estimate", st.estimate == ErrorEstimate::Strict ? "strict" : "fast"},
                         {"rays", first.rays},
                         {"repeats", repeats},
                         {"warm_ms", median(total)},
