@@ -268,6 +268,30 @@ void material_section(Session& session, ControlsUi& ui) {
     }
 }
 
+/// The adaptive sampler's estimate of the shown image's error, against its tolerances (none for a grid or a
+/// preview).
+void estimate_line(const SceneDesc& s, const TraceResult::ErrorEstimate& est) {
+    if (!est.valid) return;
+    const bool met =
+        est.rel_l1 <= s.sampling.tolerance_rel_l1 && est.median_abs_db <= s.sampling.tolerance_db;
+    // Short enough for the panel's narrowest width; the tooltip says the rest.
+    const char* mode = est.strict ? " strict" : "";
+    if (met)
+        ImGui::TextDisabled("estimate %.2f %% %.3f dB%s", 100 * est.rel_l1, est.median_abs_db, mode);
+    else
+        ImGui::TextColored(ImVec4(1.0f, 0.65f, 0.3f, 1.0f), "estimate %.2f %% %.3f dB%s, %s",
+                           100 * est.rel_l1, est.median_abs_db, mode,
+                           est.budget_reached ? "budget" : "> tol.");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "The sampler's estimate of this image's error: rel L1 of the linear image and median "
+            "|dB| over echoing bins,\nagainst sampling.tolerance_rel_l1 (%.2f %%) and tolerance_db "
+            "(%.3f dB). sampling.estimate fast: every\ndifference at first order, blind to the "
+            "error of one ray column across a beam; strict: second order on\nsmooth surfaces "
+            "and an azimuth probe (docs/model.md).",
+            100 * s.sampling.tolerance_rel_l1, s.sampling.tolerance_db);
+}
+
 void stats_section(Session& session, const ControlsUi& ui) {
     const SceneDesc& s = session.scene();
     ImGui::Text("alpha = %.3f dB/m",
@@ -281,6 +305,7 @@ void stats_section(Session& session, const ControlsUi& ui) {
         ImGui::Text("  image %.1f ms%s", r->wall_ms, f.preview() ? " (preview)" : "");
         ImGui::TextDisabled("trace %.1f  shade %.1f  map %.1f ms", f.trace_ms, f.shade_ms, f.image_ms);
         ImGui::TextDisabled("%llu rays", static_cast<unsigned long long>(f.hits().rays_traced));
+        estimate_line(s, f.hits().error_estimate);
     } else {
         ImGui::SameLine();
         ImGui::TextDisabled("  image: rendering...");
