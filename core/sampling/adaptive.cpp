@@ -174,7 +174,9 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
             for (size_t k = 0; k < G; ++k)
                 if (pending[k] && level[k] == L) idx.push_back(k), sel.push_back(groups[k]);
             if (sel.empty()) continue;
-            sp.edge_azimuth_levels = L == 0 ? adaptive::kEdgeAzimuthLevels : 1;
+            // Fast: one level in a denser pass (its columns cost the denser grid's rays). Strict: as many as
+            // in the first, since its estimate counts what the coarser columns at an edge leave in full.
+            sp.edge_azimuth_levels = L == 0 || sp.strict ? adaptive::kEdgeAzimuthLevels : 1;
             // A base grid far off goes denser at once, the largest shares first (the others' shares as last
             // estimated), unrefined here.
             adaptive::BumpRule bump = [&](const std::vector<SampleError>& base) {
