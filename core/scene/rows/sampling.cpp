@@ -50,7 +50,8 @@ std::vector<ParamSpec> sampling_rows() {
         "adaptive: how the sampler estimates its error. fast: every difference to the next coarser cells "
         "at first order, blind to the error of one ray column across a beam; strict: second order on "
         "smooth surfaces, first at edges, plus an azimuth probe and three columns per beam where it finds "
-        "azimuth the larger error (above the measured error on every benchmark scene, at up to 5x the rays)",
+        "azimuth the larger error, and edge splits in azimuth as deep in every pass (above the measured "
+        "error on every benchmark scene, at 1-2x the time)",
         [](S s) -> ErrorEstimate& { return s.sampling.estimate; }));
     t.push_back(integer("sampling.max_rays", 1000, kMaxRaysPerImage, Stage::Trace,
                         "adaptive: budget of rays per image, refinement and passes included; when reached, "
