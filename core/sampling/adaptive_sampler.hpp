@@ -126,9 +126,9 @@ struct SampleError {
     /// The fine error is taken as scale x |fine - coarse| / 2: 1 for first-order convergence (the slowest
     /// case), down to 1/4 for second order, as the group's last two levels show (Richardson).
     double scale = 1;
-    /// Sum |three columns - one| over the bins of the azimuth probe (azimuth_probe): the error of a single
-    /// column per beam across its width, which the coarse image (columns merge only in split triples) does
-    /// not see; 0 where the beam has column triples of its own.
+    /// Sum |three columns - one| over the bins of the azimuth probe (azimuth_probe), times kProbeEvery: the
+    /// error of a single column per beam across its width, which the coarse image (columns merge only in
+    /// split triples) does not see; 0 where the beam has column triples of its own, and with fast.
     double az_num = 0;
     /// Twice the group's estimated error (the sums' unit): scale x num, plus the azimuth probe's.
     double share() const { return scale * num + 2 * az_num; }
@@ -149,8 +149,8 @@ struct PassCells {
     TraceResult coarse;       ///< per group passed in (slot k: group k's sample beam), one level coarser
     TraceResult coarse_edges; ///< the same with only the triples that are not smooth merged (no multipath)
     std::vector<char> bumped; ///< per group passed in: left unrefined, for a denser base grid
-    /// The azimuth probe (slot k: group k's sample beam; empty unless probed): its one-column and
-    /// three-column base images over the base cells its columns did not split.
+    /// The azimuth probe (slot k: group k's sample beam; empty unless probed): the cells it probed (every
+    /// kProbeEvery-th of the columns not split in azimuth) as one column and as three.
     TraceResult az_one, az_three;
 };
 
