@@ -166,6 +166,10 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
         return denser(level[g]) ? sp.base_rays(M0_of(level[g] + 1), int(groups[g].size())) * az_mult[g]
                                 : -1.0;
     };
+    // Strict: whether group g's next step is three columns per beam (azimuth the larger share of its error).
+    auto azimuth_next = [&](size_t g) {
+        return az_mult[g] == 1 && 2 * err[g].az_num > err[g].scale * err[g].num;
+    };
     int passes = 0; // base grids traced (trace_pass calls)
     for (int pass = 1;; ++pass) {
         for (int L = 0; L <= kMaxLevel; ++L) {
@@ -251,7 +255,9 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
         est.passes = passes;
         if (tolerance_met(s, est)) break;
         std::vector<double> cost(G);
-        for (size_t k = 0; k < G; ++k) cost[k] = next_cost(k);
+        for (size_t k = 0; k < G; ++k) // three columns re-trace the group's base grid
+            cost[k] =
+                azimuth_next(k) ? 3 * sp.base_rays(M0_of(level[k]), int(groups[k].size())) : next_cost(k);
         Choice c = choose(s, e, cost, budget_left(), kAim);
         // Multipath: every group or none (a pass's ghosts are the whole image's).
         if (sp.multipath && std::find(c.take.begin(), c.take.end(), 1) != c.take.end())
@@ -260,10 +266,9 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
         for (size_t k = 0; k < G; ++k) {
             if (!c.take[k]) continue;
             pending[k] = 1, any = true;
-            if (az_mult[k] == 1 && 2 * err[k].az_num > err[k].scale * err[k].num) {
+            if (azimuth_next(k)) {
                 // Strict: azimuth is the larger share, so three columns per beam at the same base grid (their
-                // coarse image merges them, so the estimate sees azimuth from there on). Its cost is counted
-                // as the denser grid's (next_cost), so it is not taken at the densest grid.
+                // coarse image merges them, and the azimuth probe goes on with thirds of the new columns).
                 az_mult[k] = 3, prev_num[k] = 0;
                 for (int i : groups[k]) sp.column_mult[size_t(i)] = 3;
             } else {

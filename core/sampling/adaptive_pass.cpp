@@ -346,9 +346,10 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
     std::vector<int> samples(static_cast<size_t>(G), -1);
     for (int k = 0; k < G; ++k)
         if (!out.bumped[size_t(k)]) samples[size_t(k)] = groups[size_t(k)].front();
-    // The azimuth probe, on sample beams of a single column (or two) per beam: neither the coarse image nor
-    // the refinement's neighbour tests see how the scene varies across a column's width.
-    const bool probe = sp.strict && !sp.control.preview && s.sampling.azimuth_rays % 3 != 0;
+    // The azimuth probe, on every sample beam: neither the refinement's neighbour tests nor the coarse image
+    // see how the scene varies across a column's width (column triples merge only while no split broke
+    // them, and splits at edges break most).
+    const bool probe = sp.strict && !sp.control.preview;
     std::uint64_t probe_rays = 0;
     if (probe) {
         out.az_one.beams = out.az_three.beams = G;
@@ -356,7 +357,7 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
         std::vector<std::uint64_t> r(static_cast<size_t>(G), 0);
         tbb::parallel_for(0, G, [&](int k) {
             const int i = samples[size_t(k)];
-            if (i < 0 || sp.columns(i) != s.sampling.azimuth_rays) return;
+            if (i < 0) return;
             r[size_t(k)] = azimuth_probe(sp, beams[size_t(i)], out.az_one.cells[size_t(k)],
                                          out.az_three.cells[size_t(k)]);
         });

@@ -258,17 +258,18 @@ TEST_CASE("the strict estimate tracks the measured error where the fast one does
     }
     {
         // Rough, grazing: the fast estimate is a third of its error (0.48 against 1.53 %); the strict one
-        // sees the azimuth error and takes three columns where it dominates: its image has half the error
-        // and its estimate is within 10 % of it (0.68 against 0.73 %: not above it here, see
-        // docs/accuracy-and-speed.md), within 3x above.
+        // sees the azimuth error, takes three columns per beam where it dominates (probing thirds of them
+        // from then on) and is above its error, within 3x (0.52 against 0.38 %), its median too (0.024
+        // against 0.021 dB).
         const auto [fast_est, fast_err, fast_med_est, fast_med] = measure(rough, ErrorEstimate::Fast);
         const auto [strict_est, strict_err, strict_med_est, strict_med] =
             measure(rough, ErrorEstimate::Strict);
         INFO("rough: fast estimate " << fast_est << " measured " << fast_err << "; strict estimate "
                                      << strict_est << " measured " << strict_err);
         CHECK(fast_est < 0.5 * fast_err);
-        CHECK(strict_est >= 0.9 * strict_err);
+        CHECK(strict_est >= strict_err);
         CHECK(strict_est <= 3 * strict_err);
-        CHECK(strict_err < 0.6 * fast_err);
+        CHECK(strict_err < 0.3 * fast_err);
+        CHECK(strict_med_est >= strict_med);
     }
 }
