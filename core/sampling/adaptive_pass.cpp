@@ -192,9 +192,7 @@ std::uint64_t Sampler::cells_of(const Column& c, Merge merge, double da, std::ve
         if (!n.hit) return;
         const Angle& h = half(de);
         const Angle& e = n.angle;
-        Angle lo, hi; // e -+ de/2 by the angle-sum identities
-        lo.rad = e.rad - h.rad, lo.c = e.c * h.c + e.s * h.s, lo.s = e.s * h.c - e.c * h.s;
-        hi.rad = e.rad + h.rad, hi.c = e.c * h.c - e.s * h.s, hi.s = e.s * h.c + e.c * h.s;
+        const Angle lo(e.rad - h.rad, e, h, -1), hi(e.rad + h.rad, e, h, +1); // e -+ de/2 (angle sums)
         out.push_back(detail::make_cell(frame, *n.hit, a, e, a_lo, a_hi, lo, hi));
         if (multipath) rays += mp.ghosts(*n.hit, a, e, a_lo, a_hi, lo, hi, c.beam, ghosts, n.via);
     };
@@ -286,9 +284,7 @@ std::uint64_t azimuth_probe(const Sampler& sp, const std::vector<Column>& cols, 
             const Node& b = c.nodes[t];
             const Angle& e = b.angle;
             const Angle h(b.de / 2);
-            Angle lo, hi; // e -+ de/2
-            lo.rad = e.rad - h.rad, lo.c = e.c * h.c + e.s * h.s, lo.s = e.s * h.c - e.c * h.s;
-            hi.rad = e.rad + h.rad, hi.c = e.c * h.c - e.s * h.s, hi.s = e.s * h.c + e.c * h.s;
+            const Angle lo(e.rad - h.rad, e, h, -1), hi(e.rad + h.rad, e, h, +1); // e -+ de/2
             if (!sp.reserve(2)) return rays;
             rays += 2;
             if (b.hit) {
