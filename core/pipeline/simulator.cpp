@@ -138,8 +138,7 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
             {"passes", est.passes},
             {"budget_reached", est.budget_reached},
             {"max_rays", s.sampling.max_rays},
-            {"tolerance_met",
-             est.median_abs_db <= s.sampling.tolerance_db && est.rel_l1 <= s.sampling.tolerance_rel_l1},
+            {"tolerance_met", est.meets(s.sampling)},
             {"method", est.strict ? "strict: the difference to the same cells one refinement level coarser "
                                     "(bins echoing in both), half of it where merged cells straddle an edge "
                                     "and an eighth on one smooth surface, plus an azimuth probe (three ray "

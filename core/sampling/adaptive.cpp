@@ -32,11 +32,6 @@ constexpr double kRefinedShare = 1.0 / 3;
 /// rarely needed.
 constexpr double kAim = 0.75;
 
-/// Both targets: the estimated median |dB| (tolerance_db) and the estimated rel L1 (tolerance_rel_l1).
-bool tolerance_met(const SceneDesc& s, const TraceResult::ErrorEstimate& est) {
-    return est.median_abs_db <= s.sampling.tolerance_db && est.rel_l1 <= s.sampling.tolerance_rel_l1;
-}
-
 struct Choice {
     std::vector<char> take;    ///< per group
     bool budget_short = false; ///< a group was wanted that the budget could not pay for
@@ -253,7 +248,7 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
         for (size_t k = 0; k < G; ++k) e[k] = &err[k];
         est = adaptive::combine_errors(e);
         est.passes = passes;
-        if (tolerance_met(s, est)) break;
+        if (est.meets(s.sampling)) break;
         std::vector<double> cost(G);
         for (size_t k = 0; k < G; ++k) // three columns re-trace the group's base grid
             cost[k] =

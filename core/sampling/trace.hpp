@@ -74,6 +74,11 @@ struct TraceResult {
         /// sampling.estimate strict was applied (not with multipath): smooth cells at second order and the
         /// azimuth probe
         bool strict = false;
+        /// Whether both of the sampler's targets are met: median |dB| <= tolerance_db and rel L1 <=
+        /// tolerance_rel_l1.
+        bool meets(const SamplingParams& p) const {
+            return median_abs_db <= p.tolerance_db && rel_l1 <= p.tolerance_rel_l1;
+        }
     } error_estimate;
     bool preview = false; ///< a coarse pass only (TraceControl::preview): no refinement, no error estimate
     double trace_ms = 0;

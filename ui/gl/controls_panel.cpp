@@ -272,8 +272,7 @@ void material_section(Session& session, ControlsUi& ui) {
 /// preview).
 void estimate_line(const SceneDesc& s, const TraceResult::ErrorEstimate& est) {
     if (!est.valid) return;
-    const bool met =
-        est.rel_l1 <= s.sampling.tolerance_rel_l1 && est.median_abs_db <= s.sampling.tolerance_db;
+    const bool met = est.meets(s.sampling);
     // Short enough for the panel's narrowest width; the tooltip says the rest.
     const char* mode = est.strict ? " strict" : "";
     if (met)
