@@ -63,7 +63,8 @@ void base_echo(const SceneDesc& s, double bin_m, const std::vector<Column>& cols
         for (const auto& n : c.nodes)
             if (n.hit) peak = std::max(peak, n.density_db); // a scale only: cells are below 1 sr
     if (!std::isfinite(peak)) return;
-    std::vector<double> lin(static_cast<size_t>(K), 0.0);
+    thread_local std::vector<double> lin; // used only within this call
+    lin.assign(static_cast<size_t>(K), 0.0);
     for (const auto& c : cols)
         for (const auto& n : c.nodes) {
             if (!n.hit) continue;

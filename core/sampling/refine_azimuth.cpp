@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <iterator>
 #include <utility>
 
 namespace sonarsim::adaptive {
@@ -95,10 +96,13 @@ void split_column(const Sampler& sp, Column&& c, const std::vector<char>& marked
         if (!sp.reserve(2 * std::uint64_t(hi - lo))) continue; // budget spent: this run stays as it is
         Column mid;
         mid.a = c.a, mid.da = da, mid.beam = c.beam, mid.j0 = lo, mid.j1 = hi;
-        mid.nodes.reserve(c.nodes.size());
-        for (size_t k = 0; k < c.nodes.size(); ++k)
-            if (c.nodes[k].j >= lo && c.nodes[k].j < hi)
-                mid.nodes.push_back(std::move(c.nodes[k])), moved[k] = 1;
+        // The nodes go down the column in elevation, so their base cells do not decrease: the run's nodes
+        // are one range.
+        const auto by_j = [](const Node& n, int j) { return n.j < j; };
+        const auto first = std::lower_bound(c.nodes.begin(), c.nodes.end(), lo, by_j);
+        const auto last = std::lower_bound(first, c.nodes.end(), hi, by_j);
+        mid.nodes.assign(std::make_move_iterator(first), std::make_move_iterator(last));
+        std::fill(moved.begin() + (first - c.nodes.begin()), moved.begin() + (last - c.nodes.begin()), 1);
         mid.base.assign(c.base.begin() + (lo - c.j0), c.base.begin() + (hi - c.j0));
         Column port = sp.trace_column(c.a + da, da, M0, c.beam, lo, hi); // port side first
         sp.refine_column(port, M0);

@@ -118,9 +118,11 @@ size_t Sampler::mark_for_split(Column& col, const Angle& a, double de_min) const
 }
 
 void Sampler::split_marked(Column& col, const Angle& a, size_t marked, int& next_group) const {
-    // Into a new vector, in column order: a marked node becomes three (the middle one is the node itself),
-    // whose group numbers follow the column's order from the top.
-    std::vector<Node> out;
+    // Into another vector, in column order: a marked node becomes three (the middle one is the node itself),
+    // whose group numbers follow the column's order from the top. The vector is this thread's last
+    // column's old one: nodes are large, and a column splits up to kElevationLevels times.
+    thread_local std::vector<Node> out;
+    out.clear();
     out.reserve(col.nodes.size() + 2 * marked);
     // Cells come in a few widths: keep sin and cos of the last third's.
     double h_de = 0;
