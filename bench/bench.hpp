@@ -41,7 +41,10 @@ struct BenchScene {
     long triangles = 0;
     bool heavy = false; ///< left out of --quick
     bool view = false;  ///< also timed in the viewer (`sonarsim view --orbit` under xvfb-run)
-    std::string skip;   ///< non-empty: why it is skipped
+    /// timed in the viewer only (no reference, no settings): an example scene whose image the main tables
+    /// do not cover (the multipath tank; `sonarsim_bench multipath` measures it)
+    bool view_only = false;
+    std::string skip; ///< non-empty: why it is skipped
 };
 
 /// The benchmark scenes in report order. For the scenes `wanted` accepts, generates what is missing

@@ -59,6 +59,12 @@ foreach(i RANGE ${last_scene})
       message(FATAL_ERROR "${name}: setting ${l} missing (have: ${labels})")
     endif()
   endforeach()
+  # The default (adaptive 101) has its floor: as many rays on a plain grid, timed (> 0 ms).
+  string(JSON fms ERROR_VARIABLE jerr GET "${json}" scenes ${i} rows 0 floor warm_ms)
+  string(JSON ftype ERROR_VARIABLE jerr TYPE "${json}" scenes ${i} rows 0 floor warm_ms)
+  if(NOT ftype STREQUAL "NUMBER" OR NOT fms GREATER 0)
+    message(FATAL_ERROR "${name}: the default setting's floor warm_ms is ${ftype} ${fms} ${jerr}")
+  endif()
   # The default (adaptive 101) is within 1 % of the reference on these two scenes.
   string(JSON l1 GET "${json}" scenes ${i} rows 0 error rel_l1)
   if(l1 GREATER 0.01)

@@ -227,6 +227,21 @@ int run_driver(const DriverOptions& o) {
             all.push_back(j);
             continue;
         }
+        if (sc.view_only) {
+            j["view_only"] = true;
+            if (view) {
+                status_line("  " + sc.name + ": sonarsim view --orbit --frames " +
+                            std::to_string(o.view_frames) + " under xvfb-run...");
+                j["view"] = run_view(p, sc, o.view_frames);
+                status_line("");
+                std::cout << "  done: viewer only" << std::endl;
+            } else {
+                std::cout << "  viewer only: not run (" << meta["view_note"].get<std::string>() << ")"
+                          << std::endl;
+            }
+            all.push_back(j);
+            continue;
+        }
         const auto t0 = std::chrono::steady_clock::now();
         const std::string wjson = p.work + "/results/" + sc.name + ".json";
         fs::remove(wjson);

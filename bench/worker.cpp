@@ -164,6 +164,20 @@ int run_worker(const WorkerOptions& o) {
                 im.push_back(t.image_ms);
         }
         const auto& e = first.estimate;
+        json floor = nullptr;
+        if (st.sampling.scheme == SamplingScheme::Adaptive) {
+            // The floor: as many rays on a plain beam-ordered grid (spread, one column per beam), timed as
+            // the setting is; warm / floor is what the adaptive sampler's bookkeeping costs.
+            SceneDesc grid = scene;
+            set_scheme(grid.sampling, SamplingScheme::Spread);
+            grid.sampling.azimuth_rays = 1;
+            grid.sampling.elevation_rays =
+                int(std::max<std::uint64_t>(1, first.rays / std::uint64_t(std::max(1, scene.sonar.beams))));
+            render_once(g, grid, resampler);
+            std::vector<double> ft;
+            for (int r = 0; r < repeats; ++r) ft.push_back(render_once(g, grid, resampler).total());
+            floor = {{"elevation_rays", grid.sampling.elevation_rays}, {"warm_ms", median(ft)}};
+        }
         rows.push_back({{"label", st.label()},
                         {"role", st.role},
                         {"scheme", scheme_name(st.sampling.scheme)},
@@ -177,6 +191,7 @@ int run_worker(const WorkerOptions& o) {
                         {"trace_ms", median(tr)},
                         {"shade_ms", median(sh)},
                         {"image_ms", median(im)},
+                        {"floor", floor},
                         {"error", error_json(compare_images(first.polar, ref.image))},
                         {"estimate", e.valid ? json{{"rel_l1", e.rel_l1},
                                                     {"median_abs_db", e.median_abs_db},
