@@ -267,7 +267,7 @@ int run_driver(const DriverOptions& o) {
                  "sampling.scheme=" + r["scheme"].get<std::string>(), "--set",
                  "sampling.elevation_rays=" + std::to_string(r["elevation_rays"].get<int>()), "--set",
                  "sampling.azimuth_rays=" + std::to_string(r["azimuth_rays"].get<int>()), "--set",
-                 "sampling.estimate=" + r.value("sampling_estimate", std::string("fast")), "--out", prefix},
+                 "sampling.estimate=" + r.at("sampling_estimate").get<std::string>(), "--out", prefix},
                 p.work + "/logs/" + sc.name + "_render.log", p.work + "/logs/" + sc.name + "_render.err");
             if (c.status == 0) {
                 r["first_image_ms"] = c.wall_ms;

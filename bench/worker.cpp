@@ -3,6 +3,7 @@
 #include "bench.hpp"
 
 #include "core/display/image.hpp"
+#include "core/scene/params.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/shading/accumulate.hpp"
 #include "core/analysis/study.hpp"
@@ -183,7 +184,7 @@ int run_worker(const WorkerOptions& o) {
                         {"scheme", scheme_name(st.sampling.scheme)},
                         {"elevation_rays", st.sampling.elevation_rays},
                         {"azimuth_rays", st.sampling.azimuth_rays},
-                        {"sampling_estimate", st.estimate == ErrorEstimate::Strict ? "strict" : "fast"},
+                        {"sampling_estimate", find_param("sampling.estimate")->get(s)}, // the table's name
                         {"rays", first.rays},
                         {"repeats", repeats},
                         {"warm_ms", median(total)},
