@@ -192,8 +192,9 @@ int run_driver(const DriverOptions& o) {
     meta["quick"] = o.quick;
     meta["commit"] = command_line_output("git -C '" + p.repo + "' rev-parse --short HEAD 2>/dev/null");
     meta["dirty"] =
-        !command_line_output("git -C '" + p.repo + "' status --porcelain --untracked-files=no 2>/dev/null")
-             .empty();
+        !command_line_output("git -C '" + p.repo +
+                             "' status --porcelain --untracked-files=no -- . ':!bench/results' 2>/dev/null")
+             .empty(); // the results themselves are this run's output
     meta["cpu"] = cpu_model();
     meta["threads"] = std::thread::hardware_concurrency();
     meta["loadavg_start"] = load_average();
