@@ -2,6 +2,7 @@
 // scenes.cpp (the scene table), worker.cpp (one scene measured in its own process), report.cpp (RESULTS.md,
 // CSV, JSON), main.cpp (command line and the driver that runs every scene and subprocess).
 #pragma once
+#include <cstdint>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -25,6 +26,10 @@ constexpr int kReferenceColumns = 9;
 /// The ideal image of `f` against the reference of its scene `at_pose` (the pose f was rendered from):
 /// spread, kReferenceRays x kReferenceColumns, the same bounces (devices.cpp).
 ImageError error_against_reference(const Frame& f, SceneDesc at_pose);
+/// The floor of an image of `rays` rays of scene `s`: as many rays on a plain beam-ordered grid (spread,
+/// one column per beam, rays / beams elevation rays), what tracing, shading and imaging them costs without
+/// the adaptive sampler's bookkeeping (devices.cpp).
+SceneDesc floor_grid(SceneDesc s, std::uint64_t rays);
 
 /// Where things are.
 struct Paths {

@@ -140,11 +140,8 @@ Row measure(SceneDesc s, const std::string& device, int repeats) {
     ref.sonar.pose.orientation_deg[2] = s.sonar.pose.orientation_deg[2] + 0.01 * repeats;
     row.err = error_against_reference(*f, ref);
 
-    // The floor: as many rays as the default used, on a plain grid (spread, one column per beam).
-    SceneDesc grid = s;
-    set_scheme(grid.sampling, SamplingScheme::Spread);
-    grid.sampling.azimuth_rays = 1;
-    grid.sampling.elevation_rays = int(std::max<std::uint64_t>(1, row.rays / std::uint64_t(s.sonar.beams)));
+    // The floor: as many rays as the default used, on a plain grid.
+    SceneDesc grid = floor_grid(s, row.rays);
     Simulator floor_sim(grid);
     std::vector<double> ms;
     floor_sim.render();
@@ -160,6 +157,14 @@ Row measure(SceneDesc s, const std::string& device, int repeats) {
 }
 
 } // namespace
+
+SceneDesc floor_grid(SceneDesc s, std::uint64_t rays) {
+    set_scheme(s.sampling, SamplingScheme::Spread);
+    s.sampling.azimuth_rays = 1;
+    s.sampling.elevation_rays =
+        int(std::max<std::uint64_t>(1, rays / std::uint64_t(std::max(1, s.sonar.beams))));
+    return s;
+}
 
 ImageError error_against_reference(const Frame& f, SceneDesc at_pose) {
     set_scheme(at_pose.sampling, SamplingScheme::Spread);

@@ -167,13 +167,8 @@ int run_worker(const WorkerOptions& o) {
         const auto& e = first.estimate;
         json floor = nullptr;
         if (st.sampling.scheme == SamplingScheme::Adaptive) {
-            // The floor: as many rays on a plain beam-ordered grid (spread, one column per beam), timed as
-            // the setting is; warm / floor is what the adaptive sampler's bookkeeping costs.
-            SceneDesc grid = scene;
-            set_scheme(grid.sampling, SamplingScheme::Spread);
-            grid.sampling.azimuth_rays = 1;
-            grid.sampling.elevation_rays =
-                int(std::max<std::uint64_t>(1, first.rays / std::uint64_t(std::max(1, scene.sonar.beams))));
+            // The floor, timed as the setting is: warm / floor is what the sampler's bookkeeping costs.
+            const SceneDesc grid = floor_grid(scene, first.rays);
             render_once(g, grid, resampler);
             std::vector<double> ft;
             for (int r = 0; r < repeats; ++r) ft.push_back(render_once(g, grid, resampler).total());
