@@ -171,6 +171,9 @@ std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, cons
     g.tx_bounces = std::uint8_t(k), g.rx_bounces = 0;
     m.azimuth_rad = float(a_p), m.elevation_rad = float(e_p);
     m.azimuth_width_rad = float(width_rad);
+    // Its azimuth edges in the order of the azimuth interval (range_a_lo_m at the port... lower azimuth):
+    // gather_ghosts() gives each beam it spans the part of the range footprint over that beam's azimuths.
+    if (z0 > z1) std::swap(m.range_a_lo_m, m.range_a_hi_m);
     g.beam = std::uint32_t(beam_of(a_p));
     if (keep_tx) out.push_back(g);
     return rays;
@@ -274,6 +277,13 @@ std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostC
                         std::min(hi, double(whole.cell.azimuth_rad) + 0.5 * whole.cell.azimuth_width_rad);
                     part.cell.azimuth_rad = float(0.5 * (a0 + a1)),
                     part.cell.azimuth_width_rad = float(a1 - a0);
+                    // The range footprint over this part's azimuths only (linear across the interval):
+                    // the whole footprint in each beam would smear the ghost's edges by a beam's width.
+                    const double w = whole.cell.azimuth_width_rad,
+                                 z_lo = double(whole.cell.azimuth_rad) - 0.5 * w;
+                    const double r_lo = whole.cell.range_a_lo_m, r_hi = whole.cell.range_a_hi_m;
+                    part.cell.range_a_lo_m = float(r_lo + (a0 - z_lo) / w * (r_hi - r_lo));
+                    part.cell.range_a_hi_m = float(r_lo + (a1 - z_lo) / w * (r_hi - r_lo));
                     part.cell.solid_angle_sr = float(whole.cell.solid_angle_sr * f);
                 }
                 part.beam = std::uint32_t(i);

@@ -139,3 +139,32 @@ TEST_CASE(
         if (i != 7 && i != 8) CHECK(out[size_t(i)].empty());
     for (const auto& src : by_source) CHECK(src.empty()); // moved out
 }
+
+TEST_CASE("a ghost shared among beams gives each the part of its range footprint over that beam's azimuths",
+          "[multipath]") {
+    SceneDesc s;
+    s.sonar.beams = 16;
+    const auto grid = sonar_grid(s.sonar);
+    const double edge = grid->beam_port_edge_rad(7) - grid->beam_width_rad(7); // beam 7 | beam 8
+    const double w8 = grid->beam_width_rad(8);
+    // Out by the mirror, back directly, over [edge - 0.75 w8, edge + 0.25 w8]: its range on the scatterer's
+    // plane runs from 10 m at the interval's lower (starboard) azimuth to 14 m at its upper.
+    GhostCell g{};
+    g.beam = 8, g.tx_bounces = 1, g.rx_bounces = 0;
+    g.cell.solid_angle_sr = 4, g.cell.range_m = 12;
+    g.cell.azimuth_rad = float(edge - 0.25 * w8), g.cell.azimuth_width_rad = float(w8);
+    g.cell.range_a_lo_m = 10, g.cell.range_a_hi_m = 14;
+    g.cell.range_e_lo_m = 12, g.cell.range_e_hi_m = 12;
+    std::vector<std::vector<GhostCell>> by_source(size_t(grid->beams));
+    by_source[8] = {g};
+    const auto out = detail::gather_ghosts(by_source, s);
+    REQUIRE(out[7].size() == 1);
+    REQUIRE(out[8].size() == 1);
+    // Three quarters of the interval in beam 8 (10 -> 13 m), a quarter in beam 7 (13 -> 14 m).
+    CHECK(out[8][0].cell.range_a_lo_m == Approx(10).margin(1e-3));
+    CHECK(out[8][0].cell.range_a_hi_m == Approx(13).margin(1e-3));
+    CHECK(out[7][0].cell.range_a_lo_m == Approx(13).margin(1e-3));
+    CHECK(out[7][0].cell.range_a_hi_m == Approx(14).margin(1e-3));
+    CHECK(out[8][0].cell.solid_angle_sr == Approx(3).epsilon(1e-4));
+    CHECK(out[7][0].cell.solid_angle_sr == Approx(1).epsilon(1e-4));
+}
