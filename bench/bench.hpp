@@ -74,7 +74,8 @@ std::string write_reports(const json& results, const std::string& out_dir);
 int run_sensor_bench(int repeats);
 
 /// `sonarsim_bench multipath`: trace + shade with sampling.bounces 0, 1, 2 on the tank and the wreck.
-int run_multipath_bench(const std::string& repo, int repeats);
+/// `settings`: "key=value" overrides applied to every case (as `sonarsim render --set`).
+int run_multipath_bench(const std::string& repo, int repeats, const std::vector<std::string>& settings);
 
 /// `sonarsim_bench devices`: every device preset at its own window over the terrain and the wreck: warm
 /// image, rays, error against a reference, the floor and the device's own frame interval, as a Markdown

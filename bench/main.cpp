@@ -4,6 +4,7 @@
 #include "bench.hpp"
 #include "terrain.hpp"
 
+#include "core/base/errors.hpp"
 #include "core/base/timing.hpp"
 
 #include <CLI/CLI.hpp>
@@ -371,6 +372,10 @@ int main(int argc, char** argv) {
     CLI::App* multipath = app.add_subcommand(
         "multipath", "Cost of sampling.bounces 0, 1, 2 on the tank and the wreck (median)");
     multipath->add_option("--repeats", multipath_repeats, "Repeats")->capture_default_str();
+    std::vector<std::string> multipath_settings;
+    multipath->add_option(
+        "--set", multipath_settings,
+        "Override a parameter of every case, e.g. --set sampling.estimate=strict (repeatable)");
     CLI::App* sensor = app.add_subcommand("sensor", "Time the sensor stage alone (median of repeats)");
     sensor->add_option("--repeats", sensor_repeats, "Repeats")->capture_default_str();
     int devices_repeats = 5;
@@ -403,7 +408,7 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (*sensor) return run_sensor_bench(sensor_repeats);
-        if (*multipath) return run_multipath_bench(o.paths.repo, multipath_repeats);
+        if (*multipath) return run_multipath_bench(o.paths.repo, multipath_repeats, multipath_settings);
         if (*devices) return run_devices_bench(o.paths, devices_repeats, devices_only);
         if (*terrain) {
             write_terrain_ply(terrain_out, grid);
@@ -417,6 +422,9 @@ int main(int argc, char** argv) {
         if (o.out.empty())
             o.out = o.quick ? o.paths.work + "/quick-results" : o.paths.repo + "/bench/results";
         return run_driver(o);
+    } catch (const sonarsim::InputError& e) { // bad input (a --set, a scene file): exit status 2
+        std::cerr << "sonarsim_bench: error: " << e.what() << "\n";
+        return 2;
     } catch (const std::exception& e) {
         std::cerr << "sonarsim_bench: error: " << e.what() << "\n";
         return 1;

@@ -8,6 +8,7 @@
 #include "bench.hpp"
 
 #include "core/analysis/reference.hpp"
+#include "core/scene/params.hpp"
 #include "core/scene/sampling_scheme.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/pipeline/simulator.hpp"
@@ -20,7 +21,7 @@
 
 namespace sonarsim::bench {
 
-int run_multipath_bench(const std::string& repo, int repeats) {
+int run_multipath_bench(const std::string& repo, int repeats, const std::vector<std::string>& settings) {
     struct Case {
         std::string name;
         SceneDesc scene;
@@ -31,6 +32,9 @@ int run_multipath_bench(const std::string& repo, int repeats) {
     wreck.water.surface_height_m = wreck.sonar.pose.position_m[2] + 1.0;
     wreck.seafloor->material.reflection_db = 10;
     cases.push_back({"shipwreck + surface 1 m above, floor mirror", wreck});
+    for (auto& c : cases)
+        for (const auto& a : settings) apply_setting_text(c.scene, a, "--set");
+    for (const auto& a : settings) std::printf("--set %s\n", a.c_str());
     std::printf("reference: spread %d x %d with the same bounces (adaptive rows)\n", kReferenceRays,
                 kReferenceColumns);
     std::printf("%-44s %-9s %7s %10s %10s %11s %9s %9s %9s %9s\n", "scene", "scheme", "bounces", "rays",

@@ -249,19 +249,30 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
         est = adaptive::combine_errors(e);
         est.passes = passes;
         if (est.meets(s.sampling)) break;
+        // Each group's next step: three columns per beam (strict, azimuth its larger share) or a denser base
+        // grid. Multipath: every group the same way (its images' ghosts are the whole image's, so every
+        // pass after the first traces every group), three columns when azimuth is the larger share overall.
+        std::vector<char> az(G);
+        for (size_t k = 0; k < G; ++k) az[k] = azimuth_next(k);
+        if (sp.multipath) {
+            double az_sum = 0, sum = 0;
+            for (size_t k = 0; k < G; ++k) az_sum += 2 * err[k].az_num, sum += err[k].scale * err[k].num;
+            const bool all_az = std::all_of(az_mult.begin(), az_mult.end(), [](int m) { return m == 1; }) &&
+                                az_sum > sum;
+            std::fill(az.begin(), az.end(), char(all_az));
+        }
         std::vector<double> cost(G);
         for (size_t k = 0; k < G; ++k) // three columns re-trace the group's base grid
-            cost[k] =
-                azimuth_next(k) ? 3 * sp.base_rays(M0_of(level[k]), int(groups[k].size())) : next_cost(k);
+            cost[k] = az[k] ? 3 * sp.base_rays(M0_of(level[k]), int(groups[k].size())) : next_cost(k);
         Choice c = choose(s, e, cost, budget_left(), kAim);
-        // Multipath: every group or none (a pass's ghosts are the whole image's).
+        // Multipath: every group or none.
         if (sp.multipath && std::find(c.take.begin(), c.take.end(), 1) != c.take.end())
             for (size_t k = 0; k < G; ++k) c.take[k] = cost[k] >= 0;
         bool any = false;
         for (size_t k = 0; k < G; ++k) {
             if (!c.take[k]) continue;
             pending[k] = 1, any = true;
-            if (azimuth_next(k)) {
+            if (az[k]) {
                 // Strict: azimuth is the larger share, so three columns per beam at the same base grid (their
                 // coarse image merges them, and the azimuth probe goes on with thirds of the new columns).
                 az_mult[k] = 3, prev_num[k] = 0;

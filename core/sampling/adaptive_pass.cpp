@@ -142,7 +142,8 @@ void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samp
     coarse.cells.resize(size_t(sampled)), fine.cells.resize(size_t(N));
     if (sp.strict) coarse_edges.beams = sampled, coarse_edges.cells.resize(size_t(sampled));
     std::vector<std::vector<GhostCell>> fine_ghosts(static_cast<size_t>(N)),
-        coarse_ghosts(static_cast<size_t>(sampled));
+        coarse_ghosts(static_cast<size_t>(sampled)),
+        edge_ghosts(static_cast<size_t>(sp.strict && sp.multipath ? sampled : 0));
     std::vector<std::uint64_t> ghost_rays(static_cast<size_t>(N), 0);
     tbb::parallel_for(0, N, [&](int i) {
         const auto& cols = beams[size_t(i)];
@@ -159,11 +160,13 @@ void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samp
         ghost_rays[size_t(i)] += coarse_cells_of(sp, cols, Merge::kAll, coarse.cells[k], coarse_ghosts[k]);
         if (!sp.strict) return;
         std::vector<GhostCell> none;
-        coarse_cells_of(sp, cols, Merge::kEdges, coarse_edges.cells[k], none);
+        ghost_rays[size_t(i)] += coarse_cells_of(sp, cols, Merge::kEdges, coarse_edges.cells[k],
+                                                 sp.multipath ? edge_ghosts[k] : none);
     });
     if (sp.multipath) {
         fine.ghosts = detail::gather_ghosts(fine_ghosts, s);
         coarse.ghosts = detail::gather_ghosts(coarse_ghosts, s);
+        if (sp.strict) coarse_edges.ghosts = detail::gather_ghosts(edge_ghosts, s);
         for (auto r : ghost_rays) fine.multipath_rays += r;
     }
     for (auto& b : beams)
@@ -269,9 +272,11 @@ static std::vector<SampleError> base_errors(Sampler& sp, const Beams& beams, con
 
 /// The azimuth probe of a sample beam's columns `cols` (refined): on every kProbeEvery-th cell of each
 /// column still at the beam's base width (not split in azimuth), two more rays at a third of the width each
-/// side; those cells as one column (`one`) and as three (`three`), appended. Returns the rays traced.
+/// side; those cells as one column (`one`) and as three (`three`), appended, and with multipath their
+/// ghosts (`one_ghosts`, `three_ghosts`). Returns the rays traced; `ghost_rays` gets the ghosts' rays.
 std::uint64_t azimuth_probe(const Sampler& sp, const std::vector<Column>& cols, std::vector<Cell>& one,
-                            std::vector<Cell>& three) {
+                            std::vector<Cell>& three, std::vector<GhostCell>& one_ghosts,
+                            std::vector<GhostCell>& three_ghosts, std::uint64_t& ghost_rays) {
     const double base_da = sp.frame.grid->beam_width_rad(cols.empty() ? 0 : cols.front().beam) /
                            sp.columns(cols.empty() ? 0 : cols.front().beam);
     std::uint64_t rays = 0;
@@ -291,11 +296,18 @@ std::uint64_t azimuth_probe(const Sampler& sp, const std::vector<Column>& cols, 
             if (b.hit) {
                 one.push_back(detail::make_cell(sp.frame, *b.hit, a, e, a_lo, a_hi, lo, hi));
                 three.push_back(detail::make_cell(sp.frame, *b.hit, a, e, m_lo, m_hi, lo, hi));
+                if (sp.multipath) {
+                    ghost_rays += sp.mp.ghosts(*b.hit, a, e, a_lo, a_hi, lo, hi, c.beam, one_ghosts, b.via);
+                    ghost_rays += sp.mp.ghosts(*b.hit, a, e, m_lo, m_hi, lo, hi, c.beam, three_ghosts, b.via);
+                }
             }
             const auto side = [&](const Angle& as, const Angle& as_lo, const Angle& as_hi) {
                 const auto hit =
                     detail::first_hit(sp.g, sp.s, sp.frame.origin, sp.frame.dir(as, e), sp.frame.t_max);
-                if (hit) three.push_back(detail::make_cell(sp.frame, *hit, as, e, as_lo, as_hi, lo, hi));
+                if (!hit) return;
+                three.push_back(detail::make_cell(sp.frame, *hit, as, e, as_lo, as_hi, lo, hi));
+                if (sp.multipath)
+                    ghost_rays += sp.mp.ghosts(*hit, as, e, as_lo, as_hi, lo, hi, c.beam, three_ghosts);
             };
             side(p, m_hi, p_hi);
             side(st, st_lo, m_lo);
@@ -351,14 +363,24 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
     if (probe) {
         out.az_one.beams = out.az_three.beams = G;
         out.az_one.cells.resize(size_t(G)), out.az_three.cells.resize(size_t(G));
-        std::vector<std::uint64_t> r(static_cast<size_t>(G), 0);
+        if (sp.multipath) out.az_one.ghosts.resize(size_t(G)), out.az_three.ghosts.resize(size_t(G));
+        std::vector<std::uint64_t> r(static_cast<size_t>(G), 0), rg(static_cast<size_t>(G), 0);
         tbb::parallel_for(0, G, [&](int k) {
             const int i = samples[size_t(k)];
             if (i < 0) return;
-            r[size_t(k)] = azimuth_probe(sp, beams[size_t(i)], out.az_one.cells[size_t(k)],
-                                         out.az_three.cells[size_t(k)]);
+            std::vector<GhostCell> one_ghosts, three_ghosts;
+            r[size_t(k)] =
+                azimuth_probe(sp, beams[size_t(i)], out.az_one.cells[size_t(k)],
+                              out.az_three.cells[size_t(k)], one_ghosts, three_ghosts, rg[size_t(k)]);
+            if (!sp.multipath) return;
+            // In the sample's slot whatever beam they arrive in: the probe sums |three - one|.
+            for (auto* g : {&one_ghosts, &three_ghosts})
+                for (auto& x : *g) x.beam = std::uint32_t(k);
+            out.az_one.ghosts[size_t(k)] = std::move(one_ghosts);
+            out.az_three.ghosts[size_t(k)] = std::move(three_ghosts);
         });
         for (auto x : r) probe_rays += x;
+        for (auto x : rg) out.fine.multipath_rays += x;
     }
     collect_cells(sp, beams, samples, out.fine, out.coarse, out.coarse_edges); // adds the refined rays
     out.fine.rays_traced += probe_rays;

@@ -28,8 +28,8 @@ struct Sampler {
     const TraceControl& control;
     detail::RayFrame frame;
     bool multipath; ///< ghosts to find (sampling.bounces and a mirror)
-    /// sampling.estimate strict (not with multipath, whose ghosts are not told apart): smooth triples and
-    /// the azimuth probe (SampleError)
+    /// sampling.estimate strict: smooth triples and the azimuth probe (SampleError); with multipath a triple
+    /// is smooth only where its continuations are too, and the probe's cells bring their ghosts
     bool strict;
     detail::Multipath mp;
     RefineCriteria criteria;
@@ -150,7 +150,8 @@ struct PassCells {
     TraceResult coarse_edges; ///< the same with only the triples that are not smooth merged (no multipath)
     std::vector<char> bumped; ///< per group passed in: left unrefined, for a denser base grid
     /// The azimuth probe (slot k: group k's sample beam; empty unless probed): the cells it probed (every
-    /// kProbeEvery-th of the columns not split in azimuth) as one column and as three.
+    /// kProbeEvery-th of the columns not split in azimuth) as one column and as three, with multipath their
+    /// ghosts too (in slot k whatever beam they arrive in: the probe sums their difference).
     TraceResult az_one, az_three;
 };
 

@@ -27,7 +27,7 @@ bool RefineCriteria::discontinuous_direct(const Node& x, const Column& cx, const
 
 bool RefineCriteria::edge_between(const Node& x, const Node& y, const EdgeRay& edge) const {
     const double step_db = direct_step_db(x, y, edge);
-    return step_db == step_db;
+    return step_db == step_db || (multipath_ && via_step(x, y) > 0);
 }
 
 double RefineCriteria::direct_step_db(const Node& x, const Node& y, const EdgeRay& edge) const {
@@ -50,29 +50,33 @@ double RefineCriteria::direct_step_db(const Node& x, const Node& y, const EdgeRa
 /// meets nothing, or their levels step, where that matters against the image (as for direct cells).
 bool RefineCriteria::via_discontinuous(const Node& x, const Column& cx, const Node& y,
                                        const Column& cy) const {
-    if (!x.via->reflected && !y.via->reflected) return false;
+    const double f = via_step(x, y);
+    return f > 0 && (significant_via(x, cx, f) || significant_via(y, cy, f));
+}
+
+double RefineCriteria::via_step(const Node& x, const Node& y) const {
+    if (!x.via->reflected && !y.via->reflected) return 0;
     const bool hx = bool(x.via->hit), hy = bool(y.via->hit);
-    if (hx != hy) return significant_via(hx ? x : y, hx ? cx : cy, 0.5);
-    if (!hx) return false;
+    if (hx != hy) return 0.5;
+    if (!hx) return 0;
     const Hit &a = *x.via->hit, &b = *y.via->hit;
     const double reach = x.via->dr_de * x.de + y.via->dr_de * y.de + gap_m_; // what a smooth surface spans
     const bool edge = a.material != b.material || (a.prim != b.prim && std::abs(a.t - b.t) > reach);
-    if (edge) return significant_via(x, cx, 0.5) || significant_via(y, cy, 0.5);
+    if (edge) return 0.5;
     double step_db = std::abs(x.via->density_db - y.via->density_db);
     if (step_db <= jump_db_) {
         // As for direct cells: a ghost's footprint spanning bins spreads its echo evenly over it, so where
         // its echo per metre of range steps between neighbours on one plane (grazing at the scatterer)
         // the ghost needs finer cells.
         const double fx = x.via->dr_de * x.de, fy = y.via->dr_de * y.de;
-        if (a.prim != b.prim || !(std::max(fx, fy) > bin_m_)) return false;
+        if (a.prim != b.prim || !(std::max(fx, fy) > bin_m_)) return 0;
         auto per_metre_db = [&](const Node& n, double footprint_m) {
             return n.via->density_db + 10 * std::log10(n.angle.c * n.de / std::max(footprint_m, bin_m_));
         };
         step_db = std::abs(per_metre_db(x, fx) - per_metre_db(y, fy));
-        if (step_db <= range_jump_db_) return false;
+        if (step_db <= range_jump_db_) return 0;
     }
-    const double f = 0.5 * (1 - std::pow(10.0, -0.1 * step_db));
-    return significant_via(x, cx, f) || significant_via(y, cy, f);
+    return 0.5 * (1 - std::pow(10.0, -0.1 * step_db));
 }
 
 /// True when a surface edge lies between the hits of x and y: another material, or, on one object, hits

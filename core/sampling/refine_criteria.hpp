@@ -43,8 +43,9 @@ class RefineCriteria {
                        const EdgeRay& edge) const;
 
     /// Whether the integrand is not smooth between neighbouring cells x and y in one column: one misses, a
-    /// surface edge lies between them, or their levels step (discontinuous() without the significance
-    /// test). The error estimate takes a merged triple without such a step to converge in second order.
+    /// surface edge lies between them, or their levels step, and with multipath the same for their
+    /// continuations (discontinuous() without the significance test). The error estimate takes a merged
+    /// triple without such a step to converge in second order.
     bool edge_between(const Node& x, const Node& y, const EdgeRay& edge) const;
 
     /// A cell that must split on its own: absorption across its footprint, a specular lobe narrower than
@@ -78,6 +79,10 @@ class RefineCriteria {
     /// exceeds its threshold; NaN: none.
     double direct_step_db(const Node& x, const Node& y, const EdgeRay& edge) const;
     bool via_discontinuous(const Node& x, const Column& cx, const Node& y, const Column& cy) const;
+    /// Multipath: the fraction of the continuations' echo that x and y may differ by (0.5 where one meets
+    /// nothing or a surface edge lies between them; from the level step where that exceeds its threshold);
+    /// 0 where they meet one smooth surface.
+    double via_step(const Node& x, const Node& y) const;
     bool surface_edge(const Hit& x, const glm::dvec3& px, const Hit& y, const glm::dvec3& py,
                       const EdgeRay& edge) const;
     bool worth_refining(const Node& x, const Column& cx, const Node& y, const Column& cy,

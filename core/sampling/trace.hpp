@@ -71,8 +71,7 @@ struct TraceResult {
         double rel_l1 = 0, median_abs_db = 0, p95_abs_db = 0;
         int passes = 0;
         bool budget_reached = false; ///< refinement stopped at sampling.max_rays before the tolerance was met
-        /// sampling.estimate strict was applied (not with multipath): smooth cells at second order and the
-        /// azimuth probe
+        /// sampling.estimate strict was applied: smooth cells at second order and the azimuth probe
         bool strict = false;
         /// Whether both of the sampler's targets are met: median |dB| <= tolerance_db and rel L1 <=
         /// tolerance_rel_l1.
