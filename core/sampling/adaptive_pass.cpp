@@ -141,9 +141,10 @@ void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samp
     fine.beams = N, coarse.beams = sampled;
     coarse.cells.resize(size_t(sampled)), fine.cells.resize(size_t(N));
     if (sp.strict) coarse_edges.beams = sampled, coarse_edges.cells.resize(size_t(sampled));
+    // Ghosts by the beam whose rays found them (the coarse ones on sample beams only).
     std::vector<std::vector<GhostCell>> fine_ghosts(static_cast<size_t>(N)),
-        coarse_ghosts(static_cast<size_t>(sampled)),
-        edge_ghosts(static_cast<size_t>(sp.strict && sp.multipath ? sampled : 0));
+        coarse_ghosts(static_cast<size_t>(sp.multipath ? N : 0)),
+        edge_ghosts(static_cast<size_t>(sp.strict && sp.multipath ? N : 0));
     std::vector<std::uint64_t> ghost_rays(static_cast<size_t>(N), 0);
     tbb::parallel_for(0, N, [&](int i) {
         const auto& cols = beams[size_t(i)];
@@ -156,17 +157,26 @@ void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samp
                 sp.cells_of(c, Merge::kNone, c.da, fine.cells[size_t(i)], fine_ghosts[size_t(i)]);
         if (sp.control.preview || slot[size_t(i)] < 0) return;
         const size_t k = size_t(slot[size_t(i)]);
-        if (sp.multipath) coarse_ghosts[k].reserve(3 * nodes);
-        ghost_rays[size_t(i)] += coarse_cells_of(sp, cols, Merge::kAll, coarse.cells[k], coarse_ghosts[k]);
+        std::vector<GhostCell> none; // without multipath
+        if (sp.multipath) coarse_ghosts[size_t(i)].reserve(3 * nodes);
+        ghost_rays[size_t(i)] += coarse_cells_of(sp, cols, Merge::kAll, coarse.cells[k],
+                                                 sp.multipath ? coarse_ghosts[size_t(i)] : none);
         if (!sp.strict) return;
-        std::vector<GhostCell> none;
         ghost_rays[size_t(i)] += coarse_cells_of(sp, cols, Merge::kEdges, coarse_edges.cells[k],
-                                                 sp.multipath ? edge_ghosts[k] : none);
+                                                 sp.multipath ? edge_ghosts[size_t(i)] : none);
     });
     if (sp.multipath) {
         fine.ghosts = detail::gather_ghosts(fine_ghosts, s);
-        coarse.ghosts = detail::gather_ghosts(coarse_ghosts, s);
-        if (sp.strict) coarse_edges.ghosts = detail::gather_ghosts(edge_ghosts, s);
+        // The coarser images' ghosts: those arriving in each sample beam, in its slot.
+        auto by_slot = [&](std::vector<std::vector<GhostCell>>& by_source, TraceResult& r) {
+            auto arriving = detail::gather_ghosts(by_source, s);
+            r.ghosts.assign(size_t(sampled), {});
+            for (int k = 0; k < sampled; ++k)
+                if (samples[size_t(k)] >= 0)
+                    r.ghosts[size_t(k)] = std::move(arriving[size_t(samples[size_t(k)])]);
+        };
+        by_slot(coarse_ghosts, coarse);
+        if (sp.strict) by_slot(edge_ghosts, coarse_edges);
         for (auto r : ghost_rays) fine.multipath_rays += r;
     }
     for (auto& b : beams)

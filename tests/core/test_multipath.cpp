@@ -236,6 +236,25 @@ TEST_CASE("the strict estimate sees the tank's ghosts' error where the fast one 
     CHECK(strict_est < 3 * strict_err);
 }
 
+TEST_CASE("a trace of some beams estimates its ghosts' error from the ghosts arriving in its sample beams",
+          "[multipath]") {
+    // Motion during a frame traces each ping's beams alone (TraceControl::beams). The coarser image of each
+    // sample beam must hold the ghosts arriving in that beam; held by slot instead (the k-th traced beam got
+    // beam k's ghosts), the estimate compared unrelated ghosts and read 13 % for a 4.6 % image, tracing 7x
+    // the rays.
+    SceneDesc s = load_scene(std::string(SONARSIM_ASSETS) + "/scenes/tank.json");
+    const SceneGeometry g(s);
+    std::vector<char> every_fourth(size_t(s.sonar.beams), 0);
+    for (size_t i = 0; i < every_fourth.size(); i += 4) every_fourth[i] = 1;
+    TraceControl some;
+    some.beams = &every_fourth;
+    const TraceResult all = trace(g, s), part = trace(g, s, some);
+    INFO("estimated rel L1: all beams " << all.error_estimate.rel_l1 << ", every 4th "
+                                        << part.error_estimate.rel_l1);
+    CHECK(part.error_estimate.rel_l1 < 3 * all.error_estimate.rel_l1);
+    CHECK(part.rays_traced < all.rays_traced);
+}
+
 TEST_CASE("energy is accounted per path order", "[multipath]") {
     // The tank: walls, floor and surface mirrors, two targets. Same rays (spread scheme) with and without
     // multipath, so the direct order must equal the image without bounces, and the orders sum to the image.
