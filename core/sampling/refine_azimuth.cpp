@@ -41,10 +41,16 @@ void mark_neighbours(const Sampler& sp, const Beams& beams, int i, int lv, int M
             mark_disagreement(sp, cols[k], cols[k + 1], m[k], m[k + 1]);
     if (lv != 0) return;
     std::vector<char> other(static_cast<size_t>(M0));
-    if (i > 0 && !beams[size_t(i) - 1].empty())
-        mark_disagreement(sp, beams[size_t(i) - 1].back(), cols.front(), other, m.front());
-    if (i + 1 < N && !beams[size_t(i) + 1].empty())
-        mark_disagreement(sp, cols.back(), beams[size_t(i) + 1].front(), m.back(), other);
+    // Across the beam's edges, with the nearest beam the image traces on each side: the next one, unless
+    // the image traces only some beams (each ping's of a moving sonar, TraceControl::beams). Without a
+    // neighbour a beam would never split in azimuth, an error the estimate does not see.
+    int port = i - 1, starboard = i + 1;
+    while (port >= 0 && !sp.control.traces(port)) --port;
+    while (starboard < N && !sp.control.traces(starboard)) ++starboard;
+    if (port >= 0 && !beams[size_t(port)].empty())
+        mark_disagreement(sp, beams[size_t(port)].back(), cols.front(), other, m.front());
+    if (starboard < N && !beams[size_t(starboard)].empty())
+        mark_disagreement(sp, cols.back(), beams[size_t(starboard)].front(), m.back(), other);
 }
 
 /// Cells that need a narrower column on their own: a specular lobe or an absorption step across it.

@@ -7,6 +7,8 @@
 #include "core/pipeline/simulator.hpp"
 #include "core/sampling/acquisition.hpp"
 #include "core/scene/params.hpp"
+#include "core/scene/sampling_scheme.hpp"
+#include "core/scene/scene_io.hpp"
 #include "core/shading/physics.hpp"
 #include "core/shading/shade.hpp"
 #include "support.hpp"
@@ -240,4 +242,25 @@ TEST_CASE("a trace of some beams leaves the others empty and traces the rest as 
             x.push_back(lin(img_part.at(k, i))), ref.push_back(lin(img_all.at(k, i)));
         }
     CHECK(test::relative_l1(x, ref) < 0.02);
+}
+
+TEST_CASE("a moving ARIS's pings split columns where the nearest beams they trace disagree", "[motion]") {
+    // Each ping traces every P-th beam (8 on the ARIS 3000): a beam's neighbours are in other pings. Compared
+    // with no neighbour, no beam split in azimuth and the Fig. 9 prism's edges were 0.58 % off (103 holes)
+    // against a dense spread reference with the same motion; compared with the nearest beams the ping
+    // traces, 0.32 % (32 holes).
+    SceneDesc s = load_scene(std::string(SONARSIM_ASSETS) + "/scenes/fig9.json");
+    apply_setting(s, "sonar.device", "aris3000-hf", "test");
+    apply_setting(s, "sonar.velocity_mps", json::array({0.3, 0, 0}), "test");
+    apply_setting(s, "sonar.angular_rate_dps", json::array({0, 0, 10}), "test");
+    REQUIRE(s.sonar.pings_per_frame == 8);
+    SceneDesc dense = s;
+    set_scheme(dense.sampling, SamplingScheme::Spread);
+    dense.sampling.elevation_rays = 729, dense.sampling.azimuth_rays = 9;
+    auto image = [](const SceneDesc& x) {
+        return test::echo_intensity(Simulator(x).render()->ideal(), x.sonar.noise_level_db);
+    };
+    const double err = test::relative_l1(image(s), image(dense));
+    INFO("rel L1 against spread 729 x 9: " << err);
+    CHECK(err < 0.0045);
 }
