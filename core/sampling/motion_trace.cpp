@@ -2,11 +2,13 @@
 
 #include "core/base/pose.hpp"
 #include "core/sampling/acquisition.hpp"
+#include "core/shading/accumulate.hpp"
 #include "core/shading/physics.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace sonarsim {
 
@@ -25,20 +27,48 @@ float two_way_correction(const Cell& c, const glm::dvec3& p_tx) {
     return float(0.5 * (tx_leg - double(c.range_m)));
 }
 
-void merge_estimate(TraceResult::ErrorEstimate& into, const TraceResult::ErrorEstimate& e, bool first) {
-    if (first) {
-        into = e;
-        return;
-    }
-    into.valid = into.valid && e.valid;
-    into.rel_l1 = std::max(into.rel_l1, e.rel_l1);
-    into.median_abs_db = std::max(into.median_abs_db, e.median_abs_db);
-    into.p95_abs_db = std::max(into.p95_abs_db, e.p95_abs_db);
-    into.passes = std::max(into.passes, e.passes);
-    into.budget_reached = into.budget_reached || e.budget_reached;
+/// A slot's estimate and its weights (detail::SlotEstimate).
+detail::SlotEstimate slot_estimate(const TraceResult& r) {
+    detail::SlotEstimate x{r.error_estimate, 0, 0};
+    if (!r.shaded || !r.shaded->image) return x;
+    for (float v : r.shaded->image->level_db)
+        if (v > -std::numeric_limits<float>::infinity()) x.echo += std::pow(10.0, 0.1 * v), x.bins += 1;
+    return x;
 }
 
 } // namespace
+
+TraceResult::ErrorEstimate detail::combine_slot_estimates(const std::vector<SlotEstimate>& v) {
+    TraceResult::ErrorEstimate out;
+    if (v.empty()) return out;
+    out = v.front().e;
+    double num = 0, den = 0, bins = 0;
+    for (const auto& x : v) {
+        out.valid = out.valid && x.e.valid;
+        out.p95_abs_db = std::max(out.p95_abs_db, x.e.p95_abs_db);
+        out.passes = std::max(out.passes, x.e.passes);
+        out.budget_reached = out.budget_reached || x.e.budget_reached;
+        num += x.e.rel_l1 * x.echo, den += x.echo, bins += x.bins;
+    }
+    if (!(den > 0) || !(bins > 0)) { // no echo to weigh by: the largest
+        for (const auto& x : v)
+            out.rel_l1 = std::max(out.rel_l1, x.e.rel_l1),
+            out.median_abs_db = std::max(out.median_abs_db, x.e.median_abs_db);
+        return out;
+    }
+    out.rel_l1 = num / den;
+    std::vector<const detail::SlotEstimate*> by_median;
+    for (const auto& x : v) by_median.push_back(&x);
+    std::sort(by_median.begin(), by_median.end(),
+              [](auto* a, auto* b) { return a->e.median_abs_db < b->e.median_abs_db; });
+    double below = 0;
+    for (const detail::SlotEstimate* x : by_median)
+        if ((below += x->bins) >= 0.5 * bins) {
+            out.median_abs_db = x->e.median_abs_db;
+            break;
+        }
+    return out;
+}
 
 TraceResult trace_moving(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control) {
     const double c = sound_speed_m_s(s.water.temperature_c, s.water.depth_m);
@@ -50,7 +80,7 @@ TraceResult trace_moving(const SceneGeometry& g, const SceneDesc& s, const Trace
     TraceResult out;
     out.beams = N;
     out.cells.resize(size_t(N));
-    bool first = true;
+    std::vector<detail::SlotEstimate> estimates;
     for (const AcquisitionSlot& slot : slots) {
         // The slab's own range window on the frame's bin edges, seen from the receive pose; the budget of
         // rays shared between the slots.
@@ -90,9 +120,9 @@ TraceResult trace_moving(const SceneGeometry& g, const SceneDesc& s, const Trace
         out.rays_traced += r.rays_traced;
         out.multipath_rays += r.multipath_rays;
         out.preview = out.preview || r.preview;
-        merge_estimate(out.error_estimate, r.error_estimate, first);
-        first = false;
+        estimates.push_back(slot_estimate(r));
     }
+    out.error_estimate = detail::combine_slot_estimates(estimates);
     return out;
 }
 
