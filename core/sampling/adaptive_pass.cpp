@@ -128,9 +128,9 @@ std::uint64_t coarse_cells_of(const Sampler& sp, const std::vector<Column>& cols
 }
 
 /// The cells of the refined columns (fine) and, on the `samples` beams (slot k: samples[k]; -1: none)
-/// unless previewing, the same cells one level coarser (`coarse`, coarse_cells_of) and, without
-/// multipath, the same with only the triples that are not smooth merged (`coarse_edges`). Frees the
-/// columns.
+/// unless previewing, the same cells one level coarser (`coarse`, coarse_cells_of) and, with
+/// sampling.estimate strict, the same with only the triples that are not smooth merged (`coarse_edges`);
+/// with multipath their ghosts, the coarser images' those arriving in each sample beam. Frees the columns.
 void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samples, TraceResult& fine,
                    TraceResult& coarse, TraceResult& coarse_edges) {
     const SceneDesc& s = sp.s;

@@ -147,7 +147,7 @@ using BeamGroups = std::vector<std::vector<int>>;
 struct PassCells {
     TraceResult fine;         ///< cells (and ghosts) per beam of the image; empty for beams not refined
     TraceResult coarse;       ///< per group passed in (slot k: group k's sample beam), one level coarser
-    TraceResult coarse_edges; ///< the same with only the triples that are not smooth merged (no multipath)
+    TraceResult coarse_edges; ///< the same with only the triples that are not smooth merged (strict)
     std::vector<char> bumped; ///< per group passed in: left unrefined, for a denser base grid
     /// The azimuth probe (slot k: group k's sample beam; empty unless probed): the cells it probed (every
     /// kProbeEvery-th of the columns not split in azimuth) as one column and as three, with multipath their
