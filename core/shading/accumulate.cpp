@@ -9,6 +9,7 @@
 #include "core/shading/truth_accumulator.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <tbb/parallel_for.h>
@@ -17,6 +18,14 @@ namespace sonarsim {
 namespace {
 
 constexpr double kNegInf = -std::numeric_limits<double>::infinity();
+/// A cell over several azimuth sub-columns (the sensor's beam forming) spreads each sub-column's share over
+/// that sub-column's own part of its range footprint when the footprint's azimuth extent exceeds this many
+/// range bins and its elevation extent; otherwise over the whole footprint. (Spreading over the whole
+/// smears the cell's edges by what the other sub-columns span: the beam-formed image of the wreck with one
+/// ray column per beam was 3.7 % off nine columns' instead of 2.3 %. Where the elevation extent is the
+/// larger, parts change that by 0.02 % for 2 % of a device image's time, so they are left out there.)
+constexpr double kSubcolumnSpreadBins = 0.25;
+constexpr size_t kMaxSubcolumns = 8; ///< azimuth_subcolumns() at most
 
 /// What every beam of one pass shares: the scene's constants and the outputs, written per beam column.
 struct Pass {
@@ -67,13 +76,20 @@ template <bool Img, bool Sens, bool Gt, bool Ord, bool Str> class BeamPass {
             if (x_[n] == kNegInf) continue;
             const Cell& c = cells_[n];
             const double w = std::exp(x_[n] - x_max);
+            // Over several sub-columns whose parts of its range footprint differ: add_fine_parts.
+            bool parts = false;
             if (fine) { // the cell's azimuth interval over the beam's sub-columns
                 const double a0 = c.azimuth_rad - 0.5 * c.azimuth_width_rad, a1 = a0 + c.azimuth_width_rad;
+                int in = 0;
                 for (int q = 0; q < p_.S; ++q) {
                     const double hi = a_top - q * spacing / p_.S, lo = hi - spacing / p_.S;
                     share[size_t(q)] =
                         std::max(0.0, std::min(a1, hi) - std::max(a0, lo)) / c.azimuth_width_rad;
+                    in += share[size_t(q)] > 0;
                 }
+                const double w_a = std::abs(double(c.range_a_hi_m) - c.range_a_lo_m);
+                parts = in > 1 && p_.spread && w_a > kSubcolumnSpreadBins * p_.dr &&
+                        w_a > std::abs(double(c.range_e_hi_m) - c.range_e_lo_m);
             }
             [[maybe_unused]] const GhostCell* ghost = cells_.ghost(n);
             [[maybe_unused]] std::uint64_t key = 0;
@@ -91,7 +107,7 @@ template <bool Img, bool Sens, bool Gt, bool Ord, bool Str> class BeamPass {
                 const double v = w * frac;
                 if constexpr (Ord) inside += frac;
                 if constexpr (Img) lin_[bb] += v, hit_[bb] = 1;
-                if (fine)
+                if (fine && !parts)
                     for (int q = 0; q < p_.S; ++q)
                         fine_[bb * size_t(p_.S) + size_t(q)] += v * share[size_t(q)];
                 if (elevation)
@@ -109,6 +125,7 @@ template <bool Img, bool Sens, bool Gt, bool Ord, bool Str> class BeamPass {
                     if (v > best_[bb]) best_[bb] = v, best_n_[bb] = std::int32_t(n);
             });
             if constexpr (Ord) add_order(n, inside);
+            if (parts) add_fine_parts(c, w, share, a_top, spacing);
         }
         if constexpr (Img) write_image(x_max);
         if (Sens) write_inputs(x_max, fine, elevation);
@@ -119,6 +136,51 @@ template <bool Img, bool Sens, bool Gt, bool Ord, bool Str> class BeamPass {
     }
 
   private:
+    /// A cell over several sub-columns: each gets its share of the echo (weight w) spread over its own part
+    /// of the cell's range footprint (the range at the cell's azimuth edges, range_a_lo_m at the lower,
+    /// taken as linear across the cell), not over the whole of it, which would smear the cell's edges in
+    /// range by what the other sub-columns span. One walk over the bins for all the parts.
+    void add_fine_parts(const Cell& c, double w, const std::vector<double>& share, double a_top,
+                        double spacing) {
+        struct Part {
+            detail::Footprint f{0, 0, 0, 0};
+            double v = 0, flat_lo = 0, flat_hi = 0, flat_share = 0, c_prev = 0;
+            size_t q = 0;
+        };
+        std::array<Part, kMaxSubcolumns> parts;
+        size_t n = 0;
+        const double width = c.azimuth_width_rad, a0 = c.azimuth_rad - 0.5 * width;
+        const double r = c.range_m, r_lo = double(c.range_a_lo_m) - r, r_hi = double(c.range_a_hi_m) - r;
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (int q = 0; q < p_.S && n < parts.size(); ++q) {
+            if (!(share[size_t(q)] > 0)) continue;
+            const double top = a_top - q * spacing / p_.S, bottom = top - spacing / p_.S;
+            const double t0 = (std::max(a0, bottom) - a0) / width,
+                         t1 = (std::min(a0 + width, top) - a0) / width;
+            const detail::Footprint f(c.range_e_lo_m, c.range_e_hi_m, r_lo + t0 * (r_hi - r_lo),
+                                      r_lo + t1 * (r_hi - r_lo));
+            parts[n++] = {
+                f, w * share[size_t(q)], f.lo + f.p, f.lo + f.q, f.q > 0 ? p_.dr / f.q : 0, 0, size_t(q)};
+            lo = std::min(lo, f.lo), hi = std::max(hi, f.hi());
+        }
+        const int K = p_.K;
+        const int b0 = int(std::clamp(std::floor((lo - p_.r_min) / p_.dr), 0.0, double(K)));
+        const int b1 = int(std::clamp(std::floor((hi - p_.r_min) / p_.dr), -1.0, double(K - 1)));
+        for (size_t k = 0; k < n; ++k) parts[k].c_prev = parts[k].f.cdf(p_.r_min + b0 * p_.dr);
+        const size_t S = size_t(p_.S);
+        for (int b = b0; b <= b1; ++b) {
+            const double e0 = p_.r_min + b * p_.dr, e1 = b + 1 == K ? p_.r_max : e0 + p_.dr;
+            for (size_t k = 0; k < n; ++k) {
+                Part& x = parts[k];
+                // Inside the flat top the cumulative share grows by dr / q per bin: no cdf to evaluate.
+                const double c_next =
+                    e0 >= x.flat_lo && e1 <= x.flat_hi && b + 1 < K ? x.c_prev + x.flat_share : x.f.cdf(e1);
+                if (c_next > x.c_prev) fine_[size_t(b) * S + x.q] += x.v * (c_next - x.c_prev);
+                x.c_prev = c_next;
+            }
+        }
+    }
+
     /// Echo per path order: contribution n's share `inside` the window (summed over its bins in run()),
     /// summed in the log domain.
     void add_order(size_t n, double inside) {

@@ -12,6 +12,8 @@
 #include "core/sensor/keyed_variates.hpp"
 #include "core/sensor/sensor.hpp"
 #include "core/sensor/sensor_patterns.hpp"
+#include "core/shading/accumulate.hpp"
+#include "core/scene/sonar_grid.hpp"
 #include "core/pipeline/simulator.hpp"
 
 #include <algorithm>
@@ -468,5 +470,50 @@ TEST_CASE("the K texture's gamma draws have the mean and variance of their shape
         CAPTURE(shape, m1, var);
         CHECK(std::abs(m1 - 1) < 4.5 * sd_mean);
         CHECK(std::abs(var - 1 / shape) < 4.5 * sd_var);
+    }
+}
+
+TEST_CASE("a cell over several receive sub-columns puts each one's echo in its own part of the footprint",
+          "[sensor]") {
+    // One cell as wide as its beam, on a plane whose range runs from 4.6 m at the beam's lower (starboard)
+    // azimuth edge to 5.4 m at its upper, with no extent in elevation. The receive pattern cuts the beam into
+    // four sub-columns (the port-most first): each sees the quarter of that range its azimuths cover, so
+    // their echoes are centred at 5.3, 5.1, 4.9 and 4.7 m. Spread over the whole footprint, every one was
+    // centred at 5.0 m, smearing the beam-formed image's edges.
+    SceneDesc s;
+    s.sonar.beams = 4, s.sonar.azimuth_fov_deg = 8;
+    s.sonar.range_min_m = 4, s.sonar.range_max_m = 6, s.sonar.range_bins = 200;
+    s.sensor.azimuth_window = AzimuthWindow::Hann, s.sensor.azimuth_beamwidth_deg = 2;
+    REQUIRE(azimuth_subcolumns(s) == 4);
+    const auto grid = sonar_grid(s.sonar);
+    const int beam = 1;
+    Cell c{};
+    c.point = glm::vec3(5, 0, 0);
+    c.range_m = 5, c.cos_incidence = 0.5f, c.solid_angle_sr = 1e-4f;
+    c.range_e_lo_m = c.range_e_hi_m = 5;
+    c.range_a_lo_m = 4.6f, c.range_a_hi_m = 5.4f;
+    c.azimuth_width_rad = float(grid->beam_width_rad(beam));
+    c.azimuth_rad = float(grid->beam_port_edge_rad(beam) - 0.5 * grid->beam_width_rad(beam));
+    c.elevation_rad = 0, c.elevation_width_rad = 0.01f;
+    c.material = kFloorMaterial;
+    TraceResult hits;
+    hits.beams = s.sonar.beams;
+    hits.cells.resize(size_t(s.sonar.beams));
+    hits.cells[size_t(beam)].push_back(c);
+    Channels ch;
+    ch.image = ch.sensor_inputs = true;
+    const Accumulation acc = accumulate(hits, s, ch);
+    REQUIRE(acc.inputs);
+    const PolarImage& fine = acc.inputs->fine;
+    REQUIRE(fine.beams == s.sonar.beams * 4);
+    for (int q = 0; q < 4; ++q) {
+        double m = 0, w = 0;
+        for (int b = 0; b < fine.bins; ++b) {
+            const double e = test::lin(fine.at(b, beam * 4 + q));
+            m += e * grid->bin_centre_m(b), w += e;
+        }
+        REQUIRE(w > 0);
+        INFO("sub-column " << q);
+        CHECK(m / w == Approx(5.3 - 0.2 * q).margin(0.006));
     }
 }
