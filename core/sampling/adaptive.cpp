@@ -257,8 +257,8 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
         if (sp.multipath) {
             double az_sum = 0, sum = 0;
             for (size_t k = 0; k < G; ++k) az_sum += 2 * err[k].az_num, sum += err[k].scale * err[k].num;
-            const bool all_az = std::all_of(az_mult.begin(), az_mult.end(), [](int m) { return m == 1; }) &&
-                                az_sum > sum;
+            const bool all_az =
+                std::all_of(az_mult.begin(), az_mult.end(), [](int m) { return m == 1; }) && az_sum > sum;
             std::fill(az.begin(), az.end(), char(all_az));
         }
         std::vector<double> cost(G);
