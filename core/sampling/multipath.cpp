@@ -171,8 +171,8 @@ std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, cons
     g.tx_bounces = std::uint8_t(k), g.rx_bounces = 0;
     m.azimuth_rad = float(a_p), m.elevation_rad = float(e_p);
     m.azimuth_width_rad = float(width_rad);
-    // Its azimuth edges in the order of the azimuth interval (range_a_lo_m at the port... lower azimuth):
-    // gather_ghosts() gives each beam it spans the part of the range footprint over that beam's azimuths.
+    // Its footprint's azimuth edges in the interval's order (range_a_lo_m at its lower azimuth, as for a
+    // direct cell): gather_ghosts() gives each beam it spans the part of the footprint over its azimuths.
     if (z0 > z1) std::swap(m.range_a_lo_m, m.range_a_hi_m);
     g.beam = std::uint32_t(beam_of(a_p));
     if (keep_tx) out.push_back(g);
