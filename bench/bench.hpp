@@ -79,8 +79,9 @@ int run_multipath_bench(const std::string& repo, int repeats, const std::vector<
 
 /// `sonarsim_bench devices`: every device preset at its own window over the terrain and the wreck: warm
 /// image, rays, error against a reference, the floor and the device's own frame interval, as a Markdown
-/// table.
-int run_devices_bench(const Paths& paths, int repeats, const std::vector<std::string>& only = {});
+/// table. `settings`: "key=value" overrides applied to every row after its preset.
+int run_devices_bench(const Paths& paths, int repeats, const std::vector<std::string>& only = {},
+                      const std::vector<std::string>& settings = {});
 
 /// Peak resident set size of this process so far [MB] (getrusage ru_maxrss).
 double self_peak_rss_mb();

@@ -172,7 +172,8 @@ ImageError error_against_reference(const Frame& f, SceneDesc at_pose) {
     return compare_images(f.ideal(), Simulator(at_pose).render()->ideal());
 }
 
-int run_devices_bench(const Paths& p, int repeats, const std::vector<std::string>& only) {
+int run_devices_bench(const Paths& p, int repeats, const std::vector<std::string>& only,
+                      const std::vector<std::string>& settings) {
     const std::string work = p.work.empty() ? "build/bench" : p.work;
     std::filesystem::create_directories(work);
     const std::string mesh = work + "/terrain_317.ply";
@@ -180,6 +181,7 @@ int run_devices_bench(const Paths& p, int repeats, const std::vector<std::string
     std::printf("Every device preset at its own window (sensor.model device, default sampling), warm image: "
                 "median of %d; reference: spread %d x %d, ideal sensor\n\n",
                 repeats, kReferenceRays, kReferenceColumns);
+    for (const auto& a : settings) std::printf("--set %s\n", a.c_str());
     std::printf(
         "| device | scene | beams x bins | range m | rays | warm ms | floor ms | warm / floor | rel L1 %% | "
         "median dB | holes %% | estimate rel L1 %% | device frame ms | live |\n"
@@ -190,7 +192,8 @@ int run_devices_bench(const Paths& p, int repeats, const std::vector<std::string
         for (int scene = 0; scene < 2; ++scene) {
             if (!only.empty() && std::find(only.begin(), only.end(), d.name) == only.end()) continue;
             status_line("devices: " + d.name + (scene ? ", wreck" : ", terrain"));
-            const SceneDesc s = scene ? wreck_case(p.repo, d.name) : terrain_case(mesh, d.name);
+            SceneDesc s = scene ? wreck_case(p.repo, d.name) : terrain_case(mesh, d.name);
+            for (const auto& a : settings) apply_setting_text(s, a, "--set");
             const Row r = measure(s, d.name, repeats);
             const double holes =
                 r.err.echoing_ref ? 100.0 * double(r.err.holes) / double(r.err.echoing_ref) : 0;

@@ -386,6 +386,11 @@ int main(int argc, char** argv) {
     devices->add_option("--repeats", devices_repeats, "Repeats")->capture_default_str();
     std::vector<std::string> devices_only;
     devices->add_option("--only", devices_only, "Only these presets (default: every one)");
+    std::vector<std::string> devices_settings;
+    devices->add_option(
+        "--set", devices_settings,
+        "Override a parameter of every row after its preset, e.g. --set sampling.estimate=strict "
+        "(repeatable)");
     CLI::App* report = app.add_subcommand("report", "Rewrite RESULTS.md and results.csv from a results.json");
     report->add_option("results_json", report_in)->required();
     report->add_option("--out", report_out, "Directory (default: the JSON's)");
@@ -409,7 +414,7 @@ int main(int argc, char** argv) {
         }
         if (*sensor) return run_sensor_bench(sensor_repeats);
         if (*multipath) return run_multipath_bench(o.paths.repo, multipath_repeats, multipath_settings);
-        if (*devices) return run_devices_bench(o.paths, devices_repeats, devices_only);
+        if (*devices) return run_devices_bench(o.paths, devices_repeats, devices_only, devices_settings);
         if (*terrain) {
             write_terrain_ply(terrain_out, grid);
             std::cout << "wrote " << terrain_out << " (" << terrain_triangles(grid) << " triangles)\n";
