@@ -139,17 +139,18 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
             {"budget_reached", est.budget_reached},
             {"max_rays", s.sampling.max_rays},
             {"tolerance_met", est.meets(s.sampling)},
-            {"method", est.strict ? "strict: the difference to the same cells one refinement level coarser "
-                                    "(bins echoing in both), half of it where merged cells straddle an edge "
-                                    "and an eighth on one smooth surface, plus an azimuth probe (three ray "
-                                    "columns against one)"
-                                  : "half the difference to the same cells one refinement level coarser "
-                                    "(bins echoing in both)"},
+            {"azimuth_rel_l1", est.azimuth_rel_l1},
+            {"method", std::string("the difference to the same cells one refinement level coarser (bins "
+                                   "echoing in both), half of it where merged cells straddle an edge and an "
+                                   "eighth on one smooth surface, plus an azimuth probe (three ray columns "
+                                   "against one); ") +
+                           (est.strict ? "strict: refined in azimuth where the probe finds the larger share"
+                                       : "fast: the probe's share is reported (azimuth_rel_l1, included in "
+                                         "rel_l1), not refined; sampling.estimate strict refines it")},
             // What it cannot see, said where the number is read (docs/accuracy-and-speed.md measures it).
-            {"not_seen", est.strict ? "the azimuth probe samples every third cell of a sampled beam's columns"
-                                    : "how the scene varies across a ray column's azimuth width where the "
-                                      "column was not split (more columns per beam, sampling.azimuth_rays, "
-                                      "or sampling.estimate strict, reduce or see that error)"}};
+            {"not_seen", est.strict
+                             ? "the azimuth probe samples every third cell of a sampled beam's columns"
+                             : "the azimuth probe samples every ninth cell of a sampled beam's columns"}};
     else
         j["sampling_error_estimate"] = nullptr;
     j["time_ms"] = {{"trace", f.trace_ms},

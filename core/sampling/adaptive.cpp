@@ -51,7 +51,7 @@ Choice choose(const SceneDesc& s, const std::vector<const SampleError*>& errs,
     for (size_t g = 0; g < G; ++g) {
         if (!errs[g]) continue;
         num += errs[g]->share(), den += errs[g]->den, n += double(errs[g]->diffs_db.size());
-        for (float d : errs[g]->diffs_db) ex[g] += errs[g]->scale * d > lim;
+        for (float d : errs[g]->diffs_db) ex[g] += d > lim;
         excess += ex[g];
     }
     if (!(den > 0)) return c;
@@ -139,8 +139,7 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
     std::vector<int> level(G, 0);
     std::vector<char> pending(G, 1), has_err(G, 0);
     std::vector<SampleError> err(G);
-    std::vector<double> prev_num(G, 0.0); // a group's last |fine - coarse| sum, at the level below
-    std::vector<int> az_mult(G, 1);       // a group's columns per beam, in multiples of azimuth_rays (strict)
+    std::vector<int> az_mult(G, 1); // a group's columns per beam, in multiples of azimuth_rays (strict)
     if (sp.strict) sp.column_mult.assign(size_t(N), 1);
     TraceResult out;
     out.beams = N;
@@ -162,9 +161,7 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
                                 : -1.0;
     };
     // Strict: whether group g's next step is three columns per beam (azimuth the larger share of its error).
-    auto azimuth_next = [&](size_t g) {
-        return az_mult[g] == 1 && 2 * err[g].az_num > err[g].scale * err[g].num;
-    };
+    auto azimuth_next = [&](size_t g) { return az_mult[g] == 1 && 2 * err[g].az_num > err[g].num; };
     int passes = 0; // base grids traced (trace_pass calls)
     for (int pass = 1;; ++pass) {
         for (int L = 0; L <= kMaxLevel; ++L) {
@@ -173,9 +170,6 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
             for (size_t k = 0; k < G; ++k)
                 if (pending[k] && level[k] == L) idx.push_back(k), sel.push_back(groups[k]);
             if (sel.empty()) continue;
-            // Fast: one level in a denser pass (its columns cost the denser grid's rays). Strict: as many as
-            // in the first, since its estimate counts what the coarser columns at an edge leave in full.
-            sp.edge_azimuth_levels = L == 0 || sp.strict ? adaptive::kEdgeAzimuthLevels : 1;
             // A base grid far off goes denser at once, the largest shares first (the others' shares as last
             // estimated), unrefined here.
             adaptive::BumpRule bump = [&](const std::vector<SampleError>& base) {
@@ -187,8 +181,7 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
                     e[idx[k]] = &base[k], cost[idx[k]] = next_cost(idx[k]);
                 const Choice c = choose(s, e, cost, budget_left(), adaptive::kSkipFactor);
                 std::vector<char> out_k(idx.size(), 0);
-                for (size_t k = 0; k < idx.size(); ++k)
-                    if ((out_k[k] = c.take[idx[k]])) prev_num[idx[k]] = base[k].num;
+                for (size_t k = 0; k < idx.size(); ++k) out_k[k] = c.take[idx[k]];
                 return out_k;
             };
             const bool may_bump = denser(L) && !control.preview && !sp.multipath;
@@ -220,26 +213,17 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
             }
             sp.set_ref_db(fine_img);
             const SceneDesc sampled_scene = adaptive::sampled_beams_scene(s, int(idx.size()));
-            PolarImage edges_img, az_one, az_three; // sampling.estimate strict
-            if (!pc.coarse_edges.cells.empty()) edges_img = shade(pc.coarse_edges, sampled_scene);
-            if (!pc.az_one.cells.empty())
-                az_one = shade(pc.az_one, sampled_scene), az_three = shade(pc.az_three, sampled_scene);
+            const PolarImage edges_img = shade(pc.coarse_edges, sampled_scene);
+            PolarImage az_one, az_three;
             const bool probed = !pc.az_one.cells.empty();
+            if (probed)
+                az_one = shade(pc.az_one, sampled_scene), az_three = shade(pc.az_three, sampled_scene);
             std::vector<SampleError> shares =
                 adaptive::sample_errors(shade(pc.coarse, sampled_scene), fine_img, sp.ref_db,
-                                        {pc.coarse_edges.cells.empty() ? nullptr : &edges_img,
-                                         probed ? &az_one : nullptr, probed ? &az_three : nullptr});
-            for (size_t k = 0; k < idx.size(); ++k) {
-                if (samples[k] < 0) continue;
-                SampleError& e = err[idx[k]];
-                e = std::move(shares[k]), has_err[idx[k]] = 1;
-                // Fast: the ratio of this level's difference to the last one's shows the order (Richardson);
-                // strict tells smooth cells from edges instead.
-                if (prev_num[idx[k]] > 0 && !sp.strict) {
-                    const double rho = std::clamp(e.num / prev_num[idx[k]], 1.0 / 9, 1.0 / 3);
-                    e.scale = 2 * rho / (1 - rho);
-                }
-            }
+                                        {&edges_img, probed ? &az_one : nullptr, probed ? &az_three : nullptr,
+                                         sp.strict, sp.probe_every});
+            for (size_t k = 0; k < idx.size(); ++k)
+                if (samples[k] >= 0) err[idx[k]] = std::move(shares[k]), has_err[idx[k]] = 1;
         }
         if (control.cancelled()) throw TraceCancelled();
         if (control.preview) break;
@@ -256,7 +240,7 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
         for (size_t k = 0; k < G; ++k) az[k] = azimuth_next(k);
         if (sp.multipath) {
             double az_sum = 0, sum = 0;
-            for (size_t k = 0; k < G; ++k) az_sum += 2 * err[k].az_num, sum += err[k].scale * err[k].num;
+            for (size_t k = 0; k < G; ++k) az_sum += 2 * err[k].az_num, sum += err[k].num;
             const bool all_az =
                 std::all_of(az_mult.begin(), az_mult.end(), [](int m) { return m == 1; }) && az_sum > sum;
             std::fill(az.begin(), az.end(), char(all_az));
@@ -275,10 +259,10 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
             if (az[k]) {
                 // Strict: azimuth is the larger share, so three columns per beam at the same base grid (their
                 // coarse image merges them, and the azimuth probe goes on with thirds of the new columns).
-                az_mult[k] = 3, prev_num[k] = 0;
+                az_mult[k] = 3;
                 for (int i : groups[k]) sp.column_mult[size_t(i)] = 3;
             } else {
-                ++level[k], prev_num[k] = err[k].num;
+                ++level[k];
             }
         }
         if (!any) {
@@ -289,6 +273,13 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
     }
     est.budget_reached = est.budget_reached || sp.budget_hit.load();
     est.strict = sp.strict;
+    if (!sp.strict && est.valid) { // fast reports what its probe saw as well (it stopped without it)
+        std::vector<const SampleError*> e(G);
+        for (size_t k = 0; k < G; ++k) e[k] = &err[k];
+        const auto seen = adaptive::combine_errors(e, true);
+        est.rel_l1 = seen.rel_l1, est.median_abs_db = seen.median_abs_db, est.p95_abs_db = seen.p95_abs_db;
+        est.azimuth_rel_l1 = seen.azimuth_rel_l1;
+    }
     if (!control.preview) out.error_estimate = est;
     if (!shaded) shaded = std::make_shared<const Accumulation>(accumulate(out, s, channels));
     out.shaded = std::move(shaded);

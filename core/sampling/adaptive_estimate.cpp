@@ -17,11 +17,12 @@ SceneDesc sampled_beams_scene(const SceneDesc& s, int n) {
 }
 
 std::vector<SampleError> sample_errors(const PolarImage& coarse, const PolarImage& fine, double ref_db,
-                                       const StrictImages& strict) {
+                                       const EstimateImages& images) {
     const int N = fine.beams, K = fine.bins;
     if (std::isnan(ref_db)) ref_db = 0; // no echo estimated yet: any fixed level does
     auto linear = [&](float v) { return v > -INFINITY ? std::exp((double(v) - ref_db) * kLn10Over10) : 0.0; };
-    const PolarImage *edges = strict.coarse_edges, *one = strict.az_one, *three = strict.az_three;
+    const PolarImage *edges = images.coarse_edges, *one = images.az_one, *three = images.az_three;
+    const bool acts = images.act_on_azimuth;
     std::vector<SampleError> out(static_cast<size_t>(N));
     for (int i = 0; i < N; ++i) {
         SampleError& e = out[size_t(i)];
@@ -31,31 +32,47 @@ std::vector<SampleError> sample_errors(const PolarImage& coarse, const PolarImag
             const double la = a == f ? lf : linear(a), lm = m == f ? lf : m == a ? la : linear(m);
             // What the edges' merges change in full, the smooth merges' (a against m) at kSmoothShare.
             const double d = std::abs(lm - lf) + kSmoothShare * std::abs(la - lm);
-            // The azimuth probe's |three columns - one| over its cells, every kProbeEvery-th: the error.
+            // The azimuth probe's |three columns - one| over its cells, every probe_every-th: the error.
             const double az =
-                one && three ? kProbeEvery * std::abs(linear(three->at(b, i)) - linear(one->at(b, i))) : 0.0;
-            e.num += d, e.az_num += az, e.den += lf;
+                one && three ? images.probe_every * std::abs(linear(three->at(b, i)) - linear(one->at(b, i)))
+                             : 0.0;
+            e.num += d, e.den += lf;
+            (acts ? e.az_num : e.az_seen) += az;
             if (!(a > -INFINITY && f > -INFINITY)) continue;
-            // Both in dB (twice the error, as d), on the coarse level's side.
-            const double d_all = d + 2 * az, lc = la >= lf ? lf + d_all : lf - d_all;
-            const double d_db = edges && lc > 0 ? 10 * std::log10(lc / lf) : double(a) - double(f);
-            e.diffs_db.push_back(float(std::abs(d_db)));
+            // In dB (twice the error, as d), on the coarse level's side; without the edges' image d is
+            // |coarse - fine| itself.
+            auto diff_db = [&](double d_all) {
+                const double lc = la >= lf ? lf + d_all : lf - d_all;
+                return float(std::abs(edges && lc > 0 ? 10 * std::log10(lc / lf) : double(a) - double(f)));
+            };
+            const float d_db = diff_db(acts ? d + 2 * az : d);
+            e.diffs_db.push_back(d_db);
+            if (!acts && one && three)
+                e.seen_inc_db.push_back(az > 0 ? std::max(0.0f, diff_db(d + 2 * az) - d_db) : 0.0f);
         }
     }
     return out;
 }
 
-TraceResult::ErrorEstimate combine_errors(const std::vector<const SampleError*>& errors) {
-    double num = 0, den = 0;
+TraceResult::ErrorEstimate combine_errors(const std::vector<const SampleError*>& errors, bool seen) {
+    double num = 0, den = 0, az_seen = 0;
     size_t n = 0;
-    for (const SampleError* e : errors) num += e->share(), den += e->den, n += e->diffs_db.size();
+    for (const SampleError* e : errors)
+        num += e->share(), den += e->den, az_seen += 2 * e->az_seen, n += e->diffs_db.size();
+    if (seen) num += az_seen;
     std::vector<float> diffs;
     diffs.reserve(n);
-    for (const SampleError* e : errors)
-        for (float d : e->diffs_db) diffs.push_back(float(e->scale) * d);
+    for (const SampleError* e : errors) {
+        // Fast's probe, when reported: what its azimuth share adds to each bin of a probed group.
+        const bool inc = seen && e->seen_inc_db.size() == e->diffs_db.size();
+        for (size_t k = 0; k < e->diffs_db.size(); ++k)
+            diffs.push_back(e->diffs_db[k] + (inc ? e->seen_inc_db[k] : 0.0f));
+    }
     TraceResult::ErrorEstimate est;
     est.valid = true;
-    est.rel_l1 = (den > 0 ? num / den : (num > 0 ? INFINITY : 0.0)) / 2;
+    auto ratio = [&](double x) { return (den > 0 ? x / den : (x > 0 ? INFINITY : 0.0)) / 2; };
+    est.rel_l1 = ratio(num);
+    if (seen) est.azimuth_rel_l1 = ratio(az_seen);
     if (!diffs.empty()) {
         auto q = [&](double f) {
             const size_t k = std::min(diffs.size() - 1, size_t(f * double(diffs.size() - 1) + 0.5));

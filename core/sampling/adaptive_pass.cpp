@@ -128,8 +128,8 @@ std::uint64_t coarse_cells_of(const Sampler& sp, const std::vector<Column>& cols
 }
 
 /// The cells of the refined columns (fine) and, on the `samples` beams (slot k: samples[k]; -1: none)
-/// unless previewing, the same cells one level coarser (`coarse`, coarse_cells_of) and, with
-/// sampling.estimate strict, the same with only the triples that are not smooth merged (`coarse_edges`);
+/// unless previewing, the same cells one level coarser (`coarse`, coarse_cells_of) and the same with only
+/// the triples that are not smooth merged (`coarse_edges`);
 /// with multipath their ghosts, the coarser images' those arriving in each sample beam. Frees the columns.
 void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samples, TraceResult& fine,
                    TraceResult& coarse, TraceResult& coarse_edges) {
@@ -138,13 +138,13 @@ void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samp
     std::vector<int> slot(static_cast<size_t>(N), -1); // beam -> its slot
     for (int k = 0; k < sampled; ++k)
         if (samples[size_t(k)] >= 0) slot[size_t(samples[size_t(k)])] = k;
-    fine.beams = N, coarse.beams = sampled;
-    coarse.cells.resize(size_t(sampled)), fine.cells.resize(size_t(N));
-    if (sp.strict) coarse_edges.beams = sampled, coarse_edges.cells.resize(size_t(sampled));
+    fine.beams = N, coarse.beams = coarse_edges.beams = sampled;
+    coarse.cells.resize(size_t(sampled)), coarse_edges.cells.resize(size_t(sampled));
+    fine.cells.resize(size_t(N));
     // Ghosts by the beam whose rays found them (the coarse ones on sample beams only).
     std::vector<std::vector<GhostCell>> fine_ghosts(static_cast<size_t>(N)),
         coarse_ghosts(static_cast<size_t>(sp.multipath ? N : 0)),
-        edge_ghosts(static_cast<size_t>(sp.strict && sp.multipath ? N : 0));
+        edge_ghosts(static_cast<size_t>(sp.multipath ? N : 0));
     std::vector<std::uint64_t> ghost_rays(static_cast<size_t>(N), 0);
     tbb::parallel_for(0, N, [&](int i) {
         const auto& cols = beams[size_t(i)];
@@ -161,7 +161,6 @@ void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samp
         if (sp.multipath) coarse_ghosts[size_t(i)].reserve(3 * nodes);
         ghost_rays[size_t(i)] += coarse_cells_of(sp, cols, Merge::kAll, coarse.cells[k],
                                                  sp.multipath ? coarse_ghosts[size_t(i)] : none);
-        if (!sp.strict) return;
         ghost_rays[size_t(i)] += coarse_cells_of(sp, cols, Merge::kEdges, coarse_edges.cells[k],
                                                  sp.multipath ? edge_ghosts[size_t(i)] : none);
     });
@@ -176,7 +175,7 @@ void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samp
                     r.ghosts[size_t(k)] = std::move(arriving[size_t(samples[size_t(k)])]);
         };
         by_slot(coarse_ghosts, coarse);
-        if (sp.strict) by_slot(edge_ghosts, coarse_edges);
+        by_slot(edge_ghosts, coarse_edges);
         for (auto r : ghost_rays) fine.multipath_rays += r;
     }
     for (auto& b : beams)
@@ -263,24 +262,23 @@ static std::vector<SampleError> base_errors(Sampler& sp, const Beams& beams, con
     TraceResult fine, coarse, coarse_edges;
     fine.beams = coarse.beams = coarse_edges.beams = sampled;
     fine.cells.resize(size_t(sampled)), coarse.cells.resize(size_t(sampled));
-    if (sp.strict) coarse_edges.cells.resize(size_t(sampled));
+    coarse_edges.cells.resize(size_t(sampled));
     tbb::parallel_for(0, sampled, [&](int k) {
         std::vector<GhostCell> ghosts; // not used with multipath
         for (const auto& c : beams[size_t(groups[size_t(k)].front())]) {
             sp.cells_of(c, Merge::kNone, c.da, fine.cells[size_t(k)], ghosts);
             sp.cells_of(c, Merge::kAll, c.da, coarse.cells[size_t(k)], ghosts);
-            if (sp.strict) sp.cells_of(c, Merge::kEdges, c.da, coarse_edges.cells[size_t(k)], ghosts);
+            sp.cells_of(c, Merge::kEdges, c.da, coarse_edges.cells[size_t(k)], ghosts);
         }
     });
     const SceneDesc sampled_scene = sampled_beams_scene(s, sampled);
     const PolarImage f = shade(fine, sampled_scene);
     sp.set_ref_db(f);
-    PolarImage e;
-    if (sp.strict) e = shade(coarse_edges, sampled_scene);
-    return sample_errors(shade(coarse, sampled_scene), f, sp.ref_db, {sp.strict ? &e : nullptr});
+    const PolarImage e = shade(coarse_edges, sampled_scene);
+    return sample_errors(shade(coarse, sampled_scene), f, sp.ref_db, {&e});
 }
 
-/// The azimuth probe of a sample beam's columns `cols` (refined): on every kProbeEvery-th cell of each
+/// The azimuth probe of a sample beam's columns `cols` (refined): on every probe_every-th cell of each
 /// column still at the beam's base width (not split in azimuth), two more rays at a third of the width each
 /// side; those cells as one column (`one`) and as three (`three`), appended, and with multipath their
 /// ghosts (`one_ghosts`, `three_ghosts`). Returns the rays traced; `ghost_rays` gets the ghosts' rays.
@@ -296,7 +294,7 @@ std::uint64_t azimuth_probe(const Sampler& sp, const std::vector<Column>& cols, 
         const Angle a(c.a), a_lo(c.a - c.da / 2), a_hi(c.a + c.da / 2);
         const Angle m_lo(c.a - d3 / 2), m_hi(c.a + d3 / 2), p(c.a + d3), p_hi(c.a + c.da / 2), st(c.a - d3),
             st_lo(c.a - c.da / 2);
-        for (size_t t = kProbeEvery / 2; t < c.nodes.size(); t += kProbeEvery) {
+        for (size_t t = size_t(sp.probe_every / 2); t < c.nodes.size(); t += size_t(sp.probe_every)) {
             const Node& b = c.nodes[t];
             const Angle& e = b.angle;
             const Angle h(b.de / 2);
@@ -367,8 +365,8 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
         if (!out.bumped[size_t(k)]) samples[size_t(k)] = groups[size_t(k)].front();
     // The azimuth probe, on every sample beam: neither the refinement's neighbour tests nor the coarse image
     // see how the scene varies across a column's width (column triples merge only while no split broke
-    // them, and splits at edges break most).
-    const bool probe = sp.strict && !sp.control.preview;
+    // them, and splits at edges break most). Strict acts on it, fast reports it.
+    const bool probe = !sp.control.preview;
     std::uint64_t probe_rays = 0;
     if (probe) {
         out.az_one.beams = out.az_three.beams = G;

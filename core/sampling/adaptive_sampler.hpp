@@ -28,16 +28,14 @@ struct Sampler {
     const TraceControl& control;
     detail::RayFrame frame;
     bool multipath; ///< ghosts to find (sampling.bounces and a mirror)
-    /// sampling.estimate strict: smooth triples and the azimuth probe (SampleError); with multipath a triple
-    /// is smooth only where its continuations are too, and the probe's cells bring their ghosts
+    /// sampling.estimate strict: the sampler acts on its azimuth probe (three ray columns per beam where
+    /// azimuth is the larger share of a group's error); fast only reports what the probe sees
     bool strict;
+    int probe_every; ///< the azimuth probe's cells: every kProbeEvery-th (strict), kFastProbeEvery-th (fast)
     detail::Multipath mp;
     RefineCriteria criteria;
     double phi; ///< the traced elevation aperture [rad]
     int elevation_levels, azimuth_levels;
-    /// Azimuth levels split where neighbouring columns disagree: kEdgeAzimuthLevels in the first pass, one
-    /// in a denser pass (its columns cost the denser grid's rays; a specular lobe still splits to the end).
-    int edge_azimuth_levels = kEdgeAzimuthLevels;
     mutable std::atomic<std::uint64_t> rays{0}; ///< rays traced or reserved in this image, all passes
     mutable std::atomic<bool> budget_hit{false};
     std::vector<Angle> base_angles; ///< the base grid's elevations (set_base_grid)
@@ -123,15 +121,18 @@ struct SampleError {
     /// changes times kSmoothShare (sample_errors)
     double num = 0, den = 0;
     std::vector<float> diffs_db; ///< |coarse - fine| [dB] over bins echoing in both, counted as num is
-    /// The fine error is taken as scale x |fine - coarse| / 2: 1 for first-order convergence (the slowest
-    /// case), down to 1/4 for second order, as the group's last two levels show (Richardson).
-    double scale = 1;
-    /// Sum |three columns - one| over the bins of the azimuth probe (azimuth_probe), times kProbeEvery: the
-    /// error of a single column per beam across its width, which the coarse image (columns merge only in
-    /// split triples) does not see; 0 where the beam has column triples of its own, and with fast.
+    /// Sum |three columns - one| over the bins of the azimuth probe (azimuth_probe), times the probe's
+    /// stride: the error of a single column per beam across its width, which the coarse image (columns
+    /// merge only in split triples) does not see; 0 where the beam has column triples of its own. Strict
+    /// acts on it (and diffs_db includes it).
     double az_num = 0;
-    /// Twice the group's estimated error (the sums' unit): scale x num, plus the azimuth probe's.
-    double share() const { return scale * num + 2 * az_num; }
+    /// Fast: the same sum, reported but not acted on (neither the choice of groups nor the stopping rule
+    /// counts it: no column is added for it), and per entry of diffs_db what it adds [dB].
+    double az_seen = 0;
+    std::vector<float> seen_inc_db;
+    /// Twice the group's estimated error that the sampler acts on (the sums' unit): num plus the azimuth
+    /// probe's under strict.
+    double share() const { return num + 2 * az_num; }
 };
 
 /// What merging a smooth triple changes counts this much in the estimate: the midpoint rule converges in
@@ -147,7 +148,7 @@ using BeamGroups = std::vector<std::vector<int>>;
 struct PassCells {
     TraceResult fine;         ///< cells (and ghosts) per beam of the image; empty for beams not refined
     TraceResult coarse;       ///< per group passed in (slot k: group k's sample beam), one level coarser
-    TraceResult coarse_edges; ///< the same with only the triples that are not smooth merged (strict)
+    TraceResult coarse_edges; ///< the same with only the triples that are not smooth merged
     std::vector<char> bumped; ///< per group passed in: left unrefined, for a denser base grid
     /// The azimuth probe (slot k: group k's sample beam; empty unless probed): the cells it probed (every
     /// kProbeEvery-th of the columns not split in azimuth) as one column and as three, with multipath their
@@ -167,23 +168,27 @@ using BumpRule = std::function<std::vector<char>(const std::vector<SampleError>&
 PassCells trace_pass(Sampler& sampler, int M0, const BeamGroups& groups, const BumpRule* bump,
                      Beams* carried);
 
-/// sampling.estimate strict's images of the same sample beams (null: none): the coarse image with only the
-/// triples that are not smooth merged, and the azimuth probe's cells as one column and as three.
-struct StrictImages {
+/// Images of the same sample beams besides fine and coarse (null: none): the coarse image with only the
+/// triples that are not smooth merged, and the azimuth probe's cells (every probe_every-th) as one column
+/// and as three. `act_on_azimuth`: strict (fast only reports the probe, SampleError::az_seen).
+struct EstimateImages {
     const PolarImage* coarse_edges = nullptr;
     const PolarImage* az_one = nullptr;
     const PolarImage* az_three = nullptr;
+    bool act_on_azimuth = true;
+    int probe_every = kProbeEvery;
 };
 
 /// Per sample beam (column k of the images: the same beams), the estimate's share (adaptive_estimate.cpp).
-/// Without `strict`, every triple counts as not smooth and nothing is probed.
+/// Without `coarse_edges`, every triple counts as not smooth; without the probe's images, no azimuth share.
 std::vector<SampleError> sample_errors(const PolarImage& coarse, const PolarImage& fine, double ref_db,
-                                       const StrictImages& strict = {});
+                                       const EstimateImages& images = {});
 
-/// The image's error estimated from its groups' shares: fine error ~ scale x |fine - coarse| / 2 (with
-/// scale 1, the coarse image's error taken as three times the fine one's: first order at
-/// discontinuities, the slowest case).
-TraceResult::ErrorEstimate combine_errors(const std::vector<const SampleError*>& errors);
+/// The image's error estimated from its groups' shares: fine error ~ |fine - coarse| / 2 (the coarse
+/// image's error taken as three times the fine one's: first order at discontinuities, the slowest case;
+/// smooth triples count at kSmoothShare). `seen`: with what fast's probe saw but did not act on (az_seen),
+/// as reported; without it, what the sampler's choices and stopping rule use.
+TraceResult::ErrorEstimate combine_errors(const std::vector<const SampleError*>& errors, bool seen = false);
 
 /// The scene of n of its beams as an image of their own (shade() sums beam by beam, so a beam's image does
 /// not depend on the others; the image channel needs no beam angles, so they are even).

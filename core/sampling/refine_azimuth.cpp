@@ -168,7 +168,7 @@ void Sampler::refine_azimuth(Beams& beams, int M0) const {
             auto& m = mark[size_t(i)];
             m.resize(cols.size());
             for (size_t k = 0; k < cols.size(); ++k) m[k].assign(size_t(cols[k].j1 - cols[k].j0), 0);
-            if (lv < edge_azimuth_levels) mark_neighbours(*this, beams, i, lv, M0, m);
+            if (lv < kEdgeAzimuthLevels) mark_neighbours(*this, beams, i, lv, M0, m);
             if (mark_alone(*this, cols, min_da, lv > 0, m)) any = true;
         });
         if (!any) break;

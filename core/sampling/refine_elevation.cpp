@@ -9,7 +9,8 @@ namespace sonarsim::adaptive {
 
 Sampler::Sampler(const SceneGeometry& geo, const SceneDesc& scene, const TraceControl& c)
     : g(geo), s(scene), control(c), frame(scene), multipath(detail::multipath_active(scene)),
-      strict(scene.sampling.estimate == ErrorEstimate::Strict), mp(geo, scene, frame),
+      strict(scene.sampling.estimate == ErrorEstimate::Strict),
+      probe_every(strict ? kProbeEvery : kFastProbeEvery), mp(geo, scene, frame),
       criteria(scene, frame, multipath), phi(frame.elevation_weight.traced_fov_rad()),
       elevation_levels(c.preview ? 0 : kElevationLevels), azimuth_levels(c.preview ? 0 : kAzimuthLevels) {
     for (int i = 0; i < scene.sonar.beams; ++i)

@@ -71,8 +71,12 @@ struct TraceResult {
         double rel_l1 = 0, median_abs_db = 0, p95_abs_db = 0;
         int passes = 0;
         bool budget_reached = false; ///< refinement stopped at sampling.max_rays before the tolerance was met
-        /// sampling.estimate strict was applied: smooth cells at second order and the azimuth probe
+        /// sampling.estimate strict was applied: the sampler added ray columns where its azimuth probe found
+        /// the larger share of the error (fast only reports it)
         bool strict = false;
+        /// Fast: the part of rel_l1 that its azimuth probe saw and the sampler did not refine (one ray column
+        /// per beam across the beam's width; strict refines it); included in rel_l1 and the quantiles.
+        double azimuth_rel_l1 = 0;
         /// Whether both of the sampler's targets are met: median |dB| <= tolerance_db and rel L1 <=
         /// tolerance_rel_l1.
         bool meets(const SamplingParams& p) const {

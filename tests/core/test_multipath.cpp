@@ -206,11 +206,12 @@ TEST_CASE("the tank's ghosts at one ray column per beam are close to those at ni
     CHECK(err < 0.10);
 }
 
-TEST_CASE("the strict estimate sees the tank's ghosts' error where the fast one does not", "[multipath]") {
+TEST_CASE("both estimates see the tank's ghosts' error and strict refines it", "[multipath]") {
     // Two bounces in the tank, against spread 729 x 9 (itself 0.13 % off 729 x 27). One ray column per beam
-    // leaves the ghosts 1.5 % off where the fast estimate says 0.43 %. The strict estimate's azimuth probe
-    // brings the probed cells' ghosts, so it sees that error, takes three columns per beam for every group
-    // (a pass's ghosts are the whole image's), and ends within the tolerance: 0.43 %, estimated 0.44 %.
+    // leaves the ghosts 1.5 % off. The azimuth probe brings the probed cells' ghosts, so both estimates see
+    // that error (before the probe, fast said 0.43 %): fast reports it (1.7 %, tolerance not met); strict
+    // takes three columns per beam for every group (a pass's ghosts are the whole image's) and ends within
+    // the tolerance: 0.43 %, estimated 0.44 %.
     SceneDesc s = load_scene(std::string(SONARSIM_ASSETS) + "/scenes/tank.json");
     s.sampling.bounces = 2;
     const SceneGeometry g(s);
@@ -223,17 +224,22 @@ TEST_CASE("the strict estimate sees the tank's ghosts' error where the fast one 
         a.sampling.estimate = how;
         const TraceResult t = trace(g, a);
         CHECK(t.error_estimate.strict == (how == ErrorEstimate::Strict));
-        return std::make_pair(t.error_estimate.rel_l1, compare_images(*t.shaded->image, ref).rel_l1);
+        CHECK(t.error_estimate.meets(a.sampling) == (how == ErrorEstimate::Strict));
+        return std::make_tuple(t.error_estimate.rel_l1, compare_images(*t.shaded->image, ref).rel_l1,
+                               t.error_estimate.azimuth_rel_l1);
     };
-    const auto [fast_est, fast_err] = measure(ErrorEstimate::Fast);
-    const auto [strict_est, strict_err] = measure(ErrorEstimate::Strict);
-    INFO("fast: estimate " << fast_est << " measured " << fast_err << "; strict: estimate " << strict_est
-                           << " measured " << strict_err);
+    const auto [fast_est, fast_err, fast_az] = measure(ErrorEstimate::Fast);
+    const auto [strict_est, strict_err, strict_az] = measure(ErrorEstimate::Strict);
+    INFO("fast: estimate " << fast_est << " (azimuth " << fast_az << ") measured " << fast_err
+                           << "; strict: estimate " << strict_est << " measured " << strict_err);
     CHECK(fast_err > s.sampling.tolerance_rel_l1);
-    CHECK(fast_est < 0.5 * fast_err);
+    CHECK(fast_est > 0.8 * fast_err); // within the reference's own error of honest
+    CHECK(fast_est < 3 * fast_err);
+    CHECK(fast_az > 0);
     CHECK(strict_err < s.sampling.tolerance_rel_l1);
-    CHECK(strict_est > 0.8 * strict_err); // within the reference's own error of honest
+    CHECK(strict_est > 0.8 * strict_err);
     CHECK(strict_est < 3 * strict_err);
+    CHECK(strict_az == 0);
 }
 
 TEST_CASE("a trace of some beams estimates its ghosts' error from the ghosts arriving in its sample beams",

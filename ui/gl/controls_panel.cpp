@@ -277,18 +277,20 @@ void estimate_line(const SceneDesc& s, const TraceResult::ErrorEstimate& est) {
     const char* mode = est.strict ? " strict" : "";
     if (met)
         ImGui::TextDisabled("estimate %.2f %% %.3f dB%s", 100 * est.rel_l1, est.median_abs_db, mode);
-    else
+    else // fast stops once what it refines meets the tolerances: the rest is across the beams
         ImGui::TextColored(ImVec4(1.0f, 0.65f, 0.3f, 1.0f), "estimate %.2f %% %.3f dB%s, %s",
                            100 * est.rel_l1, est.median_abs_db, mode,
-                           est.budget_reached ? "budget" : "> tol.");
+                           est.budget_reached ? "budget"
+                           : est.strict       ? "> tol."
+                                              : "> tol. in azimuth");
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip(
             "The sampler's estimate of this image's error: rel L1 of the linear image and median "
             "|dB| over echoing bins,\nagainst sampling.tolerance_rel_l1 (%.2f %%) and tolerance_db "
-            "(%.3f dB). sampling.estimate fast: every\ndifference at first order, blind to the "
-            "error of one ray column across a beam; strict: second order on\nsmooth surfaces "
-            "and an azimuth probe (docs/model.md).",
-            100 * s.sampling.tolerance_rel_l1, s.sampling.tolerance_db);
+            "(%.3f dB); %.2f %% of it is one ray column's error across a beam's\nwidth, which "
+            "sampling.estimate fast reports and does not refine (strict adds ray columns for it; "
+            "docs/model.md).",
+            100 * s.sampling.tolerance_rel_l1, s.sampling.tolerance_db, 100 * est.azimuth_rel_l1);
 }
 
 void stats_section(Session& session, const ControlsUi& ui) {

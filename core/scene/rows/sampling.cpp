@@ -47,11 +47,11 @@ std::vector<ParamSpec> sampling_rows() {
                     .with_label("rel L1 tolerance"));
     t.push_back(enumeration<ErrorEstimate>(
         "sampling.estimate", {"fast", "strict"}, Stage::Trace,
-        "adaptive: how the sampler estimates its error. fast: every difference to the next coarser cells "
-        "at first order, blind to the error of one ray column across a beam; strict: second order on "
-        "smooth surfaces, first at edges, plus an azimuth probe and three columns per beam where it finds "
-        "azimuth the larger error, and edge splits in azimuth as deep in every pass (above the measured "
-        "error on every benchmark scene, at 1-2x the time)",
+        "adaptive: what the sampler does with its error estimate (second order on smooth surfaces, first "
+        "at edges, plus an azimuth probe: three ray columns against one beside some cells of every 4th "
+        "beam). fast: refines in elevation and at azimuth edges only, and reports the probe's share "
+        "(sampling_error_estimate.azimuth_rel_l1, included in rel_l1); strict: probes three times as "
+        "many cells and traces three ray columns per beam where azimuth is the larger share",
         [](S s) -> ErrorEstimate& { return s.sampling.estimate; }));
     t.push_back(integer("sampling.max_rays", 1000, kMaxRaysPerImage, Stage::Trace,
                         "adaptive: budget of rays per image, refinement and passes included; when reached, "
