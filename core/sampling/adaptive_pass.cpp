@@ -105,22 +105,22 @@ void set_base_image(Sampler& sp, const Beams& beams) {
         peak + 10 * std::log10(kCellShare * s.sampling.tolerance_rel_l1 * sum / cells);
 }
 
-/// The coarse cells of one beam's columns (sibling column triples -> the middle column, 3 da; within each
-/// column, the sibling elevation triples `merge` picks -> the middle cell). Returns the ghosts' rays.
-std::uint64_t coarse_cells_of(const Sampler& sp, const std::vector<Column>& cols, Merge merge,
-                              std::vector<Cell>& cells, std::vector<GhostCell>& ghosts) {
+/// The cells of one beam's columns (`fine`) and one level coarser: sibling column triples -> the middle
+/// column, 3 da, and within each column every sibling elevation triple -> the middle cell (`all`); the same
+/// with only the triples that are not smooth merged, columns and cells (`edges`). Each cell is made once
+/// for the outputs that share it. Returns the ghosts' rays.
+std::uint64_t coarse_cells_of(const Sampler& sp, const std::vector<Column>& cols, CellsOut fine, CellsOut all,
+                              CellsOut edges) {
     std::uint64_t rays = 0;
     for (size_t k = 0; k < cols.size();) {
         if (k + 2 < cols.size() && cols[k].group == cols[k + 1].group && cols[k].group == cols[k + 2].group) {
-            if (merge == Merge::kEdges && sp.smooth_column_triple(cols, k)) {
-                for (size_t t = k; t < k + 3; ++t)
-                    rays += sp.cells_of(cols[t], merge, cols[t].da, cells, ghosts);
-            } else {
-                rays += sp.cells_of(cols[k + 1], merge, 3 * cols[k + 1].da, cells, ghosts);
-            }
+            const bool smooth = sp.smooth_column_triple(cols, k);
+            for (size_t t = k; t < k + 3; ++t)
+                rays += sp.cells_of(cols[t], cols[t].da, fine, {}, smooth ? edges : CellsOut{});
+            rays += sp.cells_of(cols[k + 1], 3 * cols[k + 1].da, {}, all, smooth ? CellsOut{} : edges);
             k += 3;
         } else {
-            rays += sp.cells_of(cols[k], merge, cols[k].da, cells, ghosts);
+            rays += sp.cells_of(cols[k], cols[k].da, fine, all, edges);
             ++k;
         }
     }
@@ -152,17 +152,16 @@ void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samp
         for (auto& c : cols) nodes += c.nodes.size();
         fine.cells[size_t(i)].reserve(nodes);
         if (sp.multipath) fine_ghosts[size_t(i)].reserve(3 * nodes); // at most three per cell (bounces 1)
-        for (auto& c : cols)
-            ghost_rays[size_t(i)] +=
-                sp.cells_of(c, Merge::kNone, c.da, fine.cells[size_t(i)], fine_ghosts[size_t(i)]);
-        if (sp.control.preview || slot[size_t(i)] < 0) return;
+        const CellsOut out{&fine.cells[size_t(i)], sp.multipath ? &fine_ghosts[size_t(i)] : nullptr};
+        if (sp.control.preview || slot[size_t(i)] < 0) {
+            for (auto& c : cols) ghost_rays[size_t(i)] += sp.cells_of(c, c.da, out);
+            return;
+        }
         const size_t k = size_t(slot[size_t(i)]);
-        std::vector<GhostCell> none; // without multipath
         if (sp.multipath) coarse_ghosts[size_t(i)].reserve(3 * nodes);
-        ghost_rays[size_t(i)] += coarse_cells_of(sp, cols, Merge::kAll, coarse.cells[k],
-                                                 sp.multipath ? coarse_ghosts[size_t(i)] : none);
-        ghost_rays[size_t(i)] += coarse_cells_of(sp, cols, Merge::kEdges, coarse_edges.cells[k],
-                                                 sp.multipath ? edge_ghosts[size_t(i)] : none);
+        ghost_rays[size_t(i)] += coarse_cells_of(
+            sp, cols, out, {&coarse.cells[k], sp.multipath ? &coarse_ghosts[size_t(i)] : nullptr},
+            {&coarse_edges.cells[k], sp.multipath ? &edge_ghosts[size_t(i)] : nullptr});
     });
     if (sp.multipath) {
         fine.ghosts = detail::gather_ghosts(fine_ghosts, s);
@@ -186,8 +185,8 @@ void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samp
 
 } // namespace
 
-std::uint64_t Sampler::cells_of(const Column& c, Merge merge, double da, std::vector<Cell>& out,
-                                std::vector<GhostCell>& ghosts) const {
+std::uint64_t Sampler::cells_of(const Column& c, double da, CellsOut fine, CellsOut all,
+                                CellsOut edges) const {
     std::uint64_t rays = 0;
     const Angle a(c.a), a_lo(c.a - da / 2), a_hi(c.a + da / 2);
     // Cell widths come in a few sizes (de0 / 3^k): keep sin and cos of their halves.
@@ -201,23 +200,37 @@ std::uint64_t Sampler::cells_of(const Column& c, Merge merge, double da, std::ve
         slot = {de, Angle(de / 2)};
         return slot.second;
     };
-    auto emit = [&](const Node& n, double de) {
+    thread_local std::vector<GhostCell> made; // one cell's ghosts, before they go to each output
+    auto emit = [&](const Node& n, double de, std::initializer_list<const CellsOut*> to) {
         if (!n.hit) return;
         const Angle& h = half(de);
         const Angle& e = n.angle;
         const Angle lo(e.rad - h.rad, e, h, -1), hi(e.rad + h.rad, e, h, +1); // e -+ de/2 (angle sums)
-        out.push_back(detail::make_cell(frame, *n.hit, a, e, a_lo, a_hi, lo, hi));
-        if (multipath) rays += mp.ghosts(*n.hit, a, e, a_lo, a_hi, lo, hi, c.beam, ghosts, n.via);
-    };
-    for (size_t n = 0; n < c.nodes.size();) {
-        if (merge != Merge::kNone && n + 2 < c.nodes.size() && c.nodes[n].group == c.nodes[n + 1].group &&
-            c.nodes[n].group == c.nodes[n + 2].group && (merge == Merge::kAll || !smooth_triple(c, n))) {
-            emit(c.nodes[n + 1], 3 * c.nodes[n + 1].de);
-            n += 3;
-        } else {
-            emit(c.nodes[n], c.nodes[n].de);
-            ++n;
+        const Cell cell = detail::make_cell(frame, *n.hit, a, e, a_lo, a_hi, lo, hi);
+        made.clear();
+        if (multipath) rays += mp.ghosts(*n.hit, a, e, a_lo, a_hi, lo, hi, c.beam, made, n.via);
+        for (const CellsOut* o : to) {
+            if (!o->cells) continue;
+            o->cells->push_back(cell);
+            if (o->ghosts) o->ghosts->insert(o->ghosts->end(), made.begin(), made.end());
         }
+    };
+    const CellsOut none{};
+    for (size_t n = 0; n < c.nodes.size();) {
+        const bool triple = n + 2 < c.nodes.size() && c.nodes[n].group == c.nodes[n + 1].group &&
+                            c.nodes[n].group == c.nodes[n + 2].group;
+        if (!triple || (!all.cells && !edges.cells)) {
+            emit(c.nodes[n], c.nodes[n].de, {&fine, &all, &edges});
+            ++n;
+            continue;
+        }
+        const bool smooth = edges.cells && smooth_triple(c, n);
+        const CellsOut& fine_edges = smooth ? edges : none;
+        if (fine.cells || smooth)
+            for (size_t t = n; t < n + 3; ++t) emit(c.nodes[t], c.nodes[t].de, {&fine, &fine_edges});
+        if (all.cells || !smooth)
+            emit(c.nodes[n + 1], 3 * c.nodes[n + 1].de, {&all, smooth ? &none : &edges});
+        n += 3;
     }
     return rays;
 }
@@ -263,13 +276,10 @@ static std::vector<SampleError> base_errors(Sampler& sp, const Beams& beams, con
     fine.beams = coarse.beams = coarse_edges.beams = sampled;
     fine.cells.resize(size_t(sampled)), coarse.cells.resize(size_t(sampled));
     coarse_edges.cells.resize(size_t(sampled));
-    tbb::parallel_for(0, sampled, [&](int k) {
-        std::vector<GhostCell> ghosts; // not used with multipath
-        for (const auto& c : beams[size_t(groups[size_t(k)].front())]) {
-            sp.cells_of(c, Merge::kNone, c.da, fine.cells[size_t(k)], ghosts);
-            sp.cells_of(c, Merge::kAll, c.da, coarse.cells[size_t(k)], ghosts);
-            sp.cells_of(c, Merge::kEdges, c.da, coarse_edges.cells[size_t(k)], ghosts);
-        }
+    tbb::parallel_for(0, sampled, [&](int k) { // without multipath: no ghosts
+        for (const auto& c : beams[size_t(groups[size_t(k)].front())])
+            sp.cells_of(c, c.da, {&fine.cells[size_t(k)]}, {&coarse.cells[size_t(k)]},
+                        {&coarse_edges.cells[size_t(k)]});
     });
     const SceneDesc sampled_scene = sampled_beams_scene(s, sampled);
     const PolarImage f = shade(fine, sampled_scene);

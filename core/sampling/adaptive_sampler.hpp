@@ -19,8 +19,11 @@
 
 namespace sonarsim::adaptive {
 
-/// Which sibling triples a column's cells merge (Sampler::cells_of).
-enum class Merge { kNone, kAll, kEdges };
+/// Where Sampler::cells_of puts a column's cells and, with multipath, their ghosts (null: not wanted).
+struct CellsOut {
+    std::vector<Cell>* cells = nullptr;
+    std::vector<GhostCell>* ghosts = nullptr;
+};
 
 struct Sampler {
     const SceneGeometry& g;
@@ -92,11 +95,12 @@ struct Sampler {
     void refine_azimuth(Beams& beams, int M0) const;
 
     // adaptive_pass.cpp
-    /// Cells of a column, and their multipath ghosts (with multipath); Merge::kAll merges every complete
-    /// sibling triple into its middle cell (one level up), Merge::kEdges only the triples that are not
-    /// smooth (smooth_triple). Returns the ghosts' rays.
-    std::uint64_t cells_of(const Column& c, Merge merge, double da, std::vector<Cell>& out,
-                           std::vector<GhostCell>& ghosts) const;
+    /// Cells of a column at azimuth width da, and their multipath ghosts (with multipath), into up to three
+    /// outputs: every node's cell (`fine`); every complete sibling triple merged into its middle cell, one
+    /// level up (`all`); only the triples that are not smooth merged (`edges`, smooth_triple). Each cell and
+    /// its ghosts are made once, whichever outputs share them. Returns the ghosts' rays.
+    std::uint64_t cells_of(const Column& c, double da, CellsOut fine, CellsOut all = {},
+                           CellsOut edges = {}) const;
     /// Whether the sibling triple at nodes [n, n + 3) of c lies on one smooth surface: every cell hits, no
     /// step between neighbours (RefineCriteria::edge_between) and no reason for the merged cell to split
     /// alone. Merging it changes the image in second order of the cell width; other triples, first order.
