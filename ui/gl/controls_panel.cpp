@@ -268,6 +268,15 @@ void material_section(Session& session, ControlsUi& ui) {
     }
 }
 
+void estimate_tooltip(const SceneDesc& s, const TraceResult::ErrorEstimate& est) {
+    ImGui::SetTooltip("The sampler's estimate of this image's error: rel L1 of the linear image and median "
+                      "|dB| over echoing bins,\nagainst sampling.tolerance_rel_l1 (%.2f %%) and tolerance_db "
+                      "(%.3f dB); %.2f %% of it is one ray column's error across a beam's\nwidth, which "
+                      "sampling.estimate fast reports and does not refine (strict adds ray columns for it; "
+                      "docs/model.md).",
+                      100 * s.sampling.tolerance_rel_l1, s.sampling.tolerance_db, 100 * est.azimuth_rel_l1);
+}
+
 /// The adaptive sampler's estimate of the shown image's error, against its tolerances (none for a grid or a
 /// preview).
 void estimate_line(const SceneDesc& s, const TraceResult::ErrorEstimate& est) {
@@ -277,20 +286,18 @@ void estimate_line(const SceneDesc& s, const TraceResult::ErrorEstimate& est) {
     const char* mode = est.strict ? " strict" : "";
     if (met)
         ImGui::TextDisabled("estimate %.2f %% %.3f dB%s", 100 * est.rel_l1, est.median_abs_db, mode);
-    else // fast stops once what it refines meets the tolerances: the rest is across the beams
+    else
         ImGui::TextColored(ImVec4(1.0f, 0.65f, 0.3f, 1.0f), "estimate %.2f %% %.3f dB%s, %s",
                            100 * est.rel_l1, est.median_abs_db, mode,
-                           est.budget_reached ? "budget"
-                           : est.strict       ? "> tol."
-                                              : "> tol. in azimuth");
-    if (ImGui::IsItemHovered())
-        ImGui::SetTooltip(
-            "The sampler's estimate of this image's error: rel L1 of the linear image and median "
-            "|dB| over echoing bins,\nagainst sampling.tolerance_rel_l1 (%.2f %%) and tolerance_db "
-            "(%.3f dB); %.2f %% of it is one ray column's error across a beam's\nwidth, which "
-            "sampling.estimate fast reports and does not refine (strict adds ray columns for it; "
-            "docs/model.md).",
-            100 * s.sampling.tolerance_rel_l1, s.sampling.tolerance_db, 100 * est.azimuth_rel_l1);
+                           est.budget_reached ? "budget" : "> tol.");
+    // Fast stops once what it refines meets the tolerances; what its probe sees across the beams it reports.
+    const bool azimuth_left = !met && !est.budget_reached && est.azimuth_rel_l1 > 0;
+    if (azimuth_left) {
+        if (ImGui::IsItemHovered()) estimate_tooltip(s, est);
+        ImGui::TextColored(ImVec4(1.0f, 0.65f, 0.3f, 1.0f), "  %.2f %% of it across beams",
+                           100 * est.azimuth_rel_l1);
+    }
+    if (ImGui::IsItemHovered()) estimate_tooltip(s, est);
 }
 
 void stats_section(Session& session, const ControlsUi& ui) {
