@@ -155,7 +155,7 @@ struct PassCells {
     TraceResult coarse_edges; ///< the same with only the triples that are not smooth merged
     std::vector<char> bumped; ///< per group passed in: left unrefined, for a denser base grid
     /// The azimuth probe (slot k: group k's sample beam; empty unless probed): the cells it probed (every
-    /// kProbeEvery-th of the columns not split in azimuth) as one column and as three, with multipath their
+    /// probe_every-th of the columns not split in azimuth) as one column and as three, with multipath their
     /// ghosts too (in slot k whatever beam they arrive in: the probe sums their difference).
     TraceResult az_one, az_three;
 };

@@ -42,21 +42,22 @@ TraceResult::ErrorEstimate detail::combine_slot_estimates(const std::vector<Slot
     TraceResult::ErrorEstimate out;
     if (v.empty()) return out;
     out = v.front().e;
-    double num = 0, den = 0, bins = 0;
+    double num = 0, az = 0, den = 0, bins = 0;
     for (const auto& x : v) {
         out.valid = out.valid && x.e.valid;
         out.p95_abs_db = std::max(out.p95_abs_db, x.e.p95_abs_db);
         out.passes = std::max(out.passes, x.e.passes);
         out.budget_reached = out.budget_reached || x.e.budget_reached;
-        num += x.e.rel_l1 * x.echo, den += x.echo, bins += x.bins;
+        num += x.e.rel_l1 * x.echo, az += x.e.azimuth_rel_l1 * x.echo, den += x.echo, bins += x.bins;
     }
     if (!(den > 0) || !(bins > 0)) { // no echo to weigh by: the largest
         for (const auto& x : v)
             out.rel_l1 = std::max(out.rel_l1, x.e.rel_l1),
+            out.azimuth_rel_l1 = std::max(out.azimuth_rel_l1, x.e.azimuth_rel_l1),
             out.median_abs_db = std::max(out.median_abs_db, x.e.median_abs_db);
         return out;
     }
-    out.rel_l1 = num / den;
+    out.rel_l1 = num / den, out.azimuth_rel_l1 = az / den;
     std::vector<const detail::SlotEstimate*> by_median;
     for (const auto& x : v) by_median.push_back(&x);
     std::sort(by_median.begin(), by_median.end(),

@@ -269,12 +269,13 @@ TEST_CASE("a moving ARIS's pings split columns where the nearest beams they trac
 TEST_CASE("a moving frame's error estimate weighs each slot by its echo", "[motion]") {
     // Two slabs: one with a tenth of the echo estimated at 10 %, one at 1 %; and a slab with no echo,
     // whatever it estimates. The frame's rel L1 is their |error| over their echo: (0.1 + 9 x 0.01) / 10.
-    // Its median: the slots' medians by echoing bins (10 bins at 0.5 dB, 30 at 0.05 dB: 0.05 dB).
+    // Its median: the slots' medians by echoing bins (10 bins at 0.5 dB, 30 at 0.05 dB: 0.05 dB). The part
+    // across the beams (fast's azimuth probe) is weighed as rel L1 is: (0.05 + 9 x 0.005) / 10.
     using detail::SlotEstimate;
     auto slot = [](double rel, double median_db, double echo, double bins) {
         SlotEstimate x;
         x.e.valid = true, x.e.rel_l1 = rel, x.e.median_abs_db = median_db, x.e.p95_abs_db = 2 * median_db;
-        x.e.passes = 1, x.echo = echo, x.bins = bins;
+        x.e.passes = 1, x.echo = echo, x.bins = bins, x.e.azimuth_rel_l1 = rel / 2;
         return x;
     };
     std::vector<SlotEstimate> v = {slot(0.1, 0.5, 1, 10), slot(0.01, 0.05, 9, 30), slot(0.5, 3, 0, 0)};
@@ -282,11 +283,13 @@ TEST_CASE("a moving frame's error estimate weighs each slot by its echo", "[moti
     const auto e = detail::combine_slot_estimates(v);
     CHECK(e.valid);
     CHECK(e.rel_l1 == Approx(0.019));
+    CHECK(e.azimuth_rel_l1 == Approx(0.0095));
     CHECK(e.median_abs_db == Approx(0.05));
     CHECK(e.p95_abs_db == Approx(6)); // the largest
     CHECK(e.passes == 3);
     // No echo at all: the largest of each.
     const auto none = detail::combine_slot_estimates({slot(0.1, 0.5, 0, 0), slot(0.2, 0.1, 0, 0)});
     CHECK(none.rel_l1 == Approx(0.2));
+    CHECK(none.azimuth_rel_l1 == Approx(0.1));
     CHECK(none.median_abs_db == Approx(0.5));
 }
