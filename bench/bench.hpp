@@ -4,11 +4,13 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 namespace sonarsim {
+class Simulator;
 struct Frame;
 struct ImageError;
 struct SceneDesc;
@@ -30,6 +32,12 @@ ImageError error_against_reference(const Frame& f, SceneDesc at_pose);
 /// one column per beam, rays / beams elevation rays), what tracing, shading and imaging them costs without
 /// the adaptive sampler's bookkeeping (devices.cpp).
 SceneDesc floor_grid(SceneDesc s, std::uint64_t rays);
+/// Median over `repeats` warm images of `s` in `sim` (the yaw nudged each time so that every stage reruns:
+/// trace, shade, sensor, display); `last` (if given) keeps the last frame (devices.cpp).
+double warm_ms(Simulator& sim, SceneDesc s, int repeats, std::shared_ptr<const Frame>* last);
+/// Median trace + shade time of floor_grid(s, rays) over `repeats` warm images (devices.cpp).
+double floor_ms(const SceneDesc& s, std::uint64_t rays, int repeats);
+double median(std::vector<double> v);
 
 /// Where things are.
 struct Paths {
@@ -82,6 +90,11 @@ int run_multipath_bench(const std::string& repo, int repeats, const std::vector<
 /// table. `settings`: "key=value" overrides applied to every row after its preset.
 int run_devices_bench(const Paths& paths, int repeats, const std::vector<std::string>& only = {},
                       const std::vector<std::string>& settings = {});
+
+/// `sonarsim_bench warm`: each scene file's warm image (median of `repeats`), rays, the sampler's estimate
+/// and the floor, one line each (warm.cpp). `settings` as for devices.
+int run_warm_bench(const std::vector<std::string>& scenes, int repeats,
+                   const std::vector<std::string>& settings);
 
 /// Peak resident set size of this process so far [MB] (getrusage ru_maxrss).
 double self_peak_rss_mb();

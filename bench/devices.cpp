@@ -38,11 +38,6 @@ namespace {
 
 constexpr double kPitchDeg = 15; // the terrain case's look-down angle
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
-
 struct Interval {
     double ms;
     const char* how;
@@ -108,6 +103,32 @@ struct Row {
     const char* interval_how = "";
 };
 
+Row measure(SceneDesc s, const std::string& device, int repeats) {
+    Row row;
+    Simulator sim(s);
+    std::shared_ptr<const Frame> f;
+    row.warm_ms = warm_ms(sim, s, repeats, &f);
+    row.rays = f->hits().rays_traced;
+    if (f->hits().error_estimate.valid) row.est_rel_l1 = f->hits().error_estimate.rel_l1;
+    const Interval iv = device_interval(device, s);
+    row.interval_ms = iv.ms, row.interval_how = iv.how;
+
+    // The reference: the last frame's pose, the ideal sensor, a dense spread grid.
+    SceneDesc ref = s;
+    ref.sonar.pose.orientation_deg[2] = s.sonar.pose.orientation_deg[2] + 0.01 * repeats;
+    row.err = error_against_reference(*f, ref);
+
+    row.floor_ms = floor_ms(s, row.rays, repeats);
+    return row;
+}
+
+} // namespace
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
 /// Median over `repeats` renders of `s`, the yaw nudged each time so that every stage reruns; `last` keeps
 /// the last frame.
 double warm_ms(Simulator& sim, SceneDesc s, int repeats, std::shared_ptr<const Frame>* last) {
@@ -125,23 +146,8 @@ double warm_ms(Simulator& sim, SceneDesc s, int repeats, std::shared_ptr<const F
     return median(ms);
 }
 
-Row measure(SceneDesc s, const std::string& device, int repeats) {
-    Row row;
-    Simulator sim(s);
-    std::shared_ptr<const Frame> f;
-    row.warm_ms = warm_ms(sim, s, repeats, &f);
-    row.rays = f->hits().rays_traced;
-    if (f->hits().error_estimate.valid) row.est_rel_l1 = f->hits().error_estimate.rel_l1;
-    const Interval iv = device_interval(device, s);
-    row.interval_ms = iv.ms, row.interval_how = iv.how;
-
-    // The reference: the last frame's pose, the ideal sensor, a dense spread grid.
-    SceneDesc ref = s;
-    ref.sonar.pose.orientation_deg[2] = s.sonar.pose.orientation_deg[2] + 0.01 * repeats;
-    row.err = error_against_reference(*f, ref);
-
-    // The floor: as many rays as the default used, on a plain grid.
-    SceneDesc grid = floor_grid(s, row.rays);
+double floor_ms(const SceneDesc& s, std::uint64_t rays, int repeats) {
+    SceneDesc grid = floor_grid(s, rays);
     Simulator floor_sim(grid);
     std::vector<double> ms;
     floor_sim.render();
@@ -152,11 +158,8 @@ Row measure(SceneDesc s, const std::string& device, int repeats) {
         const auto g = floor_sim.render();
         ms.push_back(g->trace_ms + g->shade_ms);
     }
-    row.floor_ms = median(ms);
-    return row;
+    return median(ms);
 }
-
-} // namespace
 
 SceneDesc floor_grid(SceneDesc s, std::uint64_t rays) {
     set_scheme(s.sampling, SamplingScheme::Spread);

@@ -391,6 +391,14 @@ int main(int argc, char** argv) {
         "--set", devices_settings,
         "Override a parameter of every row after its preset, e.g. --set sampling.estimate=strict "
         "(repeatable)");
+    int warm_repeats = 9;
+    std::vector<std::string> warm_scenes, warm_settings;
+    CLI::App* warm = app.add_subcommand(
+        "warm",
+        "Warm image of scene files (median), rays, the sampler's estimate and the floor, one line each");
+    warm->add_option("scenes", warm_scenes, "Scene files")->required();
+    warm->add_option("--repeats", warm_repeats, "Repeats")->capture_default_str();
+    warm->add_option("--set", warm_settings, "Override a parameter of every scene (repeatable)");
     CLI::App* report = app.add_subcommand("report", "Rewrite RESULTS.md and results.csv from a results.json");
     report->add_option("results_json", report_in)->required();
     report->add_option("--out", report_out, "Directory (default: the JSON's)");
@@ -414,6 +422,7 @@ int main(int argc, char** argv) {
         }
         if (*sensor) return run_sensor_bench(sensor_repeats);
         if (*multipath) return run_multipath_bench(o.paths.repo, multipath_repeats, multipath_settings);
+        if (*warm) return run_warm_bench(warm_scenes, warm_repeats, warm_settings);
         if (*devices) return run_devices_bench(o.paths, devices_repeats, devices_only, devices_settings);
         if (*terrain) {
             write_terrain_ply(terrain_out, grid);

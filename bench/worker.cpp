@@ -66,11 +66,6 @@ json error_json(const ImageError& e) {
             {"holes", e.holes},   {"spurious", e.spurious},           {"echoing_bins", e.echoing_ref}};
 }
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
 struct Timed {
     PolarImage polar;
     TraceResult::ErrorEstimate estimate;
