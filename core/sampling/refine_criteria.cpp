@@ -159,8 +159,13 @@ bool RefineCriteria::needs_split_alone(const Node& n, const Angle& a) const {
         const double e_star = std::atan2(v.z, v.x * a.c + v.y * a.s);
         if (std::abs(e_star - n.angle.rad) < n.de / 2 + 2 * deg2rad(m.h_deg)) return true;
     }
-    // A horizon inside: an edge ray that misses the face's plane. Edge directions by the angle-sum
-    // identities decide unless an edge ray nearly grazes the plane; then sin and cos of the edge decide.
+    // A horizon inside: an edge ray that misses the face's plane. The edges' directions are cos(de/2) d
+    // -+ sin(de/2) d_e (d_e the unit derivative in elevation), so n.d keeps its sign at both edges while the
+    // ray is steeper to the plane than de/2 (no_horizon_within; its margin covers rounding, so that the tests
+    // below would say the same).
+    if (no_horizon_within(n, n.de / 2)) return false;
+    // Otherwise edge directions by the angle-sum identities decide unless an edge ray nearly grazes the
+    // plane; then sin and cos of the edge decide.
     const Angle& h = detail::half_angle(n.de);
     for (int sign : {-1, +1}) {
         const double edge = sign < 0 ? n.angle.rad - n.de / 2 : n.angle.rad + n.de / 2;
@@ -175,6 +180,18 @@ bool RefineCriteria::needs_split_alone(const Node& n, const Angle& a) const {
     return false;
 }
 
+double RefineCriteria::face_cos(const Node& n) const {
+    const double num = std::abs(glm::dot(n.hit->face_normal, n.p - frame_.origin));
+    return num > 1e-9 && num < 1e12 ? num / n.hit->t : 0.0;
+}
+
+bool RefineCriteria::no_horizon_within(const Node& n, double half_width) const {
+    // With |n.d| = sin(phi) (phi the grazing angle), |n.d_e| <= cos(phi) as d_e is perpendicular to d, so at
+    // either edge |n.d| >= sin(phi - w): its sign holds while phi > w, that is |n.d| > sin(w), and x >= sin
+    // x. 3e-6 keeps |n.d| at the edges above plane_range_near's 1e-6, rounding included.
+    return half_width < 1 && face_cos(n) > half_width + 3e-6;
+}
+
 /// Absorption alone changes the echo by more than the range-spreading threshold across a cell's range
 /// footprint, which spreads its echo evenly (very high frequencies: at 10 MHz, 110 dB per metre of range;
 /// where a bin holds few cells, at the aperture's edges, the split of a cell's echo between bins must then
@@ -185,6 +202,10 @@ bool RefineCriteria::absorbed_across(double footprint_m) const {
 
 bool RefineCriteria::absorbed_across_azimuth(const Node& n, const Column& c, const Angle& a) const {
     if (!n.hit || !(k_.alpha_db_per_m > 0)) return false;
+    // |n.d_a| <= 1, so the footprint below is at most t da / |n.d| (|n.d| from the hit point, to a relative
+    // 1e-8 where it exceeds 1e-6): below the threshold, no need for the directions.
+    const double cos_face = face_cos(n);
+    if (cos_face > 1e-6 && !absorbed_across(n.hit->t * c.da / cos_face * (1 + 1e-6))) return false;
     const glm::dvec3 d = frame_.dir(a, n.angle);
     const glm::dvec3 d_a = frame_.R * glm::dvec3(-n.angle.c * a.s, n.angle.c * a.c, 0);
     const glm::dvec3& nf = n.hit->face_normal; // the footprint's plane, as in make_cell

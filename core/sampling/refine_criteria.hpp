@@ -92,6 +92,11 @@ class RefineCriteria {
     bool significant_at(double density_db, double r, double footprint_m, const Node& n, const Column& c,
                         double f, bool shared = true) const;
     bool absorbed_across(double footprint_m) const;
+    /// |face normal . ray direction| of a node that hit, from its hit point (0 when too small to tell).
+    double face_cos(const Node& n) const;
+    /// Whether neither edge of a cell reaching half_width [rad] either side of the node's ray in elevation
+    /// can pass the face plane's horizon (false: test the edges).
+    bool no_horizon_within(const Node& n, double half_width) const;
     glm::dvec3 normal_direction_sonar(const Node& n) const;
 
     const SceneDesc& s_;

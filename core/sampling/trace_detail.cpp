@@ -32,22 +32,6 @@ std::optional<Hit> first_hit(const SceneGeometry& g, const SceneDesc& s, const g
     return out;
 }
 
-double plane_range(const glm::dvec3& o, const glm::dvec3& p, const glm::dvec3& n, const glm::dvec3& d) {
-    const double den = glm::dot(n, d);
-    const double t = glm::dot(n, p - o) / den;
-    return (den != 0 && t > 0 && std::isfinite(t)) ? t : -1;
-}
-
-double plane_range_near(const glm::dvec3& o, const glm::dvec3& p, const glm::dvec3& n, const glm::dvec3& d) {
-    // |d - d_exact| < 1e-14 moves n.d by as much: with |n.d| > 1e-6 its sign is the exact one and t moves by
-    // a relative 1e-8 at most; with 1e-9 < |n.(p - o)| < 1e12 the exact t is finite and nonzero.
-    const double den = glm::dot(n, d), num = glm::dot(n, p - o);
-    if (!(std::abs(den) > 1e-6) || !(std::abs(num) > 1e-9 && std::abs(num) < 1e12))
-        return std::numeric_limits<double>::quiet_NaN();
-    const double t = num / den;
-    return t > 0 ? t : -1;
-}
-
 const Angle& half_angle(double de) {
     thread_local std::array<std::pair<double, Angle>, 8> cache{};
     thread_local size_t next = 0;

@@ -7,6 +7,7 @@
 #include "core/sampling/trace.hpp"
 
 #include <cmath>
+#include <limits>
 #include <optional>
 
 namespace sonarsim::detail {
@@ -34,14 +35,29 @@ struct RayFrame {
     glm::dvec3 dir(const Angle& a, const Angle& e) const { return R * glm::dvec3(e.c * a.c, e.c * a.s, e.s); }
 };
 
-/// Range at which direction d from o meets the plane through p with normal n; -1 if it does not.
-double plane_range(const glm::dvec3& o, const glm::dvec3& p, const glm::dvec3& n, const glm::dvec3& d);
+/// Range at which direction d from o meets the plane through p with normal n; -1 if it does not. Inline:
+/// make_cell calls it four times on one plane, and the criteria once per edge.
+inline double plane_range(const glm::dvec3& o, const glm::dvec3& p, const glm::dvec3& n,
+                          const glm::dvec3& d) {
+    const double den = glm::dot(n, d);
+    const double t = glm::dot(n, p - o) / den;
+    return (den != 0 && t > 0 && std::isfinite(t)) ? t : -1;
+}
 
 /// plane_range for a direction d known only to within ~1e-14 of the exact one (angles by the angle-sum
 /// identities instead of sin and cos): the exact call's sign (-1 when it misses) and its value to a relative
 /// 1e-7, or NaN when d is too close to the plane (or the plane to o) to say; the caller then takes the exact
 /// direction. Lets a criterion decide from cheap directions without changing any decision.
-double plane_range_near(const glm::dvec3& o, const glm::dvec3& p, const glm::dvec3& n, const glm::dvec3& d);
+inline double plane_range_near(const glm::dvec3& o, const glm::dvec3& p, const glm::dvec3& n,
+                               const glm::dvec3& d) {
+    // |d - d_exact| < 1e-14 moves n.d by as much: with |n.d| > 1e-6 its sign is the exact one and t moves by
+    // a relative 1e-8 at most; with 1e-9 < |n.(p - o)| < 1e12 the exact t is finite and nonzero.
+    const double den = glm::dot(n, d), num = glm::dot(n, p - o);
+    if (!(std::abs(den) > 1e-6) || !(std::abs(num) > 1e-9 && std::abs(num) < 1e12))
+        return std::numeric_limits<double>::quiet_NaN();
+    const double t = num / den;
+    return t > 0 ? t : -1;
+}
 
 /// Angle(de / 2), from a small per-thread cache: the adaptive sampler's cells come in a few widths.
 const Angle& half_angle(double de);

@@ -206,6 +206,32 @@ TEST_CASE("criteria: a cell with a plane horizon or a specular lobe inside split
     CHECK_FALSE(crit.needs_split_alone(tilted, Angle(0)));
 }
 
+TEST_CASE("criteria: the horizon test agrees with exact edge rays, also where the ray grazes at about de / 2",
+          "[sampling][criteria]") {
+    SceneDesc s = criteria_scene();
+    s.sonar.frequency_khz = 1; // no absorption worth splitting for: only the horizon
+    const detail::RayFrame f(s);
+    const RefineCriteria crit(s, f, false);
+    // A floor 1 m below, seen at elevations e whose grazing angle -e sweeps across de / 2 for each width:
+    // the shortcut (n.d keeps its sign at both edges) must never skip a horizon the edges see.
+    int horizons = 0, clear = 0;
+    for (double de_deg : {0.01, 0.3, 2.0, 20.0, 50.0}) {
+        const double de = deg2rad(de_deg);
+        for (int k = 0; k <= 400; ++k) {
+            const double e = -(de / 2) * (0.9 + 0.2 * k / 400.0) - 1e-9 * (k % 3); // |e| near de / 2
+            const Node n = plane_node(f, crit, 0.1, e, de, {0, 0, -1}, {0, 0, 1}, kFloorMaterial, 0, 40);
+            // Exact: the upper edge ray (e + de / 2, sin and cos evaluated) meets the plane or not.
+            const glm::dvec3 up = f.dir(Angle(0.1), Angle(e + de / 2));
+            const bool exact = detail::plane_range(f.origin, n.p, n.hit->face_normal, up) < 0;
+            if (std::abs(-e - de / 2) < 1e-12) continue; // the edge grazes: either answer is right
+            REQUIRE(crit.needs_split_alone(n, Angle(0.1)) == exact);
+            (exact ? horizons : clear) += 1;
+        }
+    }
+    CHECK(horizons > 500);
+    CHECK(clear > 500);
+}
+
 TEST_CASE(
     "plane_range_near: the exact call's sign and value from a direction 1e-14 off, or NaN when too close",
     "[sampling][criteria]") {
