@@ -3,6 +3,8 @@
 // the relative L1 and the |dB| quantiles of their difference over all samples, halved (adaptive_sampler.hpp).
 #include "core/sampling/adaptive_sampler.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -24,7 +26,7 @@ std::vector<SampleError> sample_errors(const PolarImage& coarse, const PolarImag
     const PolarImage *edges = images.coarse_edges, *one = images.az_one, *three = images.az_three;
     const bool acts = images.act_on_azimuth;
     std::vector<SampleError> out(static_cast<size_t>(N));
-    for (int i = 0; i < N; ++i) {
+    tbb::parallel_for(0, N, [&](int i) { // each sample beam's sums are its own
         SampleError& e = out[size_t(i)];
         for (int b = 0; b < K; ++b) {
             const float a = coarse.at(b, i), f = fine.at(b, i), m = edges ? edges->at(b, i) : a;
@@ -50,7 +52,7 @@ std::vector<SampleError> sample_errors(const PolarImage& coarse, const PolarImag
             if (!acts && one && three)
                 e.seen_inc_db.push_back(az > 0 ? std::max(0.0f, diff_db(d + 2 * az) - d_db) : 0.0f);
         }
-    }
+    });
     return out;
 }
 

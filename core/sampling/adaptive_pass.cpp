@@ -100,7 +100,9 @@ void set_base_image(Sampler& sp, const Beams& beams) {
     sp.criteria.cell_share_db = -std::numeric_limits<double>::infinity();
     if (!std::isfinite(peak) || cells == 0) return;
     double sum = 0;
-    for (float v : base_db) sum += fast::exp2_nonpositive(kLog2_10Over10 * (double(v) - peak));
+    for (float v : base_db) // bins without echo add nothing
+        if (v > -std::numeric_limits<float>::infinity())
+            sum += fast::exp2_nonpositive(kLog2_10Over10 * (double(v) - peak));
     sp.criteria.cell_share_db =
         peak + 10 * std::log10(kCellShare * s.sampling.tolerance_rel_l1 * sum / cells);
 }
