@@ -12,7 +12,10 @@ RefineCriteria::RefineCriteria(const SceneDesc& scene, const detail::RayFrame& f
     : s_(scene), frame_(frame), multipath_(multipath), k_(shade_constants(scene)),
       jump_db_(10 * scene.sampling.tolerance_db), range_jump_db_(4 * scene.sampling.tolerance_db),
       bin_m_(frame.grid->bin_m), gap_m_(0.5 * bin_m_),
-      tol_rel_db_(10 * std::log10((std::pow(10.0, scene.sampling.tolerance_db / 10) - 1) / kErrorsPerBin)) {}
+      tol_rel_db_(10 * std::log10((std::pow(10.0, scene.sampling.tolerance_db / 10) - 1) / kErrorsPerBin)) {
+    specular_ = scene.water.surface_material.mu > 0 || (scene.seafloor && scene.seafloor->material.mu > 0);
+    for (const auto& o : scene.objects) specular_ = specular_ || o.material.mu > 0;
+}
 
 bool RefineCriteria::discontinuous(const Node& x, const Column& cx, const Node& y, const Column& cy,
                                    const EdgeRay& edge) const {
@@ -154,7 +157,7 @@ bool RefineCriteria::needs_split_alone(const Node& n, const Angle& a) const {
     if (!n.hit) return false;
     if (absorbed_across(n.footprint_m)) return true;
     const Material& m = material_of(s_, n.hit->material);
-    if (m.mu > 0 && n.de > deg2rad(m.h_deg) / 4) {
+    if (specular_ && m.mu > 0 && n.de > deg2rad(m.h_deg) / 4) {
         const glm::dvec3 v = normal_direction_sonar(n);
         const double e_star = std::atan2(v.z, v.x * a.c + v.y * a.s);
         if (std::abs(e_star - n.angle.rad) < n.de / 2 + 2 * deg2rad(m.h_deg)) return true;
@@ -213,7 +216,7 @@ bool RefineCriteria::absorbed_across_azimuth(const Node& n, const Column& c, con
 }
 
 bool RefineCriteria::specular_in_azimuth(const Node& n, double a_lo, double a_hi, double da) const {
-    if (!n.hit) return false;
+    if (!specular_ || !n.hit) return false;
     const Material& m = material_of(s_, n.hit->material);
     if (!(m.mu > 0) || da <= deg2rad(m.h_deg) / 4) return false;
     const glm::dvec3 v = normal_direction_sonar(n);

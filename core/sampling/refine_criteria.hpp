@@ -107,6 +107,7 @@ class RefineCriteria {
     double range_jump_db_; ///< a step in echo per metre of range (or absorption across a cell): 4 x tolerance
     double bin_m_, gap_m_; ///< range bin width; half of it, the range disagreement that makes an edge
     double tol_rel_db_;    ///< 10 log10 of the relative error per bin the tolerance allows, / kErrorsPerBin
+    bool specular_ = true; ///< some material has a specular lobe (mu > 0)
 };
 
 } // namespace sonarsim::adaptive
