@@ -24,6 +24,8 @@ bool RefineCriteria::discontinuous(const Node& x, const Column& cx, const Node& 
 
 bool RefineCriteria::discontinuous_direct(const Node& x, const Column& cx, const Node& y, const Column& cy,
                                           const EdgeRay& edge) const {
+    // Whatever steps between them, neither cell's error could be significant: no need to look.
+    if (!may_be_significant(x, cx) && !may_be_significant(y, cy)) return false;
     const double step_db = direct_step_db(x, y, edge);
     return step_db == step_db && worth_refining(x, cx, y, cy, step_db);
 }
@@ -126,6 +128,19 @@ bool RefineCriteria::worth_refining(const Node& x, const Column& cx, const Node&
 bool RefineCriteria::significant(const Node& n, const Column& c, double f) const {
     if (base_db.empty()) return true;
     return n.hit && significant_at(n.density_db, n.hit->t, n.footprint_m, n, c, f);
+}
+
+bool RefineCriteria::may_be_significant(const Node& n, const Column& c) const {
+    if (base_db.empty()) return true;
+    if (!n.hit) return false;
+    const double b = std::floor((n.hit->t - s_.sonar.range_min_m) / bin_m_);
+    if (!(b >= 0 && b < s_.sonar.range_bins)) return false;
+    const double bin_db = base_db[size_t(c.beam) * size_t(s_.sonar.range_bins) + size_t(b)];
+    // significant_at's level at f = 1/2, from the echo per metre set_width keeps: density + 10 log10(c de /
+    // max(footprint, bin)) + 10 log10(da bin / 2); both logarithms within 1e-12 dB, hence the margin.
+    const double bound_db =
+        n.per_metre_db + kDbPerOctave * fast::log2_positive(0.5 * c.da * bin_m_) + kBoundMarginDb;
+    return bound_db > tol_rel_db_ + bin_db && bound_db > cell_share_db;
 }
 
 bool RefineCriteria::significant_via(const Node& n, const Column& c, double f) const {

@@ -31,6 +31,9 @@ struct EdgeRay {
     }
 };
 
+/// What may_be_significant adds to its bound [dB] for the rounding of its two logarithms (below 1e-12 dB).
+constexpr double kBoundMarginDb = 1e-6;
+
 class RefineCriteria {
   public:
     /// `frame` must outlive the criteria; `multipath`: the nodes carry continuations to compare.
@@ -58,6 +61,13 @@ class RefineCriteria {
     /// Absorption alone changes the echo by more than the range-spreading threshold across the column's
     /// azimuth width; `a`: the column's azimuth (c.a) as an angle.
     bool absorbed_across_azimuth(const Node& n, const Column& c, const Angle& a) const;
+
+    /// Whether an error of a fraction f of node n's echo (in column c) is significant against the base image
+    /// (see worth_refining; always with an empty base image).
+    bool significant(const Node& n, const Column& c, double f) const;
+    /// False only where significant(n, c, f) is false for every f <= 1/2 (the most a step can cost a cell):
+    /// a bound from the node's echo per metre, with no logarithm of its own but one of the column width.
+    bool may_be_significant(const Node& n, const Column& c) const;
 
     const SceneDesc& scene() const { return s_; }
     /// The relative error per bin the tolerance allows, over kErrorsPerBin [dB].
@@ -87,7 +97,6 @@ class RefineCriteria {
                       const EdgeRay& edge) const;
     bool worth_refining(const Node& x, const Column& cx, const Node& y, const Column& cy,
                         double step_db) const;
-    bool significant(const Node& n, const Column& c, double f) const;
     bool significant_via(const Node& n, const Column& c, double f) const;
     bool significant_at(double density_db, double r, double footprint_m, const Node& n, const Column& c,
                         double f, bool shared = true) const;

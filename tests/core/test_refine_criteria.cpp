@@ -184,6 +184,38 @@ TEST_CASE("criteria: an edge is split only where its error is significant agains
     CHECK(split_pair(crit, x, y, c));
 }
 
+TEST_CASE("criteria: the significance bound never rules out a cell whose error is significant",
+          "[sampling][criteria]") {
+    // may_be_significant lets the pair test skip its geometry; it must be false only where significant()
+    // is false for every fraction f <= 1/2. Cells on planes at many ranges, widths and grazing angles (so
+    // that the footprint spans less or more than a bin), against base image levels around the threshold.
+    const SceneDesc s = criteria_scene();
+    const detail::RayFrame f(s);
+    RefineCriteria crit(s, f, false);
+    crit.base_db.assign(size_t(s.sonar.range_bins), -std::numeric_limits<float>::infinity());
+    int ruled_out = 0, kept = 0, both = 0;
+    for (int k = 0; k < 3000; ++k) {
+        const double de = deg2rad(0.01 + 2.0 * (k % 17) / 17), slope = 0.05 + 0.9 * (k % 13) / 13;
+        const double e = -deg2rad(1 + 20.0 * (k % 11) / 11);
+        const Node n =
+            plane_node(f, crit, 0, e, de, {0, 0, -1}, {-slope, 0, 1}, kFloorMaterial, 0, -20 + 0.037 * k);
+        const Column c = column(deg2rad(0.05 + (k % 7) * 0.3));
+        const int bin = int(std::floor((n.hit->t - s.sonar.range_min_m) / crit.bin_m()));
+        if (bin < 0 || bin >= s.sonar.range_bins) continue;
+        // Levels from far below to far above what the cell's error amounts to.
+        crit.base_db[size_t(bin)] = float(-60 + (k % 23) * 6.0);
+        const bool may = crit.may_be_significant(n, c);
+        bool any = false;
+        for (double frac : {0.5, 0.5 - 1e-12, 0.3, 0.01}) any = any || crit.significant(n, c, frac);
+        INFO("k " << k << ": significant " << any << ", bound " << may);
+        REQUIRE((!any || may)); // never ruled out when significant
+        ruled_out += !may, kept += may && !any, both += may && any;
+        crit.base_db[size_t(bin)] = -std::numeric_limits<float>::infinity();
+    }
+    CHECK(ruled_out > 300); // the bound decides often ...
+    CHECK(both > 300);      // ... and is not simply always true
+}
+
 TEST_CASE("criteria: a cell with a plane horizon or a specular lobe inside splits on its own",
           "[sampling][criteria]") {
     SceneDesc s = criteria_scene();
