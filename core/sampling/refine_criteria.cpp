@@ -3,6 +3,7 @@
 
 #include "core/shading/shade.hpp"
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -138,9 +139,23 @@ bool RefineCriteria::may_be_significant(const Node& n, const Column& c) const {
     const double bin_db = base_db[size_t(c.beam) * size_t(s_.sonar.range_bins) + size_t(b)];
     // significant_at's level at f = 1/2, from the echo per metre set_width keeps: density + 10 log10(c de /
     // max(footprint, bin)) + 10 log10(da bin / 2); both logarithms within 1e-12 dB, hence the margin.
-    const double bound_db =
-        n.per_metre_db + kDbPerOctave * fast::log2_positive(0.5 * c.da * bin_m_) + kBoundMarginDb;
+    const double bound_db = n.per_metre_db + half_width_bin_db(c.da) + kBoundMarginDb;
     return bound_db > tol_rel_db_ + bin_db && bound_db > cell_share_db;
+}
+
+double RefineCriteria::half_width_bin_db(double da) const {
+    // Columns come in a few widths (a beam's width / 3^k): keep the last few per thread.
+    struct Entry {
+        double da = 0, bin_m = 0, db = 0;
+    };
+    thread_local std::array<Entry, 4> cache{};
+    thread_local size_t next = 0;
+    for (const Entry& e : cache)
+        if (e.da == da && e.bin_m == bin_m_) return e.db;
+    Entry& e = cache[next];
+    next = (next + 1) % cache.size();
+    e = {da, bin_m_, kDbPerOctave * fast::log2_positive(0.5 * da * bin_m_)};
+    return e.db;
 }
 
 bool RefineCriteria::significant_via(const Node& n, const Column& c, double f) const {

@@ -101,6 +101,8 @@ class RefineCriteria {
     bool significant_at(double density_db, double r, double footprint_m, const Node& n, const Column& c,
                         double f, bool shared = true) const;
     bool absorbed_across(double footprint_m) const;
+    /// 10 log10(da bin_m / 2) [dB] for a column of width da (may_be_significant), from a per-thread cache.
+    double half_width_bin_db(double da) const;
     /// |face normal . ray direction| of a node that hit, from its hit point (0 when too small to tell).
     double face_cos(const Node& n) const;
     /// Whether neither edge of a cell reaching half_width [rad] either side of the node's ray in elevation
