@@ -134,6 +134,7 @@ bool RefineCriteria::significant(const Node& n, const Column& c, double f) const
 bool RefineCriteria::may_be_significant(const Node& n, const Column& c) const {
     if (base_db.empty()) return true;
     if (!n.hit) return false;
+    if (!(n.footprint_m < INFINITY)) return true; // an edge-on face (footprint inf or NaN): the full test
     const double b = std::floor((n.hit->t - s_.sonar.range_min_m) / bin_m_);
     if (!(b >= 0 && b < s_.sonar.range_bins)) return false;
     const double bin_db = base_db[size_t(c.beam) * size_t(s_.sonar.range_bins) + size_t(b)];
