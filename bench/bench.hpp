@@ -37,6 +37,7 @@ SceneDesc floor_grid(SceneDesc s, std::uint64_t rays);
 double warm_ms(Simulator& sim, SceneDesc s, int repeats, std::shared_ptr<const Frame>* last);
 /// Median trace + shade time of floor_grid(s, rays) over `repeats` warm images (devices.cpp).
 double floor_ms(const SceneDesc& s, std::uint64_t rays, int repeats);
+/// The median of v (of an even count, the upper of the middle two; 0 when empty).
 double median(std::vector<double> v);
 
 /// Where things are.
