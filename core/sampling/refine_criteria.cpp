@@ -1,11 +1,12 @@
 // Adaptive sampling: the refinement criteria (see refine_criteria.hpp and core/ARCHITECTURE.md).
 #include "core/sampling/refine_criteria.hpp"
 
+#include "core/base/recent_values.hpp"
 #include "core/shading/shade.hpp"
 
-#include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace sonarsim::adaptive {
 
@@ -145,18 +146,10 @@ bool RefineCriteria::may_be_significant(const Node& n, const Column& c) const {
 }
 
 double RefineCriteria::half_width_bin_db(double da) const {
-    // Columns come in a few widths (a beam's width / 3^k): keep the last few per thread.
-    struct Entry {
-        double da = 0, bin_m = 0, db = 0;
-    };
-    thread_local std::array<Entry, 4> cache{};
-    thread_local size_t next = 0;
-    for (const Entry& e : cache)
-        if (e.da == da && e.bin_m == bin_m_) return e.db;
-    Entry& e = cache[next];
-    next = (next + 1) % cache.size();
-    e = {da, bin_m_, kDbPerOctave * fast::log2_positive(0.5 * da * bin_m_)};
-    return e.db;
+    // Columns come in a few widths (a beam's width / 3^k).
+    return recent_value<4>(std::pair(da, bin_m_), [](const std::pair<double, double>& k) {
+        return kDbPerOctave * fast::log2_positive(0.5 * k.first * k.second);
+    });
 }
 
 bool RefineCriteria::significant_via(const Node& n, const Column& c, double f) const {

@@ -1,7 +1,8 @@
 #include "core/sampling/trace_detail.hpp"
 
+#include "core/base/recent_values.hpp"
+
 #include <algorithm>
-#include <array>
 #include <limits>
 #include <utility>
 
@@ -33,14 +34,7 @@ std::optional<Hit> first_hit(const SceneGeometry& g, const SceneDesc& s, const g
 }
 
 const Angle& half_angle(double de) {
-    thread_local std::array<std::pair<double, Angle>, 8> cache{};
-    thread_local size_t next = 0;
-    for (const auto& [w, h] : cache)
-        if (w == de && w != 0) return h;
-    auto& slot = cache[next];
-    next = (next + 1) % cache.size();
-    slot = {de, Angle(de / 2)};
-    return slot.second;
+    return recent_value<8>(de, [](double w) { return Angle(w / 2); });
 }
 
 Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, const Angle& a_lo,

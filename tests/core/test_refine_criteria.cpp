@@ -4,10 +4,12 @@
 #include "core/sampling/refine_criteria.hpp"
 
 #include "core/base/pose.hpp"
+#include "core/base/recent_values.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 using namespace sonarsim;
 using namespace sonarsim::adaptive;
@@ -293,4 +295,31 @@ TEST_CASE(
     CHECK(std::isnan(detail::plane_range_near(o, o, n, glm::dvec3(0, 0, 1))));
     CHECK(detail::half_angle(0.25).s == std::sin(0.125));
     CHECK(detail::half_angle(0.25).c == std::cos(0.125));
+}
+
+TEST_CASE("recent_value: the last N results per thread, exact keys, zero a key like any other",
+          "[criteria]") {
+    int made = 0;
+    auto half = [&](double w) {
+        return recent_value<3>(w, [&](double x) {
+            ++made;
+            return x / 2;
+        });
+    };
+    CHECK(half(0.0) == 0.0); // a zero key is made, not taken from an unused entry
+    CHECK(made == 1);
+    CHECK(half(0.3) == 0.15);
+    CHECK(half(0.9) == 0.45);
+    CHECK(half(0.3) == 0.15); // kept
+    CHECK(made == 3);
+    CHECK(half(std::nextafter(0.3, 1.0)) == std::nextafter(0.3, 1.0) / 2); // keys compare exactly
+    CHECK(made == 4); // ... and it replaced the oldest (0)
+    CHECK(half(0.0) == 0.0);
+    CHECK(made == 5);
+    CHECK(half(0.9) == 0.45); // replaced next: 0.3, not 0.9 (round robin)
+    CHECK(half(0.3) == 0.15);
+    CHECK(made == 6);
+    const int before = made; // another thread has a store of its own: 0.3 is made there once
+    std::thread([&] { half(0.3), half(0.3); }).join();
+    CHECK(made == before + 1);
 }
