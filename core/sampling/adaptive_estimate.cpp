@@ -26,20 +26,44 @@ std::vector<SampleError> sample_errors(const PolarImage& coarse, const PolarImag
     const PolarImage *edges = images.coarse_edges, *one = images.az_one, *three = images.az_three;
     const bool acts = images.act_on_azimuth;
     std::vector<SampleError> out(static_cast<size_t>(N));
-    tbb::parallel_for(0, N, [&](int i) { // each sample beam's sums are its own
+    const bool report = !acts && one && three; // fast: the probe's share is reported, not acted on
+    tbb::parallel_for(0, N, [&](int i) {       // each sample beam's sums are its own
         SampleError& e = out[size_t(i)];
+        // The azimuth probe's |three columns - one| over its cells, every probe_every-th: the error.
+        std::vector<double> az(size_t(K), 0.0);
+        if (one && three)
+            for (int b = 0; b < K; ++b)
+                az[size_t(b)] =
+                    images.probe_every * std::abs(linear(three->at(b, i)) - linear(one->at(b, i)));
+        // Per bin, for fast's report: a bin's own sum holds the few probed cells in it, scaled (most bins
+        // none, the rest probe_every times one cell's difference), which would make the |dB| quantiles
+        // depend on how many cells the grid has. Each bin takes the mean over the probe_every bins centred
+        // on it instead (the same total).
+        std::vector<double> az_near;
+        if (report) {
+            std::vector<double> sum(size_t(K) + 1, 0.0);
+            for (int b = 0; b < K; ++b) sum[size_t(b) + 1] = sum[size_t(b)] + az[size_t(b)];
+            const int w = images.probe_every / 2;
+            az_near.resize(size_t(K));
+            for (int b = 0; b < K; ++b)
+                az_near[size_t(b)] =
+                    (sum[size_t(std::min(K, b + w + 1))] - sum[size_t(std::max(0, b - w))]) / (2 * w + 1);
+        }
         for (int b = 0; b < K; ++b) {
             const float a = coarse.at(b, i), f = fine.at(b, i), m = edges ? edges->at(b, i) : a;
             const double lf = linear(f);
             const double la = a == f ? lf : linear(a), lm = m == f ? lf : m == a ? la : linear(m);
-            // What the edges' merges change in full, the smooth merges' (a against m) at kSmoothShare.
-            const double d = std::abs(lm - lf) + kSmoothShare * std::abs(la - lm);
-            // The azimuth probe's |three columns - one| over its cells, every probe_every-th: the error.
-            const double az =
-                one && three ? images.probe_every * std::abs(linear(three->at(b, i)) - linear(one->at(b, i)))
-                             : 0.0;
+            // What the edges' merges change in full, the smooth merges' (a against m) at kSmoothShare; with
+            // the lasting edges' image (u), the edges refinement will split (m against u) at kRefinableShare.
+            double d = std::abs(lm - lf) + kSmoothShare * std::abs(la - lm);
+            if (images.lasting_edges) {
+                const float u = images.lasting_edges->at(b, i);
+                const double lu = u == f ? lf : linear(u);
+                d = std::abs(lu - lf) + kRefinableShare * std::abs(lm - lu) +
+                    kSmoothShare * std::abs(la - lm);
+            }
             e.num += d, e.den += lf;
-            (acts ? e.az_num : e.az_seen) += az;
+            (acts ? e.az_num : e.az_seen) += az[size_t(b)];
             if (!(a > -INFINITY && f > -INFINITY)) continue;
             // In dB (twice the error, as d), on the coarse level's side; without the edges' image d is
             // |coarse - fine| itself.
@@ -47,10 +71,12 @@ std::vector<SampleError> sample_errors(const PolarImage& coarse, const PolarImag
                 const double lc = la >= lf ? lf + d_all : lf - d_all;
                 return float(std::abs(edges && lc > 0 ? 10 * std::log10(lc / lf) : double(a) - double(f)));
             };
-            const float d_db = diff_db(acts ? d + 2 * az : d);
+            const float d_db = diff_db(acts ? d + 2 * az[size_t(b)] : d);
             e.diffs_db.push_back(d_db);
-            if (!acts && one && three)
-                e.seen_inc_db.push_back(az > 0 ? std::max(0.0f, diff_db(d + 2 * az) - d_db) : 0.0f);
+            if (report) {
+                const double near = az_near[size_t(b)];
+                e.seen_inc_db.push_back(near > 0 ? std::max(0.0f, diff_db(d + 2 * near) - d_db) : 0.0f);
+            }
         }
     });
     return out;

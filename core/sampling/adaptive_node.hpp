@@ -23,6 +23,10 @@ constexpr int kMaxPasses = 3;         // base grids a group may have: elevation_
 /// to the next base grid unrefined (refinement at edges does not close such a gap), until the rest would
 /// meet kSkipFactor x each tolerance.
 constexpr double kSkipFactor = 1;
+/// Past the first base grid, fast's bump decision counts the error of the triples that refinement will
+/// split (a pair discontinuous and significant against the base image, or a cell that splits alone) at this
+/// share: refinement closes them, so they are no reason for a denser grid. Strict counts them in full.
+constexpr double kRefinableShare = 1.0 / 3;
 /// Cells whose errors may add up in one bin: a pair is worth refining when its possible error exceeds
 /// 1 / kErrorsPerBin of what the tolerance allows the bin.
 constexpr double kErrorsPerBin = 3;

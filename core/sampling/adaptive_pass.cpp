@@ -187,8 +187,8 @@ void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samp
 
 } // namespace
 
-std::uint64_t Sampler::cells_of(const Column& c, double da, CellsOut fine, CellsOut all,
-                                CellsOut edges) const {
+std::uint64_t Sampler::cells_of(const Column& c, double da, CellsOut fine, CellsOut all, CellsOut edges,
+                                bool lasting_edges_only) const {
     std::uint64_t rays = 0;
     const Angle a(c.a), a_lo(c.a - da / 2), a_hi(c.a + da / 2);
     // Cell widths come in a few sizes (de0 / 3^k): keep sin and cos of their halves.
@@ -226,7 +226,8 @@ std::uint64_t Sampler::cells_of(const Column& c, double da, CellsOut fine, Cells
             ++n;
             continue;
         }
-        const bool smooth = edges.cells && smooth_triple(c, n);
+        const bool smooth =
+            edges.cells && (smooth_triple(c, n) || (lasting_edges_only && refinable_triple(c, n)));
         const CellsOut& fine_edges = smooth ? edges : none;
         if (fine.cells || smooth)
             for (size_t t = n; t < n + 3; ++t) emit(c.nodes[t], c.nodes[t].de, {&fine, &fine_edges});
@@ -249,6 +250,18 @@ bool Sampler::smooth_triple(const Column& c, size_t n) const {
     return !criteria.needs_split_alone(merged, a);
 }
 
+bool Sampler::refinable_triple(const Column& c, size_t n) const {
+    const Angle a(c.a);
+    for (size_t t = n; t < n + 2; ++t) {
+        const Node &x = c.nodes[t], &y = c.nodes[t + 1];
+        if (criteria.discontinuous(x, c, y, c, EdgeRay{a, x.angle.rad - x.de / 2, nullptr, &x.angle, x.de}))
+            return true;
+    }
+    for (size_t t = n; t < n + 3; ++t)
+        if (criteria.needs_split_alone(c.nodes[t], a)) return true;
+    return false;
+}
+
 bool Sampler::smooth_column_triple(const std::vector<Column>& cols, size_t k) const {
     const Column &l = cols[k], &m = cols[k + 1], &r = cols[k + 2];
     if (l.base.empty() || m.base.empty() || r.base.empty()) return false;
@@ -268,26 +281,40 @@ bool Sampler::smooth_column_triple(const std::vector<Column>& cols, size_t k) co
     return true;
 }
 
+/// Whether fast's bump decision at base grid M0 counts the triples refinement will split at
+/// kRefinableShare (past the first base grid; strict counts them in full).
+static bool counts_refinable(const Sampler& sp, int M0) {
+    return !sp.strict && M0 > sp.s.sampling.elevation_rays;
+}
+
 /// The base grid's own error on each group's sample beam, estimated as the refined image's is (against
 /// its sibling triples merged): the error that refinement, which works only at discontinuities, starts
-/// from.
-static std::vector<SampleError> base_errors(Sampler& sp, const Beams& beams, const BeamGroups& groups) {
+/// from. With counts_refinable, the triples refinement will split (against the base image, which must be
+/// set) count at kRefinableShare.
+static std::vector<SampleError> base_errors(Sampler& sp, const Beams& beams, const BeamGroups& groups,
+                                            int M0) {
     const SceneDesc& s = sp.s;
     const int sampled = int(groups.size());
-    TraceResult fine, coarse, coarse_edges;
-    fine.beams = coarse.beams = coarse_edges.beams = sampled;
+    const bool refinable = counts_refinable(sp, M0);
+    TraceResult fine, coarse, coarse_edges, coarse_lasting;
+    fine.beams = coarse.beams = coarse_edges.beams = coarse_lasting.beams = sampled;
     fine.cells.resize(size_t(sampled)), coarse.cells.resize(size_t(sampled));
-    coarse_edges.cells.resize(size_t(sampled));
+    coarse_edges.cells.resize(size_t(sampled)), coarse_lasting.cells.resize(size_t(sampled));
     tbb::parallel_for(0, sampled, [&](int k) { // without multipath: no ghosts
-        for (const auto& c : beams[size_t(groups[size_t(k)].front())])
+        for (const auto& c : beams[size_t(groups[size_t(k)].front())]) {
             sp.cells_of(c, c.da, {&fine.cells[size_t(k)]}, {&coarse.cells[size_t(k)]},
                         {&coarse_edges.cells[size_t(k)]});
+            if (refinable) sp.cells_of(c, c.da, {}, {}, {&coarse_lasting.cells[size_t(k)]}, true);
+        }
     });
     const SceneDesc sampled_scene = sampled_beams_scene(s, sampled);
     const PolarImage f = shade(fine, sampled_scene);
     sp.set_ref_db(f);
     const PolarImage e = shade(coarse_edges, sampled_scene);
-    return sample_errors(shade(coarse, sampled_scene), f, sp.ref_db, {&e});
+    EstimateImages images{&e};
+    PolarImage lasting;
+    if (refinable) lasting = shade(coarse_lasting, sampled_scene), images.lasting_edges = &lasting;
+    return sample_errors(shade(coarse, sampled_scene), f, sp.ref_db, images);
 }
 
 /// The azimuth probe of a sample beam's columns `cols` (refined): on every probe_every-th cell of each
@@ -347,7 +374,8 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
     PassCells out;
     out.bumped.assign(size_t(G), 0);
     if (bump && !sp.control.preview && !sp.multipath && M0 >= 9) {
-        out.bumped = (*bump)(base_errors(sp, beams, groups));
+        if (counts_refinable(sp, M0)) set_base_image(sp, beams); // the refinable triples' significance
+        out.bumped = (*bump)(base_errors(sp, beams, groups, M0));
         for (int k = 0; k < G; ++k) {
             if (!out.bumped[size_t(k)]) continue;
             if (carried) carried->resize(size_t(N));

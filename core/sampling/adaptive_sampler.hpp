@@ -97,10 +97,14 @@ struct Sampler {
     // adaptive_pass.cpp
     /// Cells of a column at azimuth width da, and their multipath ghosts (with multipath), into up to three
     /// outputs: every node's cell (`fine`); every complete sibling triple merged into its middle cell, one
-    /// level up (`all`); only the triples that are not smooth merged (`edges`, smooth_triple). Each cell and
+    /// level up (`all`); only the triples that are not smooth merged (`edges`, smooth_triple; with
+    /// `lasting_edges_only`, only those refinement will not split either, refinable_triple). Each cell and
     /// its ghosts are made once, whichever outputs share them. Returns the ghosts' rays.
-    std::uint64_t cells_of(const Column& c, double da, CellsOut fine, CellsOut all = {},
-                           CellsOut edges = {}) const;
+    std::uint64_t cells_of(const Column& c, double da, CellsOut fine, CellsOut all = {}, CellsOut edges = {},
+                           bool lasting_edges_only = false) const;
+    /// Whether refinement will split a cell of the sibling triple at nodes [n, n + 3) of c: a pair in it
+    /// is discontinuous (significance included, against the base image) or a cell needs to split alone.
+    bool refinable_triple(const Column& c, size_t n) const;
     /// Whether the sibling triple at nodes [n, n + 3) of c lies on one smooth surface: every cell hits, no
     /// step between neighbours (RefineCriteria::edge_between) and no reason for the merged cell to split
     /// alone. Merging it changes the image in second order of the cell width; other triples, first order.
@@ -131,7 +135,8 @@ struct SampleError {
     /// acts on it (and diffs_db includes it).
     double az_num = 0;
     /// Fast: the same sum, reported but not acted on (neither the choice of groups nor the stopping rule
-    /// counts it: no column is added for it), and per entry of diffs_db what it adds [dB].
+    /// counts it: no column is added for it), and per entry of diffs_db what it adds [dB] (from the mean
+    /// over the probe_every bins centred on that one, sample_errors).
     double az_seen = 0;
     std::vector<float> seen_inc_db;
     /// Twice the group's estimated error that the sampler acts on (the sums' unit): num plus the azimuth
@@ -181,6 +186,9 @@ struct EstimateImages {
     const PolarImage* az_three = nullptr;
     bool act_on_azimuth = true;
     int probe_every = kProbeEvery;
+    /// The coarse image with only the triples merged that are neither smooth nor split by refinement (a
+    /// bump decision's, with counts_refinable): the other edges' part counts at kRefinableShare.
+    const PolarImage* lasting_edges = nullptr;
 };
 
 /// Per sample beam (column k of the images: the same beams), the estimate's share (adaptive_estimate.cpp).
