@@ -7,6 +7,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -281,7 +282,7 @@ bool Sampler::smooth_column_triple(const std::vector<Column>& cols, size_t k) co
     return true;
 }
 
-/// Whether fast's bump decision at base grid M0 counts the triples refinement will split at
+/// Whether fast's bump decision at base grid M0 may count the triples refinement will split at
 /// kRefinableShare (past the first base grid; strict counts them in full).
 static bool counts_refinable(const Sampler& sp, int M0) {
     return !sp.strict && M0 > sp.s.sampling.elevation_rays;
@@ -289,13 +290,12 @@ static bool counts_refinable(const Sampler& sp, int M0) {
 
 /// The base grid's own error on each group's sample beam, estimated as the refined image's is (against
 /// its sibling triples merged): the error that refinement, which works only at discontinuities, starts
-/// from. With counts_refinable, the triples refinement will split (against the base image, which must be
-/// set) count at kRefinableShare.
+/// from. With `refinable`, the triples refinement will split (against the base image, which must be set)
+/// count at kRefinableShare.
 static std::vector<SampleError> base_errors(Sampler& sp, const Beams& beams, const BeamGroups& groups,
-                                            int M0) {
+                                            bool refinable) {
     const SceneDesc& s = sp.s;
     const int sampled = int(groups.size());
-    const bool refinable = counts_refinable(sp, M0);
     TraceResult fine, coarse, coarse_edges, coarse_lasting;
     fine.beams = coarse.beams = coarse_edges.beams = coarse_lasting.beams = sampled;
     fine.cells.resize(size_t(sampled)), coarse.cells.resize(size_t(sampled));
@@ -374,8 +374,14 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
     PassCells out;
     out.bumped.assign(size_t(G), 0);
     if (bump && !sp.control.preview && !sp.multipath && M0 >= 9) {
-        if (counts_refinable(sp, M0)) set_base_image(sp, beams); // the refinable triples' significance
-        out.bumped = (*bump)(base_errors(sp, beams, groups, M0));
+        out.bumped = (*bump)(base_errors(sp, beams, groups, false));
+        // Fewer groups go denser with the refinable triples counted at their share: worth deciding again
+        // only where some went (the base image first: the triples' significance is judged against it).
+        if (counts_refinable(sp, M0) &&
+            std::find(out.bumped.begin(), out.bumped.end(), 1) != out.bumped.end()) {
+            set_base_image(sp, beams);
+            out.bumped = (*bump)(base_errors(sp, beams, groups, true));
+        }
         for (int k = 0; k < G; ++k) {
             if (!out.bumped[size_t(k)]) continue;
             if (carried) carried->resize(size_t(N));
