@@ -288,33 +288,43 @@ static bool counts_refinable(const Sampler& sp, int M0) {
     return !sp.strict && M0 > sp.s.sampling.elevation_rays;
 }
 
-/// The base grid's own error on each group's sample beam, estimated as the refined image's is (against
-/// its sibling triples merged): the error that refinement, which works only at discontinuities, starts
-/// from. With `refinable`, the triples refinement will split (against the base image, which must be set)
-/// count at kRefinableShare.
-static std::vector<SampleError> base_errors(Sampler& sp, const Beams& beams, const BeamGroups& groups,
-                                            bool refinable) {
-    const SceneDesc& s = sp.s;
+/// The base grid's images of each group's sample beam for its own error (sample_errors, estimated as the
+/// refined image's is: against its sibling triples merged): the error that refinement, which works only at
+/// discontinuities, starts from. Sets the sampler's reference level from the fine image.
+struct BaseImages {
+    PolarImage fine, coarse, edges;
+};
+
+static BaseImages base_images(Sampler& sp, const Beams& beams, const BeamGroups& groups) {
     const int sampled = int(groups.size());
-    TraceResult fine, coarse, coarse_edges, coarse_lasting;
-    fine.beams = coarse.beams = coarse_edges.beams = coarse_lasting.beams = sampled;
+    TraceResult fine, coarse, coarse_edges;
+    fine.beams = coarse.beams = coarse_edges.beams = sampled;
     fine.cells.resize(size_t(sampled)), coarse.cells.resize(size_t(sampled));
-    coarse_edges.cells.resize(size_t(sampled)), coarse_lasting.cells.resize(size_t(sampled));
+    coarse_edges.cells.resize(size_t(sampled));
     tbb::parallel_for(0, sampled, [&](int k) { // without multipath: no ghosts
-        for (const auto& c : beams[size_t(groups[size_t(k)].front())]) {
+        for (const auto& c : beams[size_t(groups[size_t(k)].front())])
             sp.cells_of(c, c.da, {&fine.cells[size_t(k)]}, {&coarse.cells[size_t(k)]},
                         {&coarse_edges.cells[size_t(k)]});
-            if (refinable) sp.cells_of(c, c.da, {}, {}, {&coarse_lasting.cells[size_t(k)]}, true);
-        }
     });
-    const SceneDesc sampled_scene = sampled_beams_scene(s, sampled);
-    const PolarImage f = shade(fine, sampled_scene);
-    sp.set_ref_db(f);
-    const PolarImage e = shade(coarse_edges, sampled_scene);
-    EstimateImages images{&e};
-    PolarImage lasting;
-    if (refinable) lasting = shade(coarse_lasting, sampled_scene), images.lasting_edges = &lasting;
-    return sample_errors(shade(coarse, sampled_scene), f, sp.ref_db, images);
+    const SceneDesc sampled_scene = sampled_beams_scene(sp.s, sampled);
+    BaseImages out{shade(fine, sampled_scene), shade(coarse, sampled_scene),
+                   shade(coarse_edges, sampled_scene)};
+    sp.set_ref_db(out.fine);
+    return out;
+}
+
+/// The same sample beams with only the triples merged that are neither smooth nor split by refinement
+/// (refinable_triple, against the base image, which must be set).
+static PolarImage lasting_edges_image(const Sampler& sp, const Beams& beams, const BeamGroups& groups) {
+    const int sampled = int(groups.size());
+    TraceResult lasting;
+    lasting.beams = sampled;
+    lasting.cells.resize(size_t(sampled));
+    tbb::parallel_for(0, sampled, [&](int k) {
+        for (const auto& c : beams[size_t(groups[size_t(k)].front())])
+            sp.cells_of(c, c.da, {}, {}, {&lasting.cells[size_t(k)]}, true);
+    });
+    return shade(lasting, sampled_beams_scene(sp.s, sampled));
 }
 
 /// The azimuth probe of a sample beam's columns `cols` (refined): on every probe_every-th cell of each
@@ -374,13 +384,17 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
     PassCells out;
     out.bumped.assign(size_t(G), 0);
     if (bump && !sp.control.preview && !sp.multipath && M0 >= 9) {
-        out.bumped = (*bump)(base_errors(sp, beams, groups, false));
+        const BaseImages base = base_images(sp, beams, groups);
+        EstimateImages images{&base.edges};
+        out.bumped = (*bump)(sample_errors(base.coarse, base.fine, sp.ref_db, images));
         // Fewer groups go denser with the refinable triples counted at their share: worth deciding again
         // only where some went (the base image first: the triples' significance is judged against it).
         if (counts_refinable(sp, M0) &&
             std::find(out.bumped.begin(), out.bumped.end(), 1) != out.bumped.end()) {
             set_base_image(sp, beams);
-            out.bumped = (*bump)(base_errors(sp, beams, groups, true));
+            const PolarImage lasting = lasting_edges_image(sp, beams, groups);
+            images.lasting_edges = &lasting;
+            out.bumped = (*bump)(sample_errors(base.coarse, base.fine, sp.ref_db, images));
         }
         for (int k = 0; k < G; ++k) {
             if (!out.bumped[size_t(k)]) continue;
