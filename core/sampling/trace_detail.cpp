@@ -50,12 +50,20 @@ Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, 
     c.elevation_rad = float(e.rad), c.elevation_width_rad = float(e_hi.rad - e_lo.rad);
     // The footprint lies on the face the ray hit, where the neighbouring rays land too: a smooth object's
     // shading normal changes how strongly it echoes (the incidence above), not where it is.
+    // Each edge ray o + r d_k meets that plane at r = n.(p - o) / n.d_k (plane_range), with n.d_k taken in
+    // the sonar's frame as (R^T n).(cos e cos a, cos e sin a, sin e): one product with R, not one per edge.
     const glm::dvec3& n = h.face_normal;
-    auto edge_range = [&](const glm::dvec3& d) { return plane_range(f.origin, p, n, d); };
-    const double re0 = edge_range(f.dir(a, e_lo));
-    const double re1 = edge_range(f.dir(a, e_hi));
-    const double ra0 = edge_range(f.dir(a_lo, e));
-    const double ra1 = edge_range(f.dir(a_hi, e));
+    const glm::dvec3 n_sonar = n * f.R; // R^T n
+    const double num = glm::dot(n, p - f.origin);
+    auto edge_range = [&](const Angle& ak, const Angle& ek) {
+        const double den = n_sonar.x * (ek.c * ak.c) + n_sonar.y * (ek.c * ak.s) + n_sonar.z * ek.s;
+        const double t = num / den;
+        return (den != 0 && t > 0 && std::isfinite(t)) ? t : -1;
+    };
+    const double re0 = edge_range(a, e_lo);
+    const double re1 = edge_range(a, e_hi);
+    const double ra0 = edge_range(a_lo, e);
+    const double ra1 = edge_range(a_hi, e);
     // An edge that does not meet the plane (beyond its horizon): mirror the other edge about r. An edge ray
     // close to the plane's horizon meets it far away (the range grows as 1 / (n.d), without bound): the
     // facet does not reach that far, and the echo spread there would land in bins no surface crosses (a

@@ -36,7 +36,7 @@ struct RayFrame {
 };
 
 /// Range at which direction d from o meets the plane through p with normal n; -1 if it does not. Inline:
-/// make_cell calls it four times on one plane, and the criteria once per edge.
+/// the criteria call it once per edge (make_cell does the same for its four edges in the sonar's frame).
 inline double plane_range(const glm::dvec3& o, const glm::dvec3& p, const glm::dvec3& n,
                           const glm::dvec3& d) {
     const double den = glm::dot(n, d);
