@@ -50,13 +50,15 @@ double ghost_echo_db(const ShadeConstants& k, const SceneDesc& s, const GhostCel
         bs = backscatter_db(m, cos_in);
     } else {
         if (!(cos_out > 0)) return kNegInf;
-        bs = m.nu_db + (m.q == 0 ? 0.0 : 0.5 * m.q * (std::log(cos_in) + std::log(cos_out)) / kLn10Over10);
+        bs = m.nu_db + (m.q == 0 ? 0.0 : 0.5 * m.q * std::log(cos_in * cos_out) / kLn10Over10);
     }
     double refl = 0;
     for (int j = 0; j < g.mirrors(); ++j)
         refl += (g.mixed() ? 1 : 2) * reflection_gain_db(k, s, g.mirror_material[j], g.mirror_cos[j]);
-    return k.source_level_db - 2.0 * k.alpha_db_per_m * c.range_m - 20.0 * std::log10(double(g.other_leg_m)) +
-           std::log(c.solid_angle_sr / cos_in) / kLn10Over10 + bs + refl;
+    // -20 log10(other leg) + 10 log10(dOmega / cos_in), as one logarithm.
+    const double leg_m = g.other_leg_m;
+    return k.source_level_db - 2.0 * k.alpha_db_per_m * c.range_m +
+           std::log(c.solid_angle_sr / (cos_in * leg_m * leg_m)) / kLn10Over10 + bs + refl;
 }
 
 BeamContributions::BeamContributions(const TraceResult& hits, int beam)
