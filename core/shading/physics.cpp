@@ -55,8 +55,13 @@ double cell_echo_db(const ShadeConstants& c, const Material& m, double r, double
     // area combined, so it stays finite as r -> 0. Without a specular term L_BS folds in as nu + q 10 log10
     // cos.
     const double base = c.source_level_db - 2.0 * c.alpha_db_per_m * r;
-    if (m.mu == 0)
-        return base + m.nu_db + (std::log(d_omega / (r * r)) + (m.q - 1.0) * std::log(cos_inc)) / kLn10Over10;
+    if (m.mu == 0) {
+        // One logarithm for the usual exponents (Lambert's q = 2, and q = 1), two for any other.
+        const double area = d_omega / (r * r);
+        if (m.q == 2) return base + m.nu_db + std::log(area * cos_inc) / kLn10Over10;
+        if (m.q == 1) return base + m.nu_db + std::log(area) / kLn10Over10;
+        return base + m.nu_db + (std::log(area) + (m.q - 1.0) * std::log(cos_inc)) / kLn10Over10;
+    }
     return base + backscatter_db(m, cos_inc) + 10.0 * std::log10(d_omega / (cos_inc * r * r));
 }
 

@@ -79,6 +79,14 @@ TEST_CASE("one cell's echo level is L_S - 2 TL + L_BS + 10 log10(r^2 dOmega / co
     CHECK(cell_echo_db(k, m, r, c, dom) == Approx(expect).epsilon(1e-12));
     CHECK(cell_echo_db(k, m, r, 0.0, dom) == -std::numeric_limits<double>::infinity());
     CHECK(cell_echo_db(k, m, 0.0, c, dom) == -std::numeric_limits<double>::infinity());
+    // Every exponent q (q = 1 and 2 take one logarithm, the others two): L_BS = nu + 10 q log10 cos.
+    for (const double q : {0.0, 1.0, 1.5, 2.0, 3.0}) {
+        INFO("q " << q);
+        m.q = q;
+        const double expect_q = 230 - 2 * (20 * std::log10(r) + 3.04 * r) + (-45 + 10 * q * std::log10(c)) +
+                                10 * std::log10(r * r * dom / c);
+        CHECK(cell_echo_db(k, m, r, c, dom) == Approx(expect_q).epsilon(1e-12));
+    }
     // The noise level does not enter a cell's echo; shade_constants carries it with L_S and alpha.
     const ShadeConstants d = shade_constants(SceneDesc{});
     CHECK(d.source_level_db == 230.0);
