@@ -253,11 +253,8 @@ bool Sampler::smooth_triple(const Column& c, size_t n) const {
 
 bool Sampler::refinable_triple(const Column& c, size_t n) const {
     const Angle a(c.a);
-    for (size_t t = n; t < n + 2; ++t) {
-        const Node &x = c.nodes[t], &y = c.nodes[t + 1];
-        if (criteria.discontinuous(x, c, y, c, EdgeRay{a, x.angle.rad - x.de / 2, nullptr, &x.angle, x.de}))
-            return true;
-    }
+    for (size_t t = n; t < n + 2; ++t)
+        if (criteria.splits_pair(c.nodes[t], c.nodes[t + 1], c, a)) return true;
     for (size_t t = n; t < n + 3; ++t)
         if (criteria.needs_split_alone(c.nodes[t], a)) return true;
     return false;

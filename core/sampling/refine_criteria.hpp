@@ -45,6 +45,12 @@ class RefineCriteria {
     bool discontinuous(const Node& x, const Column& cx, const Node& y, const Column& cy,
                        const EdgeRay& edge) const;
 
+    /// discontinuous() for x and the next cell below it, y, in column c at azimuth a (across the edge
+    /// between them): whether elevation refinement splits that pair.
+    bool splits_pair(const Node& x, const Node& y, const Column& c, const Angle& a) const {
+        return discontinuous(x, c, y, c, EdgeRay{a, x.angle.rad - x.de / 2, nullptr, &x.angle, x.de});
+    }
+
     /// Whether the integrand is not smooth between neighbouring cells x and y in one column: one misses, a
     /// surface edge lies between them, or their levels step, and with multipath the same for their
     /// continuations (discontinuous() without the significance test). The error estimate takes a merged

@@ -104,9 +104,7 @@ size_t Sampler::mark_for_split(Column& col, const Angle& a, double de_min) const
     // Pairs of unchanged neighbours were compared before and found smooth: compare only fresh pairs.
     for (size_t n = 0; n + 1 < col.nodes.size(); ++n) {
         const Node &x = col.nodes[n], &y = col.nodes[n + 1];
-        if ((x.fresh || y.fresh) &&
-            criteria.discontinuous(x, col, y, col,
-                                   EdgeRay{a, x.angle.rad - x.de / 2, nullptr, &x.angle, x.de}))
+        if ((x.fresh || y.fresh) && criteria.splits_pair(x, y, col, a))
             mark(col.nodes[n]), mark(col.nodes[n + 1]);
     }
     for (auto& n : col.nodes) n.fresh = false;
