@@ -177,6 +177,14 @@ using BumpRule = std::function<std::vector<char>(const std::vector<SampleError>&
 PassCells trace_pass(Sampler& sampler, int M0, const BeamGroups& groups, const BumpRule* bump,
                      Beams* carried);
 
+/// The cells of the refined columns (fine) and, on the `samples` beams (slot k: samples[k]; -1: none)
+/// unless previewing, the same cells one level coarser (`coarse`) and the same with only the triples that
+/// are not smooth merged (`coarse_edges`); with multipath their ghosts, the coarser images' those arriving
+/// in each sample beam. Adds the columns' rays to fine.rays_traced and frees the columns
+/// (adaptive_cells.cpp).
+void collect_cells(const Sampler& sampler, Beams& beams, const std::vector<int>& samples, TraceResult& fine,
+                   TraceResult& coarse, TraceResult& coarse_edges);
+
 /// Images of the same sample beams besides fine and coarse (null: none): the coarse image with only the
 /// triples that are not smooth merged, and the azimuth probe's cells (every probe_every-th) as one column
 /// and as three. `act_on_azimuth`: strict (fast only reports the probe, SampleError::az_seen).

@@ -1,0 +1,182 @@
+// Adaptive sampling: a pass's refined columns as cells, fine and, on the sample beams, one level coarser
+// (sibling triples merged: all of them, or only those that are not smooth), for the image and its error
+// estimate.
+#include "core/sampling/adaptive_sampler.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <utility>
+
+namespace sonarsim::adaptive {
+namespace {
+
+/// The cells of one beam's columns (`fine`) and one level coarser: sibling column triples -> the middle
+/// column, 3 da, and within each column every sibling elevation triple -> the middle cell (`all`); the same
+/// with only the triples that are not smooth merged, columns and cells (`edges`). Each cell is made once
+/// for the outputs that share it. Returns the ghosts' rays.
+std::uint64_t coarse_cells_of(const Sampler& sp, const std::vector<Column>& cols, CellsOut fine, CellsOut all,
+                              CellsOut edges) {
+    std::uint64_t rays = 0;
+    for (size_t k = 0; k < cols.size();) {
+        if (k + 2 < cols.size() && cols[k].group == cols[k + 1].group && cols[k].group == cols[k + 2].group) {
+            const bool smooth = sp.smooth_column_triple(cols, k);
+            for (size_t t = k; t < k + 3; ++t)
+                rays += sp.cells_of(cols[t], cols[t].da, fine, {}, smooth ? edges : CellsOut{});
+            rays += sp.cells_of(cols[k + 1], 3 * cols[k + 1].da, {}, all, smooth ? CellsOut{} : edges);
+            k += 3;
+        } else {
+            rays += sp.cells_of(cols[k], cols[k].da, fine, all, edges);
+            ++k;
+        }
+    }
+    return rays;
+}
+
+} // namespace
+
+void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samples, TraceResult& fine,
+                   TraceResult& coarse, TraceResult& coarse_edges) {
+    const SceneDesc& s = sp.s;
+    const int N = s.sonar.beams, sampled = int(samples.size());
+    std::vector<int> slot(static_cast<size_t>(N), -1); // beam -> its slot
+    for (int k = 0; k < sampled; ++k)
+        if (samples[size_t(k)] >= 0) slot[size_t(samples[size_t(k)])] = k;
+    fine.beams = N, coarse.beams = coarse_edges.beams = sampled;
+    coarse.cells.resize(size_t(sampled)), coarse_edges.cells.resize(size_t(sampled));
+    fine.cells.resize(size_t(N));
+    // Ghosts by the beam whose rays found them (the coarse ones on sample beams only).
+    std::vector<std::vector<GhostCell>> fine_ghosts(static_cast<size_t>(N)),
+        coarse_ghosts(static_cast<size_t>(sp.multipath ? N : 0)),
+        edge_ghosts(static_cast<size_t>(sp.multipath ? N : 0));
+    std::vector<std::uint64_t> ghost_rays(static_cast<size_t>(N), 0);
+    tbb::parallel_for(0, N, [&](int i) {
+        const auto& cols = beams[size_t(i)];
+        size_t nodes = 0;
+        for (auto& c : cols) nodes += c.nodes.size();
+        fine.cells[size_t(i)].reserve(nodes);
+        if (sp.multipath) fine_ghosts[size_t(i)].reserve(3 * nodes); // at most three per cell (bounces 1)
+        const CellsOut out{&fine.cells[size_t(i)], sp.multipath ? &fine_ghosts[size_t(i)] : nullptr};
+        if (sp.control.preview || slot[size_t(i)] < 0) {
+            for (auto& c : cols) ghost_rays[size_t(i)] += sp.cells_of(c, c.da, out);
+            return;
+        }
+        const size_t k = size_t(slot[size_t(i)]);
+        if (sp.multipath) coarse_ghosts[size_t(i)].reserve(3 * nodes);
+        ghost_rays[size_t(i)] += coarse_cells_of(
+            sp, cols, out, {&coarse.cells[k], sp.multipath ? &coarse_ghosts[size_t(i)] : nullptr},
+            {&coarse_edges.cells[k], sp.multipath ? &edge_ghosts[size_t(i)] : nullptr});
+    });
+    if (sp.multipath) {
+        fine.ghosts = detail::gather_ghosts(fine_ghosts, s);
+        // The coarser images' ghosts: those arriving in each sample beam, in its slot.
+        auto by_slot = [&](std::vector<std::vector<GhostCell>>& by_source, TraceResult& r) {
+            auto arriving = detail::gather_ghosts(by_source, s);
+            r.ghosts.assign(size_t(sampled), {});
+            for (int k = 0; k < sampled; ++k)
+                if (samples[size_t(k)] >= 0)
+                    r.ghosts[size_t(k)] = std::move(arriving[size_t(samples[size_t(k)])]);
+        };
+        by_slot(coarse_ghosts, coarse);
+        by_slot(edge_ghosts, coarse_edges);
+        for (auto r : ghost_rays) fine.multipath_rays += r;
+    }
+    for (auto& b : beams)
+        for (auto& c : b) fine.rays_traced += c.rays;
+    beams.clear(); // the nodes are no longer needed: free them before shading
+    beams.shrink_to_fit();
+}
+
+std::uint64_t Sampler::cells_of(const Column& c, double da, CellsOut fine, CellsOut all, CellsOut edges,
+                                bool lasting_edges_only) const {
+    std::uint64_t rays = 0;
+    const Angle a(c.a), a_lo(c.a - da / 2), a_hi(c.a + da / 2);
+    // Cell widths come in a few sizes (de0 / 3^k): keep sin and cos of their halves.
+    std::array<std::pair<double, Angle>, 12> halves{};
+    size_t n_halves = 0;
+    auto half = [&](double de) -> const Angle& {
+        for (size_t k = 0; k < n_halves; ++k)
+            if (halves[k].first == de) return halves[k].second;
+        auto& slot = halves[std::min(n_halves, halves.size() - 1)];
+        n_halves = std::min(n_halves + 1, halves.size());
+        slot = {de, Angle(de / 2)};
+        return slot.second;
+    };
+    thread_local std::vector<GhostCell> made; // one cell's ghosts, before they go to each output
+    auto emit = [&](const Node& n, double de, std::initializer_list<const CellsOut*> to) {
+        if (!n.hit) return;
+        const Angle& h = half(de);
+        const Angle& e = n.angle;
+        const Angle lo(e.rad - h.rad, e, h, -1), hi(e.rad + h.rad, e, h, +1); // e -+ de/2 (angle sums)
+        const Cell cell = detail::make_cell(frame, *n.hit, a, e, a_lo, a_hi, lo, hi);
+        made.clear();
+        if (multipath) rays += mp.ghosts(*n.hit, a, e, a_lo, a_hi, lo, hi, c.beam, made, n.via);
+        for (const CellsOut* o : to) {
+            if (!o->cells) continue;
+            o->cells->push_back(cell);
+            if (o->ghosts) o->ghosts->insert(o->ghosts->end(), made.begin(), made.end());
+        }
+    };
+    const CellsOut none{};
+    for (size_t n = 0; n < c.nodes.size();) {
+        const bool triple = n + 2 < c.nodes.size() && c.nodes[n].group == c.nodes[n + 1].group &&
+                            c.nodes[n].group == c.nodes[n + 2].group;
+        if (!triple || (!all.cells && !edges.cells)) {
+            emit(c.nodes[n], c.nodes[n].de, {&fine, &all, &edges});
+            ++n;
+            continue;
+        }
+        const bool smooth =
+            edges.cells && (smooth_triple(c, n) || (lasting_edges_only && refinable_triple(c, n)));
+        const CellsOut& fine_edges = smooth ? edges : none;
+        if (fine.cells || smooth)
+            for (size_t t = n; t < n + 3; ++t) emit(c.nodes[t], c.nodes[t].de, {&fine, &fine_edges});
+        if (all.cells || !smooth)
+            emit(c.nodes[n + 1], 3 * c.nodes[n + 1].de, {&all, smooth ? &none : &edges});
+        n += 3;
+    }
+    return rays;
+}
+
+bool Sampler::smooth_triple(const Column& c, size_t n) const {
+    const Node *x = &c.nodes[n], *m = &c.nodes[n + 1], *y = &c.nodes[n + 2];
+    if (!x->hit || !m->hit || !y->hit) return false;
+    const Angle a(c.a);
+    const EdgeRay upper{a, x->angle.rad - x->de / 2, nullptr, &x->angle, x->de};
+    const EdgeRay lower{a, m->angle.rad - m->de / 2, nullptr, &m->angle, m->de};
+    if (criteria.edge_between(*x, *m, upper) || criteria.edge_between(*m, *y, lower)) return false;
+    Node merged = *m; // the triple as one cell
+    merged.de = 3 * m->de, merged.footprint_m = 3 * m->footprint_m;
+    return !criteria.needs_split_alone(merged, a);
+}
+
+bool Sampler::refinable_triple(const Column& c, size_t n) const {
+    const Angle a(c.a);
+    for (size_t t = n; t < n + 2; ++t)
+        if (criteria.splits_pair(c.nodes[t], c.nodes[t + 1], c, a)) return true;
+    for (size_t t = n; t < n + 3; ++t)
+        if (criteria.needs_split_alone(c.nodes[t], a)) return true;
+    return false;
+}
+
+bool Sampler::smooth_column_triple(const std::vector<Column>& cols, size_t k) const {
+    const Column &l = cols[k], &m = cols[k + 1], &r = cols[k + 2];
+    if (l.base.empty() || m.base.empty() || r.base.empty()) return false;
+    const int j0 = std::max({l.j0, m.j0, r.j0}), j1 = std::min({l.j1, m.j1, r.j1});
+    if (j0 != m.j0 || j1 != m.j1) return false;
+    const Angle port(0.5 * (l.a + m.a)), starboard(0.5 * (m.a + r.a));
+    const double a_lo = std::min(l.a, r.a) - m.da / 2, a_hi = std::max(l.a, r.a) + m.da / 2;
+    for (int j = j0; j < j1; ++j) {
+        const Node &x = l.base[size_t(j - l.j0)], &y = m.base[size_t(j - m.j0)],
+                   &z = r.base[size_t(j - r.j0)];
+        if (!x.hit || !y.hit || !z.hit) return false;
+        if (criteria.edge_between(x, y, EdgeRay{port, 0, &x.angle}) ||
+            criteria.edge_between(y, z, EdgeRay{starboard, 0, &y.angle}))
+            return false;
+        if (criteria.specular_in_azimuth(y, a_lo, a_hi, 3 * m.da)) return false;
+    }
+    return true;
+}
+
+} // namespace sonarsim::adaptive
