@@ -66,7 +66,7 @@ inline const Via kNoVia{};
 struct Node {
     double de = 0; ///< width [rad] (the centre: angle)
     std::optional<Hit> hit;
-    glm::dvec3 p{0};
+    glm::dvec3 p_m{0};       ///< the hit point [m, world]
     double density_db = 0;   ///< echo level per steradian (cell_echo_db with dOmega = B_v(e), the pattern)
     double dr_de = 0;        ///< |d range / d elevation| on the hit plane [m/rad]
     double footprint_m = 0;  ///< dr_de * de: the range the cell spans [m]

@@ -23,7 +23,7 @@ void shift_range(Cell& c, float d_m) {
 
 /// Half the two-way path minus the receive leg: the transmit leg was |X - p_tx|, not |X - p_rx|.
 float two_way_correction(const Cell& c, const glm::dvec3& p_tx) {
-    const double tx_leg = glm::length(glm::dvec3(c.point) - p_tx);
+    const double tx_leg = glm::length(glm::dvec3(c.point_m) - p_tx);
     return float(0.5 * (tx_leg - double(c.range_m)));
 }
 

@@ -88,7 +88,7 @@ std::uint64_t Multipath::ghosts(const Hit& h, const Angle& a, const Angle& e, co
         const glm::dvec3 x = reflect(image, hit, a, e, d2);
         chain.mirror_material[k] = hit.material;
         chain.mirror_cos[k] = float(std::min(1.0, std::abs(glm::dot(hit.normal, d2))));
-        chain.mirror_point[k] = glm::vec3(x);
+        chain.mirror_point_m[k] = glm::vec3(x);
         const bool known = k == 0 && first;
         rays += known ? 0 : 1;
         const std::optional<Hit> next = known ? first->hit : trace_on(x, d2, hit.t);

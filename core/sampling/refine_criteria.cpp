@@ -41,7 +41,7 @@ double RefineCriteria::direct_step_db(const Node& x, const Node& y, const EdgeRa
     constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
     if (bool(x.hit) != bool(y.hit)) return -1;
     if (!x.hit) return kNone;
-    if (surface_edge(*x.hit, x.p, *y.hit, y.p, edge)) return -1;
+    if (surface_edge(*x.hit, x.p_m, *y.hit, y.p_m, edge)) return -1;
     const double density_step_db = std::abs(x.density_db - y.density_db);
     if (density_step_db > jump_db_) return density_step_db;
     // Cells whose range footprint spans bins spread their echo evenly over it; where the echo per metre
@@ -173,7 +173,7 @@ bool RefineCriteria::significant_at(double density_db, double r, double footprin
 
 /// Direction of normal incidence on the node's surface (its shading normal), in the sonar frame.
 glm::dvec3 RefineCriteria::normal_direction_sonar(const Node& n) const {
-    const glm::dvec3 v = glm::dot(n.hit->normal, n.p - frame_.origin) > 0 ? n.hit->normal : -n.hit->normal;
+    const glm::dvec3 v = glm::dot(n.hit->normal, n.p_m - frame_.origin) > 0 ? n.hit->normal : -n.hit->normal;
     return glm::transpose(frame_.R) * v;
 }
 
@@ -198,17 +198,17 @@ bool RefineCriteria::needs_split_alone(const Node& n, const Angle& a) const {
         const double edge = sign < 0 ? n.angle.rad - n.de / 2 : n.angle.rad + n.de / 2;
         const Angle near(edge, n.angle, h, sign);
         const double r =
-            detail::plane_range_near(frame_.origin, n.p, n.hit->face_normal, frame_.dir(a, near));
-        if (r == r
-                ? r < 0
-                : detail::plane_range(frame_.origin, n.p, n.hit->face_normal, frame_.dir(a, Angle(edge))) < 0)
+            detail::plane_range_near(frame_.origin, n.p_m, n.hit->face_normal, frame_.dir(a, near));
+        if (r == r ? r < 0
+                   : detail::plane_range(frame_.origin, n.p_m, n.hit->face_normal,
+                                         frame_.dir(a, Angle(edge))) < 0)
             return true;
     }
     return false;
 }
 
 double RefineCriteria::face_cos(const Node& n) const {
-    const double num = std::abs(glm::dot(n.hit->face_normal, n.p - frame_.origin));
+    const double num = std::abs(glm::dot(n.hit->face_normal, n.p_m - frame_.origin));
     return num > 1e-9 && num < 1e12 ? num / n.hit->t : 0.0;
 }
 

@@ -37,7 +37,7 @@ Node Sampler::trace_node(const Angle& a, const Angle& e, double de, int group) c
     const glm::dvec3 d = frame.dir(a, n.angle);
     n.hit = detail::first_hit(g, s, frame.origin, d, frame.t_max);
     if (n.hit) {
-        n.p = frame.origin + n.hit->t * d;
+        n.p_m = frame.origin + n.hit->t * d;
         n.density_db = cell_echo_db(criteria.constants(), material_of(s, n.hit->material), n.hit->t,
                                     std::abs(glm::dot(n.hit->normal, d)), frame.elevation_weight(e.rad));
         // On the face's plane (where the footprint lies, as in make_cell) r(e) = (n.(p - o)) / (n.d(e)), so

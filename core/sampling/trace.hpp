@@ -19,7 +19,7 @@ namespace sonarsim {
 
 /// One ray and the solid-angle cell [e +- de/2] x [a +- da/2] it stands for.
 struct Cell {
-    glm::vec3 point;      ///< first hit [m, world]
+    glm::vec3 point_m;    ///< first hit [m, world]
     float range_m;        ///< distance from the sonar to the hit [m]
     float cos_incidence;  ///< cos of the angle between the surface normal and the reversed ray
     float solid_angle_sr; ///< dOmega = cos e de da [sr], times the elevation pattern B_v(e) when there is one
@@ -47,7 +47,7 @@ struct GhostCell {
     std::uint32_t beam = 0;                      ///< the beam it arrives in
     std::uint32_t mirror_material[2] = {0, 0};   ///< the chain's mirrors, sonar side first
     float mirror_cos[2] = {1, 1};                ///< cos of the incidence at each mirror
-    glm::vec3 mirror_point[2] = {};              ///< where the path meets each mirror [m, world]
+    glm::vec3 mirror_point_m[2] = {};            ///< where the path meets each mirror [m, world]
     int order() const { return tx_bounces + rx_bounces; }
     int mirrors() const { return tx_bounces > rx_bounces ? tx_bounces : rx_bounces; } ///< of the chain
     bool mixed() const { return tx_bounces != rx_bounces; }

@@ -42,7 +42,7 @@ Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, 
     const glm::dvec3 d = f.dir(a, e), p = f.origin + h.t * d;
     const double r = h.t;
     Cell c;
-    c.point = glm::vec3(p);
+    c.point_m = glm::vec3(p);
     c.range_m = float(r);
     c.cos_incidence = float(std::min(1.0, std::abs(glm::dot(h.normal, d))));
     c.solid_angle_sr = float(e.c * (e_hi.rad - e_lo.rad) * (a_hi.rad - a_lo.rad) * f.elevation_weight(e.rad));

@@ -117,7 +117,7 @@ template <bool Img, bool Sens, bool Gt, bool Ord, bool Str> class BeamPass {
                         const double r = p_.grid.bin_centre_m(b), e = detail::elevation_at(c, r);
                         const double ce = std::cos(e);
                         const glm::dvec3 point =
-                            ghost ? glm::dvec3(c.point)
+                            ghost ? glm::dvec3(c.point_m)
                                   : p_.origin + r * (p_.R * glm::dvec3(ce * cos_a, ce * sin_a, std::sin(e)));
                         truth_[bb].add(v, e, inc, point, key, bit);
                     }

@@ -58,9 +58,9 @@ EchoPath echo_path(const TraceResult& hits, const SceneDesc& s, int beam, std::i
     auto add = [&](const glm::vec3& p) { out.points_m.push_back({double(p.x), double(p.y), double(p.z)}); };
     const auto& o = s.sonar.pose.position_m;
     out.points_m.push_back(o);
-    for (int k = 0; g && k < g->tx_bounces; ++k) add(g->mirror_point[k]);
-    add(c.point);
-    for (int k = g ? g->rx_bounces - 1 : -1; k >= 0; --k) add(g->mirror_point[k]);
+    for (int k = 0; g && k < g->tx_bounces; ++k) add(g->mirror_point_m[k]);
+    add(c.point_m);
+    for (int k = g ? g->rx_bounces - 1 : -1; k >= 0; --k) add(g->mirror_point_m[k]);
     out.points_m.push_back(o);
     out.bounces = g ? g->order() : 0;
     out.out_bounces = g ? g->tx_bounces : 0;

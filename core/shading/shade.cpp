@@ -73,7 +73,7 @@ namespace {
 double textured_db(const ShadeConstants& k, const SceneDesc& s, const SceneTexture& texture, const Cell& c,
                    const GhostCell* g) {
     const MaterialTexture& t = texture.of(c.material);
-    const MaterialTexture::Sample x = t.at(glm::dvec3(c.point));
+    const MaterialTexture::Sample x = t.at(glm::dvec3(c.point_m));
     if (g) return ghost_echo_db(k, s, *g) + x.level_db;
     const Material& m = material_of(s, c.material);
     if (!t.slope_on) return cell_echo_db(k, m, c.range_m, c.cos_incidence, c.solid_angle_sr) + x.level_db;

@@ -43,7 +43,7 @@ Node plane_node(const detail::RayFrame& f, const RefineCriteria& c, double a_rad
     const double t = detail::plane_range(f.origin, on, nn, d);
     REQUIRE(t > 0);
     n.hit = Hit{t, nn, material, prim, nn};
-    n.p = f.origin + t * d;
+    n.p_m = f.origin + t * d;
     n.density_db = density_db;
     const glm::dvec3 d_e = f.R * glm::dvec3(-n.angle.s * a.c, -n.angle.s * a.s, n.angle.c);
     n.dr_de = std::abs(t * glm::dot(nn, d_e) / glm::dot(nn, d));
@@ -256,7 +256,7 @@ TEST_CASE("criteria: the horizon test agrees with exact edge rays, also where th
             const Node n = plane_node(f, crit, 0.1, e, de, {0, 0, -1}, {0, 0, 1}, kFloorMaterial, 0, 40);
             // Exact: the upper edge ray (e + de / 2, sin and cos evaluated) meets the plane or not.
             const glm::dvec3 up = f.dir(Angle(0.1), Angle(e + de / 2));
-            const bool exact = detail::plane_range(f.origin, n.p, n.hit->face_normal, up) < 0;
+            const bool exact = detail::plane_range(f.origin, n.p_m, n.hit->face_normal, up) < 0;
             if (std::abs(-e - de / 2) < 1e-12) continue; // the edge grazes: either answer is right
             REQUIRE(crit.needs_split_alone(n, Angle(0.1)) == exact);
             (exact ? horizons : clear) += 1;

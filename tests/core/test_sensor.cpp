@@ -488,7 +488,7 @@ TEST_CASE("a cell over several receive sub-columns puts each one's echo in its o
     const auto grid = sonar_grid(s.sonar);
     const int beam = 1;
     Cell c{};
-    c.point = glm::vec3(5, 0, 0);
+    c.point_m = glm::vec3(5, 0, 0);
     c.range_m = 5, c.cos_incidence = 0.5f, c.solid_angle_sr = 1e-4f;
     c.range_e_lo_m = c.range_e_hi_m = 5;
     c.range_a_lo_m = 4.6f, c.range_a_hi_m = 5.4f;

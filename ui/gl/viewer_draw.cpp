@@ -37,7 +37,7 @@ ViewOverlay Viewer::overlay() const {
     }
     if (shown && ui_.show_hits)
         for (auto& beam : shown->frame->hits().cells)
-            for (auto& c : beam) ov.hit_points.push_back(c.point);
+            for (auto& c : beam) ov.hit_points.push_back(c.point_m);
     return ov;
 }
 

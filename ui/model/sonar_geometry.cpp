@@ -163,7 +163,7 @@ std::vector<glm::vec3> echoing_points(const TraceResult& hits, const SceneDesc& 
     const double dr = sonar_grid(s.sonar)->bin_m;
     const double r0 = s.sonar.range_min_m + bin * dr, r1 = r0 + dr;
     for (const Cell& c : hits.cells[size_t(beam)])
-        if (cell_fraction_in(c, s.sampling.binning, r0, r1) > 0) out.push_back(c.point);
+        if (cell_fraction_in(c, s.sampling.binning, r0, r1) > 0) out.push_back(c.point_m);
     return out;
 }
 
