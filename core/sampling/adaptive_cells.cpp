@@ -6,7 +6,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <array>
 #include <utility>
 
 namespace sonarsim::adaptive {
@@ -92,21 +91,10 @@ std::uint64_t Sampler::cells_of(const Column& c, double da, CellsOut fine, Cells
                                 bool lasting_edges_only) const {
     std::uint64_t rays = 0;
     const Angle a(c.a), a_lo(c.a - da / 2), a_hi(c.a + da / 2);
-    // Cell widths come in a few sizes (de0 / 3^k): keep sin and cos of their halves.
-    std::array<std::pair<double, Angle>, 12> halves{};
-    size_t n_halves = 0;
-    auto half = [&](double de) -> const Angle& {
-        for (size_t k = 0; k < n_halves; ++k)
-            if (halves[k].first == de) return halves[k].second;
-        auto& slot = halves[std::min(n_halves, halves.size() - 1)];
-        n_halves = std::min(n_halves + 1, halves.size());
-        slot = {de, Angle(de / 2)};
-        return slot.second;
-    };
     thread_local std::vector<GhostCell> made; // one cell's ghosts, before they go to each output
     auto emit = [&](const Node& n, double de, std::initializer_list<const CellsOut*> to) {
         if (!n.hit) return;
-        const Angle& h = half(de);
+        const Angle& h = detail::half_angle(de); // widths come in a few sizes: kept per thread
         const Angle& e = n.angle;
         const Angle lo(e.rad - h.rad, e, h, -1), hi(e.rad + h.rad, e, h, +1); // e -+ de/2 (angle sums)
         const Cell cell = detail::make_cell(frame, *n.hit, a, e, a_lo, a_hi, lo, hi);
