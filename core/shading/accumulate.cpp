@@ -70,6 +70,7 @@ template <bool Img, bool Sens, bool Gt, bool Ord, bool Str> class BeamPass {
         if (elevation) wsum_.assign(K, 0.0), esum_.assign(K, 0.0);
         if constexpr (Gt) truth_.assign(K, TruthAccumulator{});
         if constexpr (Str) best_.assign(K, 0.0), best_n_.assign(K, -1);
+        if constexpr (Ord) order_lin_.assign(p_.order_count, 0.0);
         std::vector<double> share(size_t(p_.S), 1.0);
         const double a_top = p_.grid.beam_port_edge_rad(i_), spacing = p_.grid.beam_width_rad(i_);
         for (size_t n = 0; n < cells_.size(); ++n) {
@@ -124,10 +125,11 @@ template <bool Img, bool Sens, bool Gt, bool Ord, bool Str> class BeamPass {
                 if constexpr (Str)
                     if (v > best_[bb]) best_[bb] = v, best_n_[bb] = std::int32_t(n);
             });
-            if constexpr (Ord) add_order(n, inside);
+            if constexpr (Ord) add_order(n, w, inside);
             if (parts) add_fine_parts(c, w, share, a_top, spacing);
         }
         if constexpr (Img) write_image(x_max);
+        if constexpr (Ord) write_orders(x_max);
         if (Sens) write_inputs(x_max, fine, elevation);
         if constexpr (Gt)
             for (int b = 0; b < p_.K; ++b) truth_[size_t(b)].write(*p_.truth, size_t(b) * p_.N + i_);
@@ -182,11 +184,20 @@ template <bool Img, bool Sens, bool Gt, bool Ord, bool Str> class BeamPass {
     }
 
     /// Echo per path order: contribution n's share `inside` the window (summed over its bins in run()),
-    /// summed in the log domain.
-    void add_order(size_t n, double inside) {
+    /// summed linearly relative to the beam's peak (weight w, as the image) and written in the log domain
+    /// once per beam (write_orders); a contribution too far below the peak for w goes there directly.
+    void add_order(size_t n, double w, double inside) {
+        if (!(inside > 0)) return;
         const GhostCell* g = cells_.ghost(n);
         const size_t order = std::min(p_.order_count - 1, size_t(g ? g->order() : 0));
-        if (inside > 0) (*p_.orders)[size_t(i_)][order].add(x_[n] + std::log(inside));
+        if (w > 0)
+            order_lin_[order] += w * inside;
+        else
+            (*p_.orders)[size_t(i_)][order].add(x_[n] + std::log(inside));
+    }
+    void write_orders(double x_max) {
+        for (size_t o = 0; o < order_lin_.size(); ++o)
+            if (order_lin_[o] > 0) (*p_.orders)[size_t(i_)][o].add(x_max + std::log(order_lin_[o]));
     }
 
     void write_image(double x_max) {
@@ -234,6 +245,7 @@ template <bool Img, bool Sens, bool Gt, bool Ord, bool Str> class BeamPass {
     std::vector<double> x_, lin_, fine_, wsum_, esum_, best_;
     std::vector<char> hit_;
     std::vector<TruthAccumulator> truth_;
+    std::vector<double> order_lin_; ///< per path order: the echo inside the window, relative to the peak
     std::vector<std::int32_t> best_n_;
 };
 

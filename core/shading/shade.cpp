@@ -45,20 +45,24 @@ double ghost_echo_db(const ShadeConstants& k, const SceneDesc& s, const GhostCel
                  cos_out = std::min(1.0, double(g.cos_other));
     if (!(c.range_m > 0) || !(cos_in > 0) || !(c.solid_angle_sr > 0) || !(g.other_leg_m > 0)) return kNegInf;
     const Material& m = material_of(s, c.material);
-    double bs = 0;
-    if (!g.mixed()) {
-        bs = backscatter_db(m, cos_in);
-    } else {
-        if (!(cos_out > 0)) return kNegInf;
-        bs = m.nu_db + (m.q == 0 ? 0.0 : 0.5 * m.q * std::log(cos_in * cos_out) / kLn10Over10);
-    }
     double refl = 0;
     for (int j = 0; j < g.mirrors(); ++j)
         refl += (g.mixed() ? 1 : 2) * reflection_gain_db(k, s, g.mirror_material[j], g.mirror_cos[j]);
-    // -20 log10(other leg) + 10 log10(dOmega / cos_in), as one logarithm.
     const double leg_m = g.other_leg_m;
-    return k.source_level_db - 2.0 * k.alpha_db_per_m * c.range_m +
-           std::log(c.solid_angle_sr / (cos_in * leg_m * leg_m)) / kLn10Over10 + bs + refl;
+    const double base_db = k.source_level_db - 2.0 * k.alpha_db_per_m * c.range_m + refl;
+    // 10 log10(dOmega / (cos_in leg^2)) and Lambert's cosines as one logarithm for q = 0, 1, 2: a double
+    // path's cos_in^q, a mixed path's (cos_in cos_out)^(q/2).
+    const double area = c.solid_angle_sr / (leg_m * leg_m);
+    if (g.mixed() && !(cos_out > 0)) return kNegInf;
+    if (m.mu == 0 && (m.q == 0 || m.q == 1 || m.q == 2)) {
+        double cosines = 1 / cos_in; // q = 0
+        if (m.q == 2) cosines = g.mixed() ? cos_out : cos_in;
+        if (m.q == 1) cosines = g.mixed() ? std::sqrt(cos_out / cos_in) : 1.0;
+        return base_db + m.nu_db + std::log(area * cosines) / kLn10Over10;
+    }
+    const double bs = g.mixed() ? m.nu_db + 0.5 * m.q * std::log(cos_in * cos_out) / kLn10Over10
+                                : backscatter_db(m, cos_in);
+    return base_db + std::log(area / cos_in) / kLn10Over10 + bs;
 }
 
 BeamContributions::BeamContributions(const TraceResult& hits, int beam)

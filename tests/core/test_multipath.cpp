@@ -299,3 +299,38 @@ TEST_CASE("energy is accounted per path order", "[multipath]") {
         CHECK(image > direct_image);
     }
 }
+
+TEST_CASE("a path order's echo far below its beam's peak is still counted", "[multipath][stiff]") {
+    // One beam: a direct cell 1 m away and a double-path ghost 700 m away, whose two-way absorption
+    // (2 x 3 dB/m x 700 m) puts it ~4000 dB below: beyond what exp() resolves against the peak (~3200 dB),
+    // so its order's sum takes the log-domain path. Each order holds one contribution: its own level.
+    SceneDesc s;
+    s.seafloor.reset();
+    s.sonar.beams = 1, s.sonar.range_min_m = 0.5, s.sonar.range_max_m = 800, s.sonar.range_bins = 1000;
+    s.sampling.bounces = 1;
+    s.objects.resize(1); // material 1: Lambertian, nu -45 dB
+    s.objects[0].material.reflection_db = 3;
+    const ShadeConstants k = shade_constants(s);
+    auto point_cell = [](double r_m) {
+        Cell c{};
+        c.range_m = float(r_m), c.cos_incidence = 0.7f, c.solid_angle_sr = 1e-5f, c.material = 1;
+        c.range_e_lo_m = c.range_e_hi_m = c.range_a_lo_m = c.range_a_hi_m = float(r_m);
+        return c;
+    };
+    TraceResult hits;
+    hits.beams = 1;
+    hits.cells = {{point_cell(1.0)}};
+    GhostCell g;
+    g.cell = point_cell(700.0);
+    g.other_leg_m = 700, g.cos_other = 0.7f, g.tx_bounces = g.rx_bounces = 1, g.mirror_material[0] = 1;
+    hits.ghosts = {{g}};
+    const Material& m = material_of(s, 1);
+    const double direct_db = cell_echo_db(k, m, 1.0, double(0.7f), double(1e-5f)),
+                 ghost_db = ghost_echo_db(k, s, g);
+    REQUIRE(direct_db - ghost_db > 3300);
+    const std::vector<double> order_db = accumulate(hits, s, path_orders()).path_order_db;
+    REQUIRE(order_db.size() == 3);
+    CHECK(order_db[0] == Approx(direct_db).epsilon(1e-12));
+    CHECK(order_db[1] == -std::numeric_limits<double>::infinity());
+    CHECK(order_db[2] == Approx(ghost_db).epsilon(1e-12));
+}

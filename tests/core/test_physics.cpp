@@ -119,3 +119,50 @@ TEST_CASE(
     s.seafloor->material.reflection_db = 6;
     CHECK(reflection_gain_db(k, s, kFloorMaterial, 0.7) == -6.0);
 }
+
+TEST_CASE("a ghost's echo level: L_S - 2 alpha r - 20 log10 leg + 10 log10(dOmega / cos) + L_BS + mirrors",
+          "[physics][multipath]") {
+    // A scatterer (object 1) seen by way of one mirror: an object with reflection_db, or the rough water
+    // surface (|R|^2 = exp(-(2 k sigma cos)^2)). Double path: both legs by the mirror (its loss twice),
+    // L_BS = nu + 10 q log10 cos_in; mixed: one leg each way, nu + 5 q log10(cos_in cos_out), the loss once.
+    SceneDesc s;
+    s.water.surface_roughness_m = 0.01;
+    s.objects.resize(2);
+    s.objects[1].material.reflection_db = 4.5; // object 2: the mirror
+    const ShadeConstants k{220.0, 10.0, 0.8, 3000.0};
+    const double r = 7.5, leg = 9.0, cos_in = 0.6, cos_out = 0.35, dom = 2e-6, cos_m = 0.8;
+    GhostCell g;
+    g.cell.range_m = float(r), g.cell.cos_incidence = float(cos_in), g.cell.solid_angle_sr = float(dom);
+    g.cell.material = 1;
+    g.other_leg_m = float(leg), g.cos_other = float(cos_out);
+    g.mirror_cos[0] = float(cos_m);
+    const double rough_db = -10 / std::log(10.0) * std::pow(2 * 3000.0 * 0.01 * double(float(cos_m)), 2);
+    for (const unsigned mirror : {2u, kSurfaceMaterial})
+        for (const bool mixed : {false, true})
+            for (const double q : {0.0, 1.0, 1.5, 2.0, 3.0}) {
+                INFO("mirror " << mirror << " mixed " << mixed << " q " << q);
+                s.objects[0].material.q = q, s.objects[0].material.nu_db = -30;
+                g.mirror_material[0] = mirror;
+                g.tx_bounces = 1, g.rx_bounces = mixed ? 0 : 1;
+                const double ci = double(float(cos_in)), co = double(float(cos_out));
+                const double bs_db = -30 + (mixed ? 5 * q * std::log10(ci * co) : 10 * q * std::log10(ci));
+                const double mirror_db = mirror == kSurfaceMaterial ? rough_db : -4.5;
+                const double expect = 220 - 2 * 0.8 * double(float(r)) - 20 * std::log10(double(float(leg))) +
+                                      10 * std::log10(double(float(dom)) / ci) + bs_db +
+                                      (mixed ? 1 : 2) * mirror_db;
+                CHECK(ghost_echo_db(k, s, g) == Approx(expect).epsilon(1e-12));
+            }
+    // The specular term (mu > 0) enters a double path's backscatter (GSAB), not a mixed one's.
+    s.objects[0].material.q = 2, s.objects[0].material.mu = 0.05, s.objects[0].material.h_deg = 6;
+    g.mirror_material[0] = 2u, g.tx_bounces = 1, g.rx_bounces = 1;
+    const double ci = double(float(cos_in)), co = double(float(cos_out));
+    const double common = 220 - 2 * 0.8 * double(float(r)) - 20 * std::log10(double(float(leg))) +
+                          10 * std::log10(double(float(dom)) / ci);
+    CHECK(ghost_echo_db(k, s, g) ==
+          Approx(common + backscatter_db(s.objects[0].material, ci) - 9).epsilon(1e-12));
+    g.rx_bounces = 0;
+    CHECK(ghost_echo_db(k, s, g) == Approx(common - 30 + 10 * std::log10(ci * co) - 4.5).epsilon(1e-12));
+    // Nothing returns at grazing incidence on either leg.
+    g.cos_other = 0;
+    CHECK(ghost_echo_db(k, s, g) == -std::numeric_limits<double>::infinity());
+}
