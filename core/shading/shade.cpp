@@ -17,13 +17,6 @@ constexpr double kNegInf = -std::numeric_limits<double>::infinity();
 
 } // namespace
 
-const Material& material_of(const SceneDesc& s, unsigned m) {
-    static const Material none{};
-    if (m == kFloorMaterial) return s.seafloor ? s.seafloor->material : none;
-    if (m == kSurfaceMaterial) return s.water.surface_material;
-    return s.objects.at(m - 1).material;
-}
-
 double cell_fraction_in(const Cell& c, EchoBinning binning, double r0, double r1) {
     if (binning == EchoBinning::Point) return (c.range_m >= r0 && c.range_m < r1) ? 1.0 : 0.0;
     const detail::Footprint f = detail::footprint_of(c);

@@ -10,8 +10,14 @@
 
 namespace sonarsim {
 
-/// Material of index `m` (kFloorMaterial or object index + 1).
-const Material& material_of(const SceneDesc& scene, unsigned m);
+/// Material of index `m` (kFloorMaterial, kSurfaceMaterial or object index + 1). Inline: shading and the
+/// sampler's criteria ask for it once or more per cell.
+inline const Material& material_of(const SceneDesc& s, unsigned m) {
+    static const Material none{};
+    if (m == kFloorMaterial) return s.seafloor ? s.seafloor->material : none;
+    if (m == kSurfaceMaterial) return s.water.surface_material;
+    return s.objects.at(m - 1).material;
+}
 
 /// Fraction of a cell's echo that falls in [r0, r1): "point" binning puts all of it in the bin of its range;
 /// "footprint" distributes it over the cell's range footprint (sum of its elevation and azimuth extents).
