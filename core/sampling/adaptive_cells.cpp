@@ -45,40 +45,50 @@ void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samp
     fine.beams = N, coarse.beams = coarse_edges.beams = sampled;
     coarse.cells.resize(size_t(sampled)), coarse_edges.cells.resize(size_t(sampled));
     fine.cells.resize(size_t(N));
-    // Ghosts by the beam whose rays found them (the coarse ones on sample beams only).
-    std::vector<std::vector<GhostCell>> fine_ghosts(static_cast<size_t>(N)),
-        coarse_ghosts(static_cast<size_t>(sp.multipath ? N : 0)),
-        edge_ghosts(static_cast<size_t>(sp.multipath ? N : 0));
+    // Ghosts by the beam whose rays found them (the coarse ones on sample beams only), split as they are
+    // made: those arriving wholly in that beam, and the others (`_away`), as gather_ghosts takes them.
+    const size_t mp_beams = sp.multipath ? size_t(N) : 0;
+    std::vector<std::vector<GhostCell>> fine_ghosts(static_cast<size_t>(N)), coarse_ghosts(mp_beams),
+        edge_ghosts(mp_beams), fine_away(mp_beams), coarse_away(mp_beams), edge_away(mp_beams);
+    auto out_of = [&](std::vector<Cell>& cells, std::vector<std::vector<GhostCell>>& ghosts,
+                      std::vector<std::vector<GhostCell>>& away, int i) {
+        if (!sp.multipath) return CellsOut{&cells};
+        return CellsOut{&cells, &ghosts[size_t(i)], &away[size_t(i)]};
+    };
     std::vector<std::uint64_t> ghost_rays(static_cast<size_t>(N), 0);
     tbb::parallel_for(0, N, [&](int i) {
         const auto& cols = beams[size_t(i)];
         size_t nodes = 0;
         for (auto& c : cols) nodes += c.nodes.size();
         fine.cells[size_t(i)].reserve(nodes);
-        if (sp.multipath) fine_ghosts[size_t(i)].reserve(3 * nodes); // at most three per cell (bounces 1)
-        const CellsOut out{&fine.cells[size_t(i)], sp.multipath ? &fine_ghosts[size_t(i)] : nullptr};
+        if (sp.multipath) { // bounces 1: at most three per cell, one of them from the scatterer's direction
+            fine_ghosts[size_t(i)].reserve(2 * nodes);
+            fine_away[size_t(i)].reserve(nodes);
+        }
+        const CellsOut out = out_of(fine.cells[size_t(i)], fine_ghosts, fine_away, i);
         if (sp.control.preview || slot[size_t(i)] < 0) {
             for (auto& c : cols) ghost_rays[size_t(i)] += sp.cells_of(c, c.da, out);
             return;
         }
         const size_t k = size_t(slot[size_t(i)]);
-        if (sp.multipath) coarse_ghosts[size_t(i)].reserve(3 * nodes);
-        ghost_rays[size_t(i)] += coarse_cells_of(
-            sp, cols, out, {&coarse.cells[k], sp.multipath ? &coarse_ghosts[size_t(i)] : nullptr},
-            {&coarse_edges.cells[k], sp.multipath ? &edge_ghosts[size_t(i)] : nullptr});
+        if (sp.multipath) coarse_ghosts[size_t(i)].reserve(2 * nodes), coarse_away[size_t(i)].reserve(nodes);
+        ghost_rays[size_t(i)] +=
+            coarse_cells_of(sp, cols, out, out_of(coarse.cells[k], coarse_ghosts, coarse_away, i),
+                            out_of(coarse_edges.cells[k], edge_ghosts, edge_away, i));
     });
     if (sp.multipath) {
-        fine.ghosts = detail::gather_ghosts(fine_ghosts, s);
+        fine.ghosts = detail::gather_ghosts(fine_ghosts, fine_away, s);
         // The coarser images' ghosts: those arriving in each sample beam, in its slot.
-        auto by_slot = [&](std::vector<std::vector<GhostCell>>& by_source, TraceResult& r) {
-            auto arriving = detail::gather_ghosts(by_source, s);
+        auto by_slot = [&](std::vector<std::vector<GhostCell>>& by_source,
+                           std::vector<std::vector<GhostCell>>& away, TraceResult& r) {
+            auto arriving = detail::gather_ghosts(by_source, away, s);
             r.ghosts.assign(size_t(sampled), {});
             for (int k = 0; k < sampled; ++k)
                 if (samples[size_t(k)] >= 0)
                     r.ghosts[size_t(k)] = std::move(arriving[size_t(samples[size_t(k)])]);
         };
-        by_slot(coarse_ghosts, coarse);
-        by_slot(edge_ghosts, coarse_edges);
+        by_slot(coarse_ghosts, coarse_away, coarse);
+        by_slot(edge_ghosts, edge_away, coarse_edges);
         for (auto r : ghost_rays) fine.multipath_rays += r;
     }
     for (auto& b : beams)
@@ -92,6 +102,7 @@ std::uint64_t Sampler::cells_of(const Column& c, double da, CellsOut fine, Cells
     std::uint64_t rays = 0;
     const Angle a(c.a), a_lo(c.a - da / 2), a_hi(c.a + da / 2);
     thread_local std::vector<GhostCell> made; // one cell's ghosts, before they go to each output
+    thread_local std::vector<char> stays;     // per ghost in made: detail::stays_in_source
     auto emit = [&](const Node& n, double de, std::initializer_list<const CellsOut*> to) {
         if (!n.hit) return;
         const Angle& h = detail::half_angle(de); // widths come in a few sizes: kept per thread
@@ -99,11 +110,18 @@ std::uint64_t Sampler::cells_of(const Column& c, double da, CellsOut fine, Cells
         const Angle lo(e.rad - h.rad, e, h, -1), hi(e.rad + h.rad, e, h, +1); // e -+ de/2 (angle sums)
         const Cell cell = detail::make_cell(frame, *n.hit, a, e, a_lo, a_hi, lo, hi);
         made.clear();
-        if (multipath) rays += mp.ghosts(*n.hit, a, e, a_lo, a_hi, lo, hi, c.beam, made, n.via);
+        if (multipath) {
+            rays += mp.ghosts(*n.hit, a, e, a_lo, a_hi, lo, hi, c.beam, made, n.via);
+            stays.resize(made.size());
+            for (size_t k = 0; k < made.size(); ++k)
+                stays[k] = detail::stays_in_source(made[k], size_t(c.beam), *frame.grid);
+        }
         for (const CellsOut* o : to) {
             if (!o->cells) continue;
             o->cells->push_back(cell);
-            if (o->ghosts) o->ghosts->insert(o->ghosts->end(), made.begin(), made.end());
+            if (!o->ghosts) continue;
+            for (size_t k = 0; k < made.size(); ++k)
+                (o->away && !stays[k] ? o->away : o->ghosts)->push_back(made[k]);
         }
     };
     const CellsOut none{};

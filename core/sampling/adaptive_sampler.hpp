@@ -23,6 +23,9 @@ namespace sonarsim::adaptive {
 struct CellsOut {
     std::vector<Cell>* cells = nullptr;
     std::vector<GhostCell>* ghosts = nullptr;
+    /// When given, the ghosts that do not arrive wholly in the column's own beam go here instead of to
+    /// `ghosts` (detail::stays_in_source: the split gather_ghosts takes).
+    std::vector<GhostCell>* away = nullptr;
 };
 
 struct Sampler {

@@ -202,43 +202,39 @@ bool Multipath::negligible(const GhostCell& g, int beam_lo, int beam_hi, double 
     return true;
 }
 
+namespace {
+/// A ghost's azimuth interval and the beams it falls in, when it is a mixed path arriving from its
+/// scatterer (the only ghosts that may span beams).
+struct Span {
+    double a0 = 0, a1 = 0; ///< the ghost's azimuth interval [rad]
+    int i0 = 0, i1 = 0;    ///< the beams it falls in (i0: the port-most)
+};
+bool spans_beams(const GhostCell& g, const SonarGrid& grid, Span& span) {
+    if (!g.mixed() || g.rx_bounces != 0) return false;
+    span.a0 = g.cell.azimuth_rad - 0.5 * g.cell.azimuth_width_rad;
+    span.a1 = span.a0 + g.cell.azimuth_width_rad;
+    span.i0 = grid.beam_of_azimuth_rad(span.a1), span.i1 = grid.beam_of_azimuth_rad(span.a0);
+    return span.i0 != span.i1;
+}
+} // namespace
+
+bool stays_in_source(const GhostCell& g, std::size_t source, const SonarGrid& grid) {
+    Span span;
+    return source < std::size_t(grid.beams) && g.beam == source && !spans_beams(g, grid, span);
+}
+
 std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostCell>>& by_source,
                                                   const SceneDesc& s) {
     const std::shared_ptr<const SonarGrid> grid = sonar_grid(s.sonar);
-    const size_t S = by_source.size(), B = size_t(grid->beams);
-    std::vector<std::vector<GhostCell>> out(B);
-    // A ghost whose azimuth interval spans beams goes to each, with the share of its solid angle that
-    // falls in it (the mixed path that arrives from the scatterer); the others lie in beam g.beam.
-    struct Span {
-        double a0 = 0, a1 = 0; ///< the ghost's azimuth interval [rad]
-        int i0 = 0, i1 = 0;    ///< the beams it falls in (i0: the port-most)
-    };
-    auto spans_beams = [&](const GhostCell& g, Span& span) {
-        if (!g.mixed() || g.rx_bounces != 0) return false;
-        span.a0 = g.cell.azimuth_rad - 0.5 * g.cell.azimuth_width_rad;
-        span.a1 = span.a0 + g.cell.azimuth_width_rad;
-        span.i0 = grid->beam_of_azimuth_rad(span.a1), span.i1 = grid->beam_of_azimuth_rad(span.a0);
-        return span.i0 != span.i1;
-    };
-    auto for_each_share = [&](const GhostCell& g, auto&& add) {
-        Span span;
-        if (!spans_beams(g, span)) return add(int(g.beam), g, 1.0);
-        for (int i = span.i0; i <= span.i1; ++i) {
-            const double hi = grid->beam_port_edge_rad(i), lo = hi - grid->beam_width_rad(i);
-            const double f = (std::min(span.a1, hi) - std::max(span.a0, lo)) / g.cell.azimuth_width_rad;
-            if (f > 0) add(i, g, f);
-        }
-    };
     // Most ghosts arrive wholly in the beam whose list found them (the double path and the mixed path back
     // by the mirrors arrive along their ray): they stay in that list, in order, which becomes the beam's.
     // The others move to `away` and are appended to their arrival beams' lists after those, by source.
-    std::vector<std::vector<GhostCell>> away(S);
-    tbb::parallel_for(size_t(0), S, [&](size_t src) {
+    std::vector<std::vector<GhostCell>> away(by_source.size());
+    tbb::parallel_for(size_t(0), by_source.size(), [&](size_t src) {
         auto& v = by_source[src];
         size_t kept = 0;
         for (size_t k = 0; k < v.size(); ++k) {
-            Span span;
-            if (src < B && v[k].beam == src && !spans_beams(v[k], span)) {
+            if (stays_in_source(v[k], src, *grid)) {
                 if (kept != k) v[kept] = v[k];
                 ++kept;
             } else {
@@ -247,6 +243,26 @@ std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostC
         }
         v.resize(kept);
     });
+    return gather_ghosts(by_source, away, s);
+}
+
+std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostCell>>& by_source,
+                                                  std::vector<std::vector<GhostCell>>& away,
+                                                  const SceneDesc& s) {
+    const std::shared_ptr<const SonarGrid> grid = sonar_grid(s.sonar);
+    const size_t S = by_source.size(), B = size_t(grid->beams);
+    std::vector<std::vector<GhostCell>> out(B);
+    // A ghost whose azimuth interval spans beams goes to each, with the share of its solid angle that
+    // falls in it (the mixed path that arrives from the scatterer); the others lie in beam g.beam.
+    auto for_each_share = [&](const GhostCell& g, auto&& add) {
+        Span span;
+        if (!spans_beams(g, *grid, span)) return add(int(g.beam), g, 1.0);
+        for (int i = span.i0; i <= span.i1; ++i) {
+            const double hi = grid->beam_port_edge_rad(i), lo = hi - grid->beam_width_rad(i);
+            const double f = (std::min(span.a1, hi) - std::max(span.a0, lo)) / g.cell.azimuth_width_rad;
+            if (f > 0) add(i, g, f);
+        }
+    };
     // The moving ghosts' shares, counted per source and arrival beam, then written in parallel over the
     // sources, each at its offset in the arrival beams' lists (sources in order: the same lists as one
     // thread would make).

@@ -103,5 +103,15 @@ class Multipath {
 /// A ghost arriving over several beams' azimuths is shared among them by the part of its interval in each.
 std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostCell>>& by_source,
                                                   const SceneDesc& scene);
+/// The same with each source's ghosts already split as they were made: `by_source[k]` only those that
+/// arrive wholly in beam k (stays_in_source), `away[k]` the others, each as produced. Saves moving the
+/// staying ones (most) out of the way of the others.
+std::vector<std::vector<GhostCell>> gather_ghosts(std::vector<std::vector<GhostCell>>& by_source,
+                                                  std::vector<std::vector<GhostCell>>& away,
+                                                  const SceneDesc& scene);
+
+/// Whether ghost g, found by the rays of source `source` (gather_ghosts), arrives wholly in beam `source`:
+/// it stays in that source's list.
+bool stays_in_source(const GhostCell& g, std::size_t source, const SonarGrid& grid);
 
 } // namespace sonarsim::detail

@@ -115,7 +115,25 @@ TEST_CASE(
     };
     by_source[8] = {ghost(8, 5, 1, 1, centre(8), 1e-4)};
     by_source[3] = {ghost(8, 6, 1, 1, centre(8), 1e-4)}; // found in beam 3's list, arriving in 8
+    // The sampler splits each source's ghosts as it makes them (stays_in_source): the same lists.
+    std::vector<std::vector<GhostCell>> stay(by_source.size()), away(by_source.size());
+    for (size_t k = 0; k < by_source.size(); ++k)
+        for (const auto& g : by_source[k])
+            (detail::stays_in_source(g, k, *grid) ? stay : away)[k].push_back(g);
+    CHECK(stay[7].size() == 2);
+    CHECK(away[7].size() == 2);
+    CHECK(away[3].size() == 1);
+    const auto split = detail::gather_ghosts(stay, away, s);
     const auto out = detail::gather_ghosts(by_source, s);
+    REQUIRE(split.size() == out.size());
+    for (size_t i = 0; i < out.size(); ++i) {
+        REQUIRE(split[i].size() == out[i].size());
+        for (size_t k = 0; k < out[i].size(); ++k) {
+            CHECK(split[i][k].beam == out[i][k].beam);
+            CHECK(split[i][k].cell.solid_angle_sr == out[i][k].cell.solid_angle_sr);
+            CHECK(split[i][k].cell.azimuth_rad == out[i][k].cell.azimuth_rad);
+        }
+    }
     REQUIRE(out.size() == size_t(grid->beams));
     auto solid_angles = [&](int i) {
         std::vector<double> v;
