@@ -37,6 +37,7 @@ double ghost_echo_db(const ShadeConstants& k, const SceneDesc& s, const GhostCel
     const double cos_in = std::min(1.0, double(c.cos_incidence)),
                  cos_out = std::min(1.0, double(g.cos_other));
     if (!(c.range_m > 0) || !(cos_in > 0) || !(c.solid_angle_sr > 0) || !(g.other_leg_m > 0)) return kNegInf;
+    if (g.mixed() && !(cos_out > 0)) return kNegInf;
     const Material& m = material_of(s, c.material);
     double refl = 0;
     for (int j = 0; j < g.mirrors(); ++j)
@@ -46,7 +47,6 @@ double ghost_echo_db(const ShadeConstants& k, const SceneDesc& s, const GhostCel
     // 10 log10(dOmega / (cos_in leg^2)) and Lambert's cosines as one logarithm for q = 0, 1, 2: a double
     // path's cos_in^q, a mixed path's (cos_in cos_out)^(q/2).
     const double area = c.solid_angle_sr / (leg_m * leg_m);
-    if (g.mixed() && !(cos_out > 0)) return kNegInf;
     if (m.mu == 0 && (m.q == 0 || m.q == 1 || m.q == 2)) {
         double cosines = 1 / cos_in; // q = 0
         if (m.q == 2) cosines = g.mixed() ? cos_out : cos_in;
