@@ -4,6 +4,7 @@
 #include "core/base/recent_values.hpp"
 #include "core/shading/shade.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -12,7 +13,10 @@ namespace sonarsim::adaptive {
 
 RefineCriteria::RefineCriteria(const SceneDesc& scene, const detail::RayFrame& frame, bool multipath)
     : s_(scene), frame_(frame), multipath_(multipath), k_(shade_constants(scene)),
-      jump_db_(10 * scene.sampling.tolerance_db), range_jump_db_(4 * scene.sampling.tolerance_db),
+      jump_db_(10 * scene.sampling.tolerance_db),
+      range_jump_db_(4 * scene.sampling.tolerance_db), smooth_{std::min(jump_db_, 10 * kSmoothToleranceDb),
+                                                               std::min(range_jump_db_,
+                                                                        4 * kSmoothToleranceDb)},
       bin_m_(frame.grid->bin_m), gap_m_(0.5 * bin_m_),
       tol_rel_db_(10 * std::log10((std::pow(10.0, scene.sampling.tolerance_db / 10) - 1) / kErrorsPerBin)) {
     specular_ = scene.water.surface_material.mu > 0 || (scene.seafloor && scene.seafloor->material.mu > 0);
@@ -28,40 +32,41 @@ bool RefineCriteria::discontinuous_direct(const Node& x, const Column& cx, const
                                           const EdgeRay& edge) const {
     // Whatever steps between them, neither cell's error could be significant: no need to look.
     if (!may_be_significant(x, cx) && !may_be_significant(y, cy)) return false;
-    const double step_db = direct_step_db(x, y, edge);
+    const double step_db = direct_step_db(x, y, edge, {jump_db_, range_jump_db_});
     return step_db == step_db && worth_refining(x, cx, y, cy, step_db);
 }
 
 bool RefineCriteria::edge_between(const Node& x, const Node& y, const EdgeRay& edge) const {
-    const double step_db = direct_step_db(x, y, edge);
-    return step_db == step_db || (multipath_ && via_step(x, y) > 0);
+    const double step_db = direct_step_db(x, y, edge, smooth_);
+    return step_db == step_db || (multipath_ && via_step(x, y, smooth_) > 0);
 }
 
-double RefineCriteria::direct_step_db(const Node& x, const Node& y, const EdgeRay& edge) const {
+double RefineCriteria::direct_step_db(const Node& x, const Node& y, const EdgeRay& edge,
+                                      const Steps& steps) const {
     constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
     if (bool(x.hit) != bool(y.hit)) return -1;
     if (!x.hit) return kNone;
     if (surface_edge(*x.hit, x.p_m, *y.hit, y.p_m, edge)) return -1;
     const double density_step_db = std::abs(x.density_db - y.density_db);
-    if (density_step_db > jump_db_) return density_step_db;
+    if (density_step_db > steps.jump_db) return density_step_db;
     // Cells whose range footprint spans bins spread their echo evenly over it; where the echo per metre
     // of range changes between neighbours on one plane (grazing incidence: r(e) is far from linear over
     // the cell), that spreading needs finer cells. Between the facets of a smooth tessellated surface
     // the change is the facets' own (their normals step), and the density test above bounds it.
     if (x.hit->prim != y.hit->prim || !(std::max(x.footprint_m, y.footprint_m) > bin_m_)) return kNone;
     const double per_metre_step_db = std::abs(x.per_metre_db - y.per_metre_db);
-    return per_metre_step_db > range_jump_db_ ? per_metre_step_db : kNone;
+    return per_metre_step_db > steps.range_jump_db ? per_metre_step_db : kNone;
 }
 
 /// Multipath: the continuations of neighbouring mirror cells x and y meet different surfaces, or one
 /// meets nothing, or their levels step, where that matters against the image (as for direct cells).
 bool RefineCriteria::via_discontinuous(const Node& x, const Column& cx, const Node& y,
                                        const Column& cy) const {
-    const double f = via_step(x, y);
+    const double f = via_step(x, y, {jump_db_, range_jump_db_});
     return f > 0 && (significant_via(x, cx, f) || significant_via(y, cy, f));
 }
 
-double RefineCriteria::via_step(const Node& x, const Node& y) const {
+double RefineCriteria::via_step(const Node& x, const Node& y, const Steps& steps) const {
     if (!x.via->reflected && !y.via->reflected) return 0;
     const bool hx = bool(x.via->hit), hy = bool(y.via->hit);
     if (hx != hy) return 0.5;
@@ -71,7 +76,7 @@ double RefineCriteria::via_step(const Node& x, const Node& y) const {
     const bool edge = a.material != b.material || (a.prim != b.prim && std::abs(a.t - b.t) > reach);
     if (edge) return 0.5;
     double step_db = std::abs(x.via->density_db - y.via->density_db);
-    if (step_db <= jump_db_) {
+    if (step_db <= steps.jump_db) {
         // As for direct cells: a ghost's footprint spanning bins spreads its echo evenly over it, so where
         // its echo per metre of range steps between neighbours on one plane (grazing at the scatterer)
         // the ghost needs finer cells.
@@ -81,7 +86,7 @@ double RefineCriteria::via_step(const Node& x, const Node& y) const {
             return n.via->density_db + 10 * std::log10(n.angle.c * n.de / std::max(footprint_m, bin_m_));
         };
         step_db = std::abs(per_metre_db(x, fx) - per_metre_db(y, fy));
-        if (step_db <= range_jump_db_) return 0;
+        if (step_db <= steps.range_jump_db) return 0;
     }
     return 0.5 * (1 - std::pow(10.0, -0.1 * step_db));
 }

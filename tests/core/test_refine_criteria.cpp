@@ -168,6 +168,52 @@ TEST_CASE("criteria: different materials are flagged, one material on one plane 
     CHECK(split_pair(crit, x, y3, c));
 }
 
+TEST_CASE("criteria: the estimate's smooth test keeps the default tolerance's level steps when the "
+          "tolerance is looser",
+          "[sampling][criteria]") {
+    // A wall 3 m ahead, one material and triangle; steep, so only the step in echo density can tell the
+    // cells apart. Refinement (discontinuous) looks for steps of 10 x tolerance_db; the error estimate
+    // (edge_between) for steps of at most 10 x kSmoothToleranceDb = 1 dB, however loose the tolerance.
+    const Column c = column(kDe);
+    auto pair_steps = [&](double tolerance_db, double step_db) {
+        SceneDesc s = criteria_scene();
+        s.sampling.tolerance_db = tolerance_db;
+        const detail::RayFrame f(s);
+        const RefineCriteria crit(s, f, false);
+        const Node x = plane_node(f, crit, 0, kDe / 2, kDe, {3, 0, 0}, {-1, 0, 0.3}, 1, 0, 40);
+        const Node y = plane_node(f, crit, 0, -kDe / 2, kDe, {3, 0, 0}, {-1, 0, 0.3}, 1, 0, 40 + step_db);
+        REQUIRE(y.footprint_m < crit.bin_m());
+        const Angle a(0);
+        const bool edge =
+            crit.edge_between(x, y, EdgeRay{a, x.angle.rad - x.de / 2, nullptr, &x.angle, x.de});
+        return std::pair(split_pair(crit, x, y, c), edge);
+    };
+    using P = std::pair<bool, bool>;                // (refinement splits, the estimate sees an edge)
+    CHECK(pair_steps(0.3, 2.0) == P{false, true});  // a loose tolerance leaves it; still a kink
+    CHECK(pair_steps(0.3, 0.8) == P{false, false}); // below 1 dB: smooth for both
+    CHECK(pair_steps(1.0, 5.0) == P{false, true});
+    CHECK(pair_steps(0.1, 1.2) == P{true, true}); // the default: the same steps for both
+    CHECK(pair_steps(0.1, 0.8) == P{false, false});
+    CHECK(pair_steps(0.05, 0.7) == P{true, true}); // tighter: the tolerance's own steps (0.5 dB)
+    CHECK(pair_steps(0.05, 0.3) == P{false, false});
+
+    // Grazing on the floor, one level: the echo per metre of range steps (4 x tolerance_db refines, at
+    // most 4 x kSmoothToleranceDb = 0.4 dB for the estimate).
+    SceneDesc s = criteria_scene();
+    s.sampling.tolerance_db = 0.6;
+    const detail::RayFrame f(s);
+    const RefineCriteria crit(s, f, false);
+    auto floor_node = [&](double e_deg) {
+        return plane_node(f, crit, 0, deg2rad(e_deg), kDe, {0, 0, -0.5}, {0, 0, 1}, kFloorMaterial, 0, 40);
+    };
+    const Node x = floor_node(-3.5), y = floor_node(-4.5);
+    const double per_metre_step_db = std::abs(x.per_metre_db - y.per_metre_db);
+    REQUIRE(per_metre_step_db > 0.4);
+    REQUIRE(per_metre_step_db < 2.4);
+    CHECK_FALSE(split_pair(crit, x, y, c));
+    CHECK(crit.edge_between(x, y, EdgeRay{Angle(0), x.angle.rad - x.de / 2, nullptr, &x.angle, x.de}));
+}
+
 TEST_CASE("criteria: an edge is split only where its error is significant against the base image",
           "[sampling][criteria]") {
     const SceneDesc s = criteria_scene();
