@@ -6,10 +6,25 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace sonarsim::adaptive {
 namespace {
+
+/// ln of a node's echo per metre of range (its echo per radian of elevation over dr/de); NaN: none.
+double log_per_metre(const Node& n) {
+    if (!n.hit || !(n.dr_de > 0)) return std::nan("");
+    return kLn10Over10 * n.density_db + std::log(n.angle.c / n.dr_de);
+}
+
+/// Whether nodes x and y, `reach` cells apart in a column, lie on one surface: one material, their ranges no
+/// further apart than their footprints (times the reach) allow.
+bool adjacent_on_one_surface(const Node& x, const Node& y, size_t reach, double bin_m) {
+    return x.hit && y.hit && x.hit->material == y.hit->material &&
+           std::abs(x.hit->t - y.hit->t) <=
+               0.75 * double(reach) * (x.footprint_m + y.footprint_m) + 0.5 * bin_m;
+}
 
 /// The cells of one beam's columns (`fine`) and one level coarser: sibling column triples -> the middle
 /// column, 3 da, and within each column every sibling elevation triple -> the middle cell (`all`); the same
@@ -34,6 +49,22 @@ std::uint64_t coarse_cells_of(const Sampler& sp, const std::vector<Column>& cols
 }
 
 } // namespace
+
+double spread_slope(const std::vector<Node>& nodes, size_t k, size_t reach, double bin_m) {
+    const Node& m = nodes[k];
+    if (k < reach || k + reach >= nodes.size()) return 0;
+    const Node &x = nodes[k - reach], &y = nodes[k + reach];
+    if (!adjacent_on_one_surface(x, m, reach, bin_m) || !adjacent_on_one_surface(m, y, reach, bin_m))
+        return 0;
+    const double lm = log_per_metre(m);
+    auto one_sided = [&](const Node& o) {
+        const double dr = o.hit->t - m.hit->t, d = log_per_metre(o) - lm;
+        return std::abs(dr) > 1e-9 && std::isfinite(d) ? d / dr : 0.0;
+    };
+    const double a = one_sided(x), b = one_sided(y);
+    if (!(a * b > 0)) return 0;
+    return std::abs(a) < std::abs(b) ? a : b;
+}
 
 void collect_cells(const Sampler& sp, Beams& beams, const std::vector<int>& samples, TraceResult& fine,
                    TraceResult& coarse, TraceResult& coarse_edges) {
@@ -103,12 +134,15 @@ std::uint64_t Sampler::cells_of(const Column& c, double da, CellsOut fine, Cells
     const Angle a(c.a), a_lo(c.a - da / 2), a_hi(c.a + da / 2);
     thread_local std::vector<GhostCell> made; // one cell's ghosts, before they go to each output
     thread_local std::vector<char> stays;     // per ghost in made: detail::stays_in_source
-    auto emit = [&](const Node& n, double de, std::initializer_list<const CellsOut*> to) {
+    const double bin_m = criteria.bin_m();
+    const bool trend = !control.preview; // a preview is the plain base grid
+    auto emit = [&](const Node& n, double de, double slope, std::initializer_list<const CellsOut*> to) {
         if (!n.hit) return;
         const Angle& h = detail::half_angle(de); // widths come in a few sizes: kept per thread
         const Angle& e = n.angle;
         const Angle lo(e.rad - h.rad, e, h, -1), hi(e.rad + h.rad, e, h, +1); // e -+ de/2 (angle sums)
-        const Cell cell = detail::make_cell(frame, *n.hit, a, e, a_lo, a_hi, lo, hi);
+        Cell cell = detail::make_cell(frame, *n.hit, a, e, a_lo, a_hi, lo, hi);
+        if (trend) cell.spread_slope_per_m = float(slope);
         made.clear();
         if (multipath) {
             rays += mp.ghosts(*n.hit, a, e, a_lo, a_hi, lo, hi, c.beam, made, n.via);
@@ -129,7 +163,7 @@ std::uint64_t Sampler::cells_of(const Column& c, double da, CellsOut fine, Cells
         const bool triple = n + 2 < c.nodes.size() && c.nodes[n].group == c.nodes[n + 1].group &&
                             c.nodes[n].group == c.nodes[n + 2].group;
         if (!triple || (!all.cells && !edges.cells)) {
-            emit(c.nodes[n], c.nodes[n].de, {&fine, &all, &edges});
+            emit(c.nodes[n], c.nodes[n].de, spread_slope(c.nodes, n, 1, bin_m), {&fine, &all, &edges});
             ++n;
             continue;
         }
@@ -137,9 +171,12 @@ std::uint64_t Sampler::cells_of(const Column& c, double da, CellsOut fine, Cells
             edges.cells && (smooth_triple(c, n) || (lasting_edges_only && refinable_triple(c, n)));
         const CellsOut& fine_edges = smooth ? edges : none;
         if (fine.cells || smooth)
-            for (size_t t = n; t < n + 3; ++t) emit(c.nodes[t], c.nodes[t].de, {&fine, &fine_edges});
-        if (all.cells || !smooth)
-            emit(c.nodes[n + 1], 3 * c.nodes[n + 1].de, {&all, smooth ? &none : &edges});
+            for (size_t t = n; t < n + 3; ++t)
+                emit(c.nodes[t], c.nodes[t].de, spread_slope(c.nodes, t, 1, bin_m), {&fine, &fine_edges});
+        if (all.cells ||
+            !smooth) // the merged cell's trend from its neighbours at its level: the next triples
+            emit(c.nodes[n + 1], 3 * c.nodes[n + 1].de, spread_slope(c.nodes, n + 1, 3, bin_m),
+                 {&all, smooth ? &none : &edges});
         n += 3;
     }
     return rays;

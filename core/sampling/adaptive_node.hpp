@@ -89,6 +89,13 @@ inline void set_width(Node& n, double de, double bin_m) {
         n.density_db + kDbPerOctave * fast::log2_positive(n.angle.c * de / std::max(n.footprint_m, bin_m));
 }
 
+/// The trend of the echo per metre of range [1/m] (Cell::spread_slope_per_m) at nodes[k] of a column,
+/// limited as in MUSCL schemes (minmod): of the one-sided differences of ln(echo per metre) to its
+/// neighbours k - reach and k + reach, the smaller where they agree in sign; 0 where they do not (a kink: a
+/// facet edge, a crest), or where a neighbour is missing or on another surface, so that no trend is carried
+/// across an edge. reach 3: a merged triple's, from the neighbouring triples (adaptive_cells.cpp).
+double spread_slope(const std::vector<Node>& nodes, size_t k, size_t reach, double bin_m);
+
 /// One azimuth column of a beam: its elevation cells.
 struct Column {
     double a = 0, da = 0;

@@ -174,13 +174,19 @@ std::uint64_t azimuth_probe(const Sampler& sp, const std::vector<Column>& cols, 
         for (size_t t = size_t(sp.probe_every / 2); t < c.nodes.size(); t += size_t(sp.probe_every)) {
             const Node& b = c.nodes[t];
             const Angle& e = b.angle;
+            // Every probe cell spreads its echo with the trend the image's cell at this node has.
+            const float slope = float(spread_slope(c.nodes, t, 1, sp.criteria.bin_m()));
+            const auto add = [slope](std::vector<Cell>& to, Cell&& cell) {
+                cell.spread_slope_per_m = slope;
+                to.push_back(cell);
+            };
             const Angle h(b.de / 2);
             const Angle lo(e.rad - h.rad, e, h, -1), hi(e.rad + h.rad, e, h, +1); // e -+ de/2
             if (!sp.reserve(2)) return rays;
             rays += 2;
             if (b.hit) {
-                one.push_back(detail::make_cell(sp.frame, *b.hit, a, e, a_lo, a_hi, lo, hi));
-                three.push_back(detail::make_cell(sp.frame, *b.hit, a, e, m_lo, m_hi, lo, hi));
+                add(one, detail::make_cell(sp.frame, *b.hit, a, e, a_lo, a_hi, lo, hi));
+                add(three, detail::make_cell(sp.frame, *b.hit, a, e, m_lo, m_hi, lo, hi));
                 if (sp.multipath) {
                     ghost_rays += sp.mp.ghosts(*b.hit, a, e, a_lo, a_hi, lo, hi, c.beam, one_ghosts, b.via);
                     ghost_rays += sp.mp.ghosts(*b.hit, a, e, m_lo, m_hi, lo, hi, c.beam, three_ghosts, b.via);
@@ -190,7 +196,7 @@ std::uint64_t azimuth_probe(const Sampler& sp, const std::vector<Column>& cols, 
                 const auto hit =
                     detail::first_hit(sp.g, sp.s, sp.frame.origin, sp.frame.dir(as, e), sp.frame.t_max);
                 if (!hit) return;
-                three.push_back(detail::make_cell(sp.frame, *hit, as, e, as_lo, as_hi, lo, hi));
+                add(three, detail::make_cell(sp.frame, *hit, as, e, as_lo, as_hi, lo, hi));
                 if (sp.multipath)
                     ghost_rays += sp.mp.ghosts(*hit, as, e, as_lo, as_hi, lo, hi, c.beam, three_ghosts);
             };

@@ -30,6 +30,9 @@ struct Cell {
     float elevation_rad, elevation_width_rad; ///< the cell's centre and width in elevation (sonar frame)
     std::uint32_t material;                   ///< kFloorMaterial or object index + 1
     std::uint32_t elevation_index;
+    /// d ln(echo per metre of range) / d range across the elevation footprint [1/m]: the cell's echo is
+    /// spread over its footprint with this linear trend (footprint.hpp); 0: evenly.
+    float spread_slope_per_m = 0;
 };
 
 /// An echo that reached a scatterer by way of specular reflections (multipath.cpp), on the beam it arrives

@@ -142,3 +142,53 @@ TEST_CASE("cell_fraction_in against hand values", "[energy]") {
     CHECK(cell_fraction_in(edge, U, 1.0, 1.125) == 0.0);
     CHECK(cell_fraction_in(edge, U, 1.125, 1.25) == 1.0);
 }
+
+TEST_CASE("a cell's echo spreads over its footprint with the cell's trend", "[energy]") {
+    // Elevation extent U[1.0, 1.2] weighted by 1 + g (u - 1.1), plus azimuth extent U[-0.05, 0.05]: each
+    // bin's share against a midpoint-rule double integral of the same density (1000 x 1000 points).
+    const auto S = EchoBinning::Footprint;
+    auto numeric = [](double g, double e0, double e1, double a0, double a1, double r0, double r1) {
+        const int n = 1000;
+        const double we = e1 - e0, wa = a1 - a0, c = 0.5 * (e0 + e1);
+        double sum = 0;
+        for (int i = 0; i < n; ++i) {
+            const double u = e0 + (i + 0.5) * we / n, w = 1 + g * (u - c);
+            for (int j = 0; j < n; ++j) {
+                const double r = u + a0 + (j + 0.5) * wa / n;
+                if (r >= r0 && r < r1) sum += w;
+            }
+        }
+        return sum / (double(n) * n);
+    };
+    for (const double g : {2.0, -2.4}) { // |g| 0.1 <= kMaxTrend: as given
+        Cell c = hand_cell(1.1f, 1.0f, 1.2f, 1.05f, 1.15f);
+        c.spread_slope_per_m = float(g);
+        double total = 0, mean = 0;
+        for (double r0 = 0.95; r0 < 1.25 - 1e-9; r0 += 0.025) {
+            const double f = cell_fraction_in(c, S, r0, r0 + 0.025);
+            INFO("g " << g << " bin [" << r0 << ", " << r0 + 0.025 << ")");
+            CHECK(f == Approx(numeric(g, 1.0, 1.2, -0.05, 0.05, r0, r0 + 0.025)).margin(2e-5));
+            total += f, mean += f * (r0 + 0.0125);
+        }
+        CHECK(total == Approx(1.0).margin(1e-12));
+        // The mean moves by g Var(elevation part) = g 0.2^2 / 12 (bins of 2.5 cm: their own midpoint error
+        // is below 1e-5 m here).
+        CHECK(mean == Approx(1.1 + g * 0.04 / 12).margin(2e-5));
+        // The reversed edge order (range falls with elevation): the trend is per metre of range, the same.
+        Cell rev = hand_cell(1.1f, 1.2f, 1.0f, 1.15f, 1.05f);
+        rev.spread_slope_per_m = float(g);
+        CHECK(cell_fraction_in(rev, S, 1.0, 1.05) == Approx(cell_fraction_in(c, S, 1.0, 1.05)).margin(1e-12));
+    }
+    // No azimuth extent: (1 / we) times the integral of 1 + g (u - 1.1) over the bin, in closed form.
+    Cell flat = hand_cell(1.1f, 1.0f, 1.2f, 1.1f, 1.1f);
+    flat.spread_slope_per_m = 2;
+    CHECK(cell_fraction_in(flat, S, 1.0, 1.05) == Approx((0.05 + 2 * (0.05 * 0.05 / 2 - 0.1 * 0.05)) / 0.2));
+    // A steeper trend is held at kMaxTrend: the weight 1 + 2.5 (u - 1.1) runs from 0.75 to 1.25, whatever
+    // the slope's size or sign.
+    for (const float g : {100.0f, 3.0f}) {
+        flat.spread_slope_per_m = g;
+        CHECK(cell_fraction_in(flat, S, 1.0, 1.1) == Approx((0.1 - 2.5 * 0.005) / 0.2));
+    }
+    flat.spread_slope_per_m = -1e30f;
+    CHECK(cell_fraction_in(flat, S, 1.0, 1.1) == Approx((0.1 + 2.5 * 0.005) / 0.2));
+}

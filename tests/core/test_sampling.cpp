@@ -174,16 +174,18 @@ TEST_CASE("the sampler stops on both the median and the rel L1 estimate", "[samp
     CHECK(refined(both) <= tight.sampling.tolerance_rel_l1);
     CHECK(both.rays_traced > one.rays_traced);
     CHECK(e2.rel_l1 < e1.rel_l1);
-    // The estimate stays honest: above the measured error. Its elevation part is within 2x here (second
-    // order on this smooth terrain, counted so on smooth triples); its azimuth part is not sharp on a
-    // smooth terrain: the probe's cells, every ninth, are scaled by nine, and what neighbouring cells'
-    // differences cancel in a bin the sparse cells do not (measured 0.245 % for 0.063 %, and 0.18 % for
-    // 0.022 % once the elevation part is refined to 0.03 %).
+    // The estimate stays honest: above the measured error. Its elevation part is below 2x the whole
+    // measured error here (second order on this smooth terrain, counted so on smooth triples); its azimuth
+    // part is not sharp on a smooth terrain: the probe's cells, every ninth, are scaled by nine, and what
+    // neighbouring cells' differences cancel in a bin the sparse cells do not. With the echo spread along
+    // each cell's trend the image's error fell 3x and the probe's share did not (measured: 0.142 % for
+    // 0.022 %, and 0.146 % for 0.012 % once the elevation part is refined to 0.004 %; before the trend,
+    // 0.245 % for 0.063 %).
     CHECK(one.error_estimate.rel_l1 >= e1.rel_l1);
-    CHECK(one.error_estimate.rel_l1 <= 5 * e1.rel_l1);
-    CHECK(refined(both) >= e2.rel_l1);
+    CHECK(one.error_estimate.rel_l1 <= 10 * e1.rel_l1);
+    CHECK(both.error_estimate.rel_l1 >= e2.rel_l1);
     CHECK(refined(both) <= 2 * e2.rel_l1);
-    CHECK(both.error_estimate.rel_l1 <= 10 * e2.rel_l1);
+    CHECK(both.error_estimate.rel_l1 <= 15 * e2.rel_l1);
     Simulator sim(tight);
     const json meta = frame_metadata(tight, *sim.render());
     const json& est = meta["sampling_error_estimate"];
@@ -279,19 +281,23 @@ TEST_CASE("both estimates track the measured error and strict refines what fast 
     rough.sonar.range_max_m = 8;
     for (const bool is_rough : {false, true}) {
         const SceneDesc& s = is_rough ? rough : smooth;
-        // Measured: smooth, fast 0.245 % (0.09 % of it azimuth) and strict 0.251 % against 0.063 %; rough,
-        // fast 3.2 % (3.0 % azimuth) against 1.46 % and strict 0.52 % against 0.38 %.
+        // Measured (the echo spread along each cell's trend): smooth, fast 0.142 % (0.131 % of it azimuth)
+        // and strict 0.149 % against 0.022 % (before the trend: 0.245 and 0.251 % against 0.063 %: the
+        // image's error fell, the azimuth probe's overstatement on a smooth surface did not); rough, fast
+        // 2.8 % (2.5 % azimuth) against 1.43 % and strict 0.54 % against 0.38 % (before: 3.2 % against 1.46 %
+        // and 0.52 % against 0.38 %).
         const auto [fast_est, fast_err, fast_med_est, fast_med, fast_az] = measure(s, ErrorEstimate::Fast);
         const auto [strict_est, strict_err, strict_med_est, strict_med, strict_az] =
             measure(s, ErrorEstimate::Strict);
         INFO((is_rough ? "rough" : "smooth")
              << ": fast estimate " << fast_est << " (azimuth " << fast_az << ") measured " << fast_err
              << "; strict estimate " << strict_est << " measured " << strict_err);
+        const double within = is_rough ? 4 : 8;
         CHECK(fast_est >= fast_err);
-        CHECK(fast_est <= 4 * fast_err);
+        CHECK(fast_est <= within * fast_err);
         CHECK(fast_med_est >= fast_med);
         CHECK(strict_est >= strict_err);
-        CHECK(strict_est <= 4 * strict_err);
+        CHECK(strict_est <= within * strict_err);
         CHECK(strict_med_est >= strict_med);
         CHECK(fast_az > 0);
         CHECK(strict_az == 0); // strict acts on it: nothing is left unrefined for it to report
@@ -306,24 +312,25 @@ TEST_CASE("both estimates track the measured error and strict refines what fast 
 
 TEST_CASE("the estimate stays at or above the measured error when the tolerances are loosened",
           "[sampling]") {
-    // The Monterey canyon wall (real bathymetry) at tolerances a user picks for speed. The estimate counts a
-    // merge as smooth (second order) only where its cells' levels step by less than they would at the
-    // default tolerance (RefineCriteria::edge_between); with the loose tolerance's own steps (3 and 10 dB)
-    // it said 0.97x and 0.91x the measured rel L1 here, now 1.16x and 1.11x.
+    // The Monterey canyon wall (real bathymetry) at tolerances a user picks for speed. Measured: 0.77 % and
+    // 0.72 % for 0.42 % (1.8x, 1.7x). It said 0.97x and 0.91x when the estimate's smooth test took the loose
+    // tolerance's own level steps (3 and 10 dB; RefineCriteria::edge_between now keeps the default's, its
+    // own test in test_refine_criteria.cpp) and cells spread their echo evenly (then 1.0 % measured); with
+    // each cell's trend the error is 0.42 % either way.
     SceneDesc s = load_scene(SONARSIM_ASSETS "/scenes/monterey.json");
     const SceneGeometry g(s);
     SceneDesc dense = s;
     set_scheme(dense.sampling, SamplingScheme::Spread);
     dense.sampling.elevation_rays = 729, dense.sampling.azimuth_rays = 3; // 0.05 % from 2187 x 9 here
     const PolarImage ref = shade(trace(g, dense), dense);
-    for (const auto [rel, db] : {std::pair(0.01, 0.3), std::pair(0.1, 1.0)}) {
+    for (const auto& [rel, db] : {std::pair(0.01, 0.3), std::pair(0.1, 1.0)}) {
         s.sampling.tolerance_rel_l1 = rel, s.sampling.tolerance_db = db;
         const TraceResult t = trace(g, s);
         const ImageError e = compare_images(*t.shaded->image, ref);
         INFO("tolerances " << rel << ", " << db << " dB: estimate " << t.error_estimate.rel_l1 << " measured "
                            << e.rel_l1);
         REQUIRE(e.echoing_ref > 10000);
-        CHECK(e.rel_l1 > 0.005); // loose enough to matter
+        CHECK(e.rel_l1 > 0.003); // loose enough to matter
         CHECK(t.error_estimate.rel_l1 >= 1.05 * e.rel_l1);
         CHECK(t.error_estimate.rel_l1 <= 3 * e.rel_l1);
     }
