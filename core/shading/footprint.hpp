@@ -75,16 +75,22 @@ void for_each_bin(const Cell& c, bool spread, int K, double r_min, double r_max,
     const int b0 = int(std::clamp(std::floor((f.lo - r_min) / dr), 0.0, double(K)));
     const int b1 = int(std::clamp(std::floor((f.hi() - r_min) / dr), -1.0, double(K - 1)));
     // Bins wholly inside the trapezoid's flat top [lo + p, lo + q] each get dr / q: no cdf needed there
-    // (long footprints at grazing incidence span tens of bins).
+    // (long footprints at grazing incidence span tens of bins). With a trend along a longer elevation
+    // extent, the top follows it: dr / q times the weight at the bin's centre less half the azimuth extent.
     const int flat_lo = int(std::clamp(std::ceil((f.lo + f.p - r_min) / dr), -1.0, double(K)));
     const int flat_hi =
         int(std::clamp(std::floor((f.lo + f.q - r_min) / dr), 0.0, double(K))) - 1; // last inside
     const double flat_share = dr / f.q;
+    const bool tilted_top = f.g != 0 && f.we >= f.wa;
+    const double top_centre = f.lo + 0.5 * (f.we + f.wa) - r_min; // where the top's weight is 1
     double c_prev = f.cdf(r_min + b0 * dr);
     for (int b = b0; b <= b1; ++b) {
-        if (f.g == 0 && b >= flat_lo && b <= flat_hi && b + 1 < K) {
+        if (b >= flat_lo && b <= flat_hi && b + 1 < K) {
             const int last = std::min({flat_hi, b1, K - 2});
-            for (; b <= last; ++b) add(b, flat_share);
+            if (tilted_top)
+                for (; b <= last; ++b) add(b, flat_share * (1 + f.g * ((b + 0.5) * dr - top_centre)));
+            else
+                for (; b <= last; ++b) add(b, flat_share);
             c_prev = f.cdf(r_min + b * dr); // b: the first bin after the flat run
             --b;
             continue;

@@ -5,6 +5,7 @@
 #include "core/shading/physics.hpp"
 #include "core/base/pose.hpp"
 #include "core/scene/scene_io.hpp"
+#include "core/shading/footprint.hpp"
 #include "core/shading/shade.hpp"
 #include "core/pipeline/simulator.hpp"
 
@@ -191,4 +192,33 @@ TEST_CASE("a cell's echo spreads over its footprint with the cell's trend", "[en
     }
     flat.spread_slope_per_m = -1e30f;
     CHECK(cell_fraction_in(flat, S, 1.0, 1.1) == Approx((0.1 + 2.5 * 0.005) / 0.2));
+}
+
+TEST_CASE("the flat top of a footprint with a trend gets the shares its distribution gives", "[energy]") {
+    // A grazing cell: elevation extent 0.6 m over bins of 1 cm (for_each_bin takes the bins wholly inside
+    // the top without its cumulative share), azimuth extent 3 cm, either trend, either edge order.
+    for (const float g : {0.6f, -0.7f})
+        for (const bool reversed : {false, true}) {
+            Cell c = reversed ? hand_cell(2.3f, 2.6f, 2.0f, 2.315f, 2.285f)
+                              : hand_cell(2.3f, 2.0f, 2.6f, 2.285f, 2.315f);
+            c.spread_slope_per_m = g;
+            const double r_min = 1.5, dr = 0.01;
+            const int K = 200;
+            std::vector<double> got(size_t(K), 0.0);
+            size_t calls = 0;
+            detail::for_each_bin(c, true, K, r_min, r_min + K * dr, dr, [&](int b, double f) {
+                got[size_t(b)] += f;
+                ++calls;
+            });
+            CHECK(calls > 60);
+            double sum = 0;
+            for (int b = 0; b < K; ++b) {
+                INFO("g " << g << " bin " << b);
+                CHECK(got[size_t(b)] == Approx(cell_fraction_in(c, EchoBinning::Footprint, r_min + b * dr,
+                                                                r_min + (b + 1) * dr))
+                                            .margin(1e-12));
+                sum += got[size_t(b)];
+            }
+            CHECK(sum == Approx(1.0).margin(1e-12));
+        }
 }
