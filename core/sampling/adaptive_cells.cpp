@@ -7,15 +7,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace sonarsim::adaptive {
 namespace {
 
-/// ln of a node's echo per metre of range (its echo per radian of elevation over dr/de); NaN: none.
-double log_per_metre(const Node& n) {
-    if (!n.hit || !(n.dr_de > 0)) return std::nan("");
-    return kLn10Over10 * n.density_db + std::log(n.angle.c / n.dr_de);
+/// ln of a node's echo per metre of range; NaN: none. Its per_metre_db is that in dB where its footprint
+/// spans a bin (set_width), else the echo per bin width.
+double log_per_metre(const Node& n, double bin_m) {
+    if (!n.hit || !(n.footprint_m > 0)) return std::numeric_limits<double>::quiet_NaN();
+    const double db = n.footprint_m >= bin_m
+                          ? n.per_metre_db
+                          : n.per_metre_db + kDbPerOctave * fast::log2_positive(bin_m / n.footprint_m);
+    return kLn10Over10 * db;
 }
 
 /// Whether nodes x and y, `reach` cells apart in a column, lie on one surface: one material, their ranges no
@@ -50,18 +55,19 @@ std::uint64_t coarse_cells_of(const Sampler& sp, const std::vector<Column>& cols
 
 } // namespace
 
-double spread_slope(const std::vector<Node>& nodes, size_t k, size_t reach, double bin_m) {
-    const Node& m = nodes[k];
+double spread_slope(const std::vector<Node>& nodes, size_t k, size_t reach, double bin_m,
+                    const double* log_pm) {
     if (k < reach || k + reach >= nodes.size()) return 0;
-    const Node &x = nodes[k - reach], &y = nodes[k + reach];
+    const Node &x = nodes[k - reach], &m = nodes[k], &y = nodes[k + reach];
     if (!adjacent_on_one_surface(x, m, reach, bin_m) || !adjacent_on_one_surface(m, y, reach, bin_m))
         return 0;
-    const double lm = log_per_metre(m);
-    auto one_sided = [&](const Node& o) {
-        const double dr = o.hit->t - m.hit->t, d = log_per_metre(o) - lm;
+    auto log_of = [&](size_t i) { return log_pm ? log_pm[i] : log_per_metre(nodes[i], bin_m); };
+    const double lm = log_of(k);
+    auto one_sided = [&](size_t i) {
+        const double dr = nodes[i].hit->t - m.hit->t, d = log_of(i) - lm;
         return std::abs(dr) > 1e-9 && std::isfinite(d) ? d / dr : 0.0;
     };
-    const double a = one_sided(x), b = one_sided(y);
+    const double a = one_sided(k - reach), b = one_sided(k + reach);
     if (!(a * b > 0)) return 0;
     return std::abs(a) < std::abs(b) ? a : b;
 }
@@ -135,14 +141,22 @@ std::uint64_t Sampler::cells_of(const Column& c, double da, CellsOut fine, Cells
     thread_local std::vector<GhostCell> made; // one cell's ghosts, before they go to each output
     thread_local std::vector<char> stays;     // per ghost in made: detail::stays_in_source
     const double bin_m = criteria.bin_m();
-    const bool trend = !control.preview; // a preview is the plain base grid
-    auto emit = [&](const Node& n, double de, double slope, std::initializer_list<const CellsOut*> to) {
+    const bool trend = !control.preview;     // a preview is the plain base grid
+    thread_local std::vector<double> log_pm; // ln(echo per metre) of each node of c, for the trends
+    if (trend) {
+        log_pm.resize(c.nodes.size());
+        for (size_t k = 0; k < c.nodes.size(); ++k) log_pm[k] = log_per_metre(c.nodes[k], bin_m);
+    }
+    auto slope = [&](size_t k, size_t reach) {
+        return trend ? spread_slope(c.nodes, k, reach, bin_m, log_pm.data()) : 0.0;
+    };
+    auto emit = [&](const Node& n, double de, double trend_per_m, std::initializer_list<const CellsOut*> to) {
         if (!n.hit) return;
         const Angle& h = detail::half_angle(de); // widths come in a few sizes: kept per thread
         const Angle& e = n.angle;
         const Angle lo(e.rad - h.rad, e, h, -1), hi(e.rad + h.rad, e, h, +1); // e -+ de/2 (angle sums)
         Cell cell = detail::make_cell(frame, *n.hit, a, e, a_lo, a_hi, lo, hi);
-        if (trend) cell.spread_slope_per_m = float(slope);
+        cell.spread_slope_per_m = float(trend_per_m);
         made.clear();
         if (multipath) {
             rays += mp.ghosts(*n.hit, a, e, a_lo, a_hi, lo, hi, c.beam, made, n.via);
@@ -163,7 +177,7 @@ std::uint64_t Sampler::cells_of(const Column& c, double da, CellsOut fine, Cells
         const bool triple = n + 2 < c.nodes.size() && c.nodes[n].group == c.nodes[n + 1].group &&
                             c.nodes[n].group == c.nodes[n + 2].group;
         if (!triple || (!all.cells && !edges.cells)) {
-            emit(c.nodes[n], c.nodes[n].de, spread_slope(c.nodes, n, 1, bin_m), {&fine, &all, &edges});
+            emit(c.nodes[n], c.nodes[n].de, slope(n, 1), {&fine, &all, &edges});
             ++n;
             continue;
         }
@@ -172,11 +186,10 @@ std::uint64_t Sampler::cells_of(const Column& c, double da, CellsOut fine, Cells
         const CellsOut& fine_edges = smooth ? edges : none;
         if (fine.cells || smooth)
             for (size_t t = n; t < n + 3; ++t)
-                emit(c.nodes[t], c.nodes[t].de, spread_slope(c.nodes, t, 1, bin_m), {&fine, &fine_edges});
+                emit(c.nodes[t], c.nodes[t].de, slope(t, 1), {&fine, &fine_edges});
         if (all.cells ||
             !smooth) // the merged cell's trend from its neighbours at its level: the next triples
-            emit(c.nodes[n + 1], 3 * c.nodes[n + 1].de, spread_slope(c.nodes, n + 1, 3, bin_m),
-                 {&all, smooth ? &none : &edges});
+            emit(c.nodes[n + 1], 3 * c.nodes[n + 1].de, slope(n + 1, 3), {&all, smooth ? &none : &edges});
         n += 3;
     }
     return rays;

@@ -93,8 +93,10 @@ inline void set_width(Node& n, double de, double bin_m) {
 /// limited as in MUSCL schemes (minmod): of the one-sided differences of ln(echo per metre) to its
 /// neighbours k - reach and k + reach, the smaller where they agree in sign; 0 where they do not (a kink: a
 /// facet edge, a crest), or where a neighbour is missing or on another surface, so that no trend is carried
-/// across an edge. reach 3: a merged triple's, from the neighbouring triples (adaptive_cells.cpp).
-double spread_slope(const std::vector<Node>& nodes, size_t k, size_t reach, double bin_m);
+/// across an edge. reach 3: a merged triple's, from the neighbouring triples (adaptive_cells.cpp). log_pm:
+/// each node's ln(echo per metre), when the caller has them (null: computed here).
+double spread_slope(const std::vector<Node>& nodes, size_t k, size_t reach, double bin_m,
+                    const double* log_pm = nullptr);
 
 /// One azimuth column of a beam: its elevation cells.
 struct Column {

@@ -33,16 +33,21 @@ struct Footprint {
         }
     }
     double hi() const { return lo + p + q; }
-    double cdf(double r) const {
+    double cdf(double r) const { return g != 0 ? cdf_of<true>(r) : cdf_of<false>(r); }
+    /// cdf() for a footprint known to have a trend (Tilted) or none.
+    template <bool Tilted> double cdf_of(double r) const {
         const double x = r - lo;
         if (x <= 0) return 0;
         if (x >= p + q) return 1;
-        if (g != 0) return tilted_cdf(x);
-        if (p <= 1e-12 * q) return x / q; // a single uniform
-        if (x < p) return x * x / (2 * p * q);
-        if (x <= q) return p / (2 * q) + (x - p) / q;
-        const double y = p + q - x;
-        return 1 - y * y / (2 * p * q);
+        if constexpr (Tilted) {
+            return tilted_cdf(x);
+        } else {
+            if (p <= 1e-12 * q) return x / q; // a single uniform
+            if (x < p) return x * x / (2 * p * q);
+            if (x <= q) return p / (2 * q) + (x - p) / q;
+            const double y = p + q - x;
+            return 1 - y * y / (2 * p * q);
+        }
     }
 
   private:
@@ -63,15 +68,13 @@ inline Footprint footprint_of(const Cell& c) {
                      double(c.range_a_hi_m) - c.range_m, c.spread_slope_per_m);
 }
 
-/// Calls add(bin, fraction) for each range bin that receives part of the cell's echo.
-template <class F>
-void for_each_bin(const Cell& c, bool spread, int K, double r_min, double r_max, double dr, F&& add) {
-    const Footprint f = footprint_of(c);
-    if (!spread || f.p + f.q <= 1e-9 * dr) {
-        const double b = std::floor(((spread ? f.lo : double(c.range_m)) - r_min) / dr);
-        if (b >= 0 && b < K) add(int(b), 1.0);
-        return;
-    }
+/// for_each_bin's walk over the bins of a footprint that spans some, with a trend (Tilted) or none: out of
+/// line (measured: fewer instructions in the shading loop than with either walk inlined).
+template <bool Tilted, class F>
+#if defined(__GNUC__)
+[[gnu::noinline]]
+#endif
+void add_footprint_bins(const Footprint& f, int K, double r_min, double r_max, double dr, F& add) {
     const int b0 = int(std::clamp(std::floor((f.lo - r_min) / dr), 0.0, double(K)));
     const int b1 = int(std::clamp(std::floor((f.hi() - r_min) / dr), -1.0, double(K - 1)));
     // Bins wholly inside the trapezoid's flat top [lo + p, lo + q] each get dr / q: no cdf needed there
@@ -81,24 +84,41 @@ void for_each_bin(const Cell& c, bool spread, int K, double r_min, double r_max,
     const int flat_hi =
         int(std::clamp(std::floor((f.lo + f.q - r_min) / dr), 0.0, double(K))) - 1; // last inside
     const double flat_share = dr / f.q;
-    const bool tilted_top = f.g != 0 && f.we >= f.wa;
-    const double top_centre = f.lo + 0.5 * (f.we + f.wa) - r_min; // where the top's weight is 1
-    double c_prev = f.cdf(r_min + b0 * dr);
+    double c_prev = f.template cdf_of<Tilted>(r_min + b0 * dr);
     for (int b = b0; b <= b1; ++b) {
         if (b >= flat_lo && b <= flat_hi && b + 1 < K) {
             const int last = std::min({flat_hi, b1, K - 2});
-            if (tilted_top)
-                for (; b <= last; ++b) add(b, flat_share * (1 + f.g * ((b + 0.5) * dr - top_centre)));
-            else
+            if (Tilted && f.we >= f.wa) {
+                const double top_centre = f.lo + 0.5 * (f.we + f.wa) - r_min; // where the weight is 1
+                double share = flat_share * (1 + f.g * ((b + 0.5) * dr - top_centre));
+                const double step = flat_share * f.g * dr;
+                for (; b <= last; ++b, share += step) add(b, share);
+            } else {
                 for (; b <= last; ++b) add(b, flat_share);
-            c_prev = f.cdf(r_min + b * dr); // b: the first bin after the flat run
+            }
+            c_prev = f.template cdf_of<Tilted>(r_min + b * dr); // b: the first bin after the flat run
             --b;
             continue;
         }
-        const double c_next = f.cdf(b + 1 == K ? r_max : r_min + (b + 1) * dr);
+        const double c_next = f.template cdf_of<Tilted>(b + 1 == K ? r_max : r_min + (b + 1) * dr);
         if (c_next > c_prev) add(b, c_next - c_prev);
         c_prev = c_next;
     }
+}
+
+/// Calls add(bin, fraction) for each range bin that receives part of the cell's echo.
+template <class F>
+void for_each_bin(const Cell& c, bool spread, int K, double r_min, double r_max, double dr, F&& add) {
+    const Footprint f = footprint_of(c);
+    if (!spread || f.p + f.q <= 1e-9 * dr) {
+        const double b = std::floor(((spread ? f.lo : double(c.range_m)) - r_min) / dr);
+        if (b >= 0 && b < K) add(int(b), 1.0);
+        return;
+    }
+    if (f.g != 0)
+        add_footprint_bins<true>(f, K, r_min, r_max, dr, add);
+    else
+        add_footprint_bins<false>(f, K, r_min, r_max, dr, add);
 }
 
 /// Elevation [rad] at which the cell's surface lies at range r: linear in range across its elevation
