@@ -68,6 +68,8 @@ double spread_slope(const std::vector<Node>& nodes, size_t k, size_t reach, doub
         return std::abs(dr) > 1e-9 && std::isfinite(d) ? d / dr : 0.0;
     };
     const double a = one_sided(k - reach), b = one_sided(k + reach);
+    const double step = kLn10Over10 * kTrendStepDb; // larger steps are a kink or an edge, not a trend
+    if (!(std::abs(log_of(k - reach) - lm) <= step && std::abs(log_of(k + reach) - lm) <= step)) return 0;
     if (!(a * b > 0)) return 0;
     return std::abs(a) < std::abs(b) ? a : b;
 }

@@ -369,3 +369,46 @@ TEST_CASE("recent_value: the last N results per thread, exact keys, zero a key l
     std::thread([&] { half(0.3), half(0.3); }).join();
     CHECK(made == before + 1);
 }
+
+TEST_CASE("a cell's trend: the smaller one-sided slope where both agree, none at a crest, a step or an edge",
+          "[sampling][criteria]") {
+    const double bin = 0.01;
+    auto node = [](double t, double per_metre_db, unsigned material = 1, double footprint_m = 0.05) {
+        Node n;
+        n.hit = Hit{t, {0, 0, 1}, material, 0, {0, 0, 1}};
+        n.footprint_m = footprint_m, n.per_metre_db = per_metre_db;
+        return n;
+    };
+    // Cells 5 cm long, 5 cm apart in range: one-sided slopes of 0.2 and 0.3 dB per 5 cm.
+    std::vector<Node> ns = {node(1.00, 40.0), node(1.05, 40.2), node(1.10, 40.5)};
+    const double smaller = adaptive::kLn10Over10 * 0.2 / 0.05; // d ln(echo per metre) / d range [1/m]
+    CHECK(spread_slope(ns, 1, 1, bin) == Approx(smaller));
+    CHECK(spread_slope(ns, 0, 1, bin) == 0); // the column's ends have one neighbour: none
+    CHECK(spread_slope(ns, 2, 1, bin) == 0);
+    std::vector<Node> x = ns;
+    x[2].per_metre_db = 40.1; // a crest: the two slopes disagree in sign
+    CHECK(spread_slope(x, 1, 1, bin) == 0);
+    x[2].per_metre_db = 40.2 + 1.05 * kTrendStepDb; // a step: a kink or an edge, not a trend
+    CHECK(spread_slope(x, 1, 1, bin) == 0);
+    x[2].per_metre_db = 40.2 + 0.95 * kTrendStepDb;
+    CHECK(spread_slope(x, 1, 1, bin) == Approx(smaller));
+    x = ns;
+    x[2] = node(1.10, 40.5, 2); // another material
+    CHECK(spread_slope(x, 1, 1, bin) == 0);
+    x[2] = node(1.30, 40.5); // further than the footprints reach: another surface behind
+    CHECK(spread_slope(x, 1, 1, bin) == 0);
+    x[2].hit.reset(); // a miss
+    CHECK(spread_slope(x, 1, 1, bin) == 0);
+    // Falling the other way: the smaller magnitude, its sign kept.
+    const std::vector<Node> down = {node(1.00, 40.5), node(1.05, 40.2), node(1.10, 40.0)};
+    CHECK(spread_slope(down, 1, 1, bin) == Approx(-smaller));
+    // Cells within a bin: per_metre_db holds the echo per bin width; the same offset for each, so the same
+    // trend.
+    const std::vector<Node> small = {node(1.000, 40.0, 1, 0.005), node(1.005, 40.02, 1, 0.005),
+                                     node(1.010, 40.05, 1, 0.005)};
+    CHECK(spread_slope(small, 1, 1, bin) == Approx(adaptive::kLn10Over10 * 0.02 / 0.005));
+    // Reach 3 (a merged triple's, from the neighbouring triples' middles): the range allowance scales.
+    const std::vector<Node> far = {node(1.00, 40.0), node(1.05, 40.1), node(1.10, 40.2), node(1.15, 40.3),
+                                   node(1.20, 40.4), node(1.25, 40.5), node(1.30, 40.6)};
+    CHECK(spread_slope(far, 3, 3, bin) == Approx(adaptive::kLn10Over10 * 0.3 / 0.15));
+}
