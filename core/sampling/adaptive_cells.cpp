@@ -189,8 +189,8 @@ std::uint64_t Sampler::cells_of(const Column& c, double da, CellsOut fine, Cells
         if (fine.cells || smooth)
             for (size_t t = n; t < n + 3; ++t)
                 emit(c.nodes[t], c.nodes[t].de, slope(t, 1), {&fine, &fine_edges});
-        if (all.cells ||
-            !smooth) // the merged cell's trend from its neighbours at its level: the next triples
+        // The merged cell's trend from its neighbours at its level: the next triples' middles.
+        if (all.cells || !smooth)
             emit(c.nodes[n + 1], 3 * c.nodes[n + 1].de, slope(n + 1, 3), {&all, smooth ? &none : &edges});
         n += 3;
     }
