@@ -62,14 +62,14 @@ double spread_slope(const std::vector<Node>& nodes, size_t k, size_t reach, doub
     if (!adjacent_on_one_surface(x, m, reach, bin_m) || !adjacent_on_one_surface(m, y, reach, bin_m))
         return 0;
     auto log_of = [&](size_t i) { return log_pm ? log_pm[i] : log_per_metre(nodes[i], bin_m); };
-    const double lm = log_of(k);
-    auto one_sided = [&](size_t i) {
-        const double dr = nodes[i].hit->t - m.hit->t, d = log_of(i) - lm;
-        return std::abs(dr) > 1e-9 && std::isfinite(d) ? d / dr : 0.0;
-    };
-    const double a = one_sided(k - reach), b = one_sided(k + reach);
+    const double lm = log_of(k), d_x = log_of(k - reach) - lm, d_y = log_of(k + reach) - lm;
     const double step = kLn10Over10 * kTrendStepDb; // larger steps are a kink or an edge, not a trend
-    if (!(std::abs(log_of(k - reach) - lm) <= step && std::abs(log_of(k + reach) - lm) <= step)) return 0;
+    if (!(std::abs(d_x) <= step && std::abs(d_y) <= step)) return 0;
+    auto per_metre = [&](const Node& o, double d) {
+        const double dr = o.hit->t - m.hit->t;
+        return std::abs(dr) > 1e-9 ? d / dr : 0.0;
+    };
+    const double a = per_metre(x, d_x), b = per_metre(y, d_y);
     if (!(a * b > 0)) return 0;
     return std::abs(a) < std::abs(b) ? a : b;
 }
