@@ -13,10 +13,8 @@ namespace sonarsim::adaptive {
 
 RefineCriteria::RefineCriteria(const SceneDesc& scene, const detail::RayFrame& frame, bool multipath)
     : s_(scene), frame_(frame), multipath_(multipath), k_(shade_constants(scene)),
-      jump_db_(10 * scene.sampling.tolerance_db),
-      range_jump_db_(4 * scene.sampling.tolerance_db), smooth_{std::min(jump_db_, 10 * kSmoothToleranceDb),
-                                                               std::min(range_jump_db_,
-                                                                        4 * kSmoothToleranceDb)},
+      refine_(Steps::at(scene.sampling.tolerance_db)),
+      smooth_(Steps::at(std::min(scene.sampling.tolerance_db, kSmoothToleranceDb))),
       bin_m_(frame.grid->bin_m), gap_m_(0.5 * bin_m_),
       tol_rel_db_(10 * std::log10((std::pow(10.0, scene.sampling.tolerance_db / 10) - 1) / kErrorsPerBin)) {
     specular_ = scene.water.surface_material.mu > 0 || (scene.seafloor && scene.seafloor->material.mu > 0);
@@ -32,7 +30,7 @@ bool RefineCriteria::discontinuous_direct(const Node& x, const Column& cx, const
                                           const EdgeRay& edge) const {
     // Whatever steps between them, neither cell's error could be significant: no need to look.
     if (!may_be_significant(x, cx) && !may_be_significant(y, cy)) return false;
-    const double step_db = direct_step_db(x, y, edge, {jump_db_, range_jump_db_});
+    const double step_db = direct_step_db(x, y, edge, refine_);
     return step_db == step_db && worth_refining(x, cx, y, cy, step_db);
 }
 
@@ -62,7 +60,7 @@ double RefineCriteria::direct_step_db(const Node& x, const Node& y, const EdgeRa
 /// meets nothing, or their levels step, where that matters against the image (as for direct cells).
 bool RefineCriteria::via_discontinuous(const Node& x, const Column& cx, const Node& y,
                                        const Column& cy) const {
-    const double f = via_step(x, y, {jump_db_, range_jump_db_});
+    const double f = via_step(x, y, refine_);
     return f > 0 && (significant_via(x, cx, f) || significant_via(y, cy, f));
 }
 
@@ -229,7 +227,7 @@ bool RefineCriteria::no_horizon_within(const Node& n, double half_width) const {
 /// where a bin holds few cells, at the aperture's edges, the split of a cell's echo between bins must then
 /// follow the level within it).
 bool RefineCriteria::absorbed_across(double footprint_m) const {
-    return 2 * k_.alpha_db_per_m * footprint_m > range_jump_db_;
+    return 2 * k_.alpha_db_per_m * footprint_m > refine_.range_jump_db;
 }
 
 bool RefineCriteria::absorbed_across_azimuth(const Node& n, const Column& c, const Angle& a) const {

@@ -31,12 +31,6 @@ struct EdgeRay {
     }
 };
 
-/// The error estimate takes a merged triple to converge in second order only where its neighbours' levels
-/// step by less than they would at this tolerance_db (the default), however loose the tolerance: a step
-/// that a loose tolerance leaves unrefined is still a kink that converges in first order (at 3 % and
-/// 0.3 dB the estimate said 0.50x the measured error on the benchmark's Oculus scene, 0.84x on Monterey).
-constexpr double kSmoothToleranceDb = 0.1;
-
 /// What may_be_significant adds to its bound [dB] for the rounding of its two logarithms (below 1e-12 dB).
 constexpr double kBoundMarginDb = 1e-6;
 
@@ -96,10 +90,13 @@ class RefineCriteria {
     double cell_share_db = -INFINITY;
 
   private:
-    /// Level steps [dB] between neighbours above which they count as not smooth.
+    /// Level steps [dB] between neighbours above which they count as not smooth, at a tolerance_db.
     struct Steps {
-        double jump_db;       ///< in echo density
+        double jump_db;       ///< in echo density: kJumpPerToleranceDb x the tolerance
         double range_jump_db; ///< in echo per metre of range, on one plane with footprints spanning bins
+        static Steps at(double tolerance_db) {
+            return {kJumpPerToleranceDb * tolerance_db, kRangeJumpPerToleranceDb * tolerance_db};
+        }
     };
     bool discontinuous_direct(const Node& x, const Column& cx, const Node& y, const Column& cy,
                               const EdgeRay& edge) const;
@@ -132,9 +129,9 @@ class RefineCriteria {
     const detail::RayFrame& frame_;
     bool multipath_;
     ShadeConstants k_;
-    double jump_db_;       ///< a step in echo density worth a look: 10 x tolerance_db
-    double range_jump_db_; ///< a step in echo per metre of range (or absorption across a cell): 4 x tolerance
-    Steps smooth_;         ///< edge_between's: the two above, at most those of kSmoothToleranceDb
+    Steps
+        refine_; ///< refinement's, at the scene's tolerance_db (range_jump_db: absorption across a cell too)
+    Steps smooth_;         ///< edge_between's: at the tolerance, at most at kSmoothToleranceDb
     double bin_m_, gap_m_; ///< range bin width; half of it, the range disagreement that makes an edge
     double tol_rel_db_;    ///< 10 log10 of the relative error per bin the tolerance allows, / kErrorsPerBin
     bool specular_ = true; ///< some material has a specular lobe (mu > 0)
