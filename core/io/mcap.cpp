@@ -3,7 +3,7 @@
 #include "core/base/le_bytes.hpp"
 
 #include <algorithm>
-#include <array>
+#include <zlib.h>
 
 namespace sonarsim {
 namespace {
@@ -39,19 +39,8 @@ le::Bytes framed(std::uint8_t op, const le::Bytes& content) {
 } // namespace
 
 std::uint32_t crc32(const void* data, size_t n, std::uint32_t crc) {
-    static const std::array<std::uint32_t, 256> table = [] {
-        std::array<std::uint32_t, 256> t{};
-        for (std::uint32_t i = 0; i < 256; ++i) {
-            std::uint32_t c = i;
-            for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-            t[i] = c;
-        }
-        return t;
-    }();
-    const auto* p = static_cast<const std::uint8_t*>(data);
-    crc = ~crc;
-    for (size_t i = 0; i < n; ++i) crc = table[(crc ^ p[i]) & 0xff] ^ (crc >> 8);
-    return ~crc;
+    // zlib's: a null buffer would give its initial value (0), not crc
+    return n ? std::uint32_t(::crc32_z(crc, static_cast<const Bytef*>(data), n)) : crc;
 }
 
 McapWriter::McapWriter(const std::string& path, const std::string& profile, const std::string& library)

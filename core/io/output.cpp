@@ -12,25 +12,12 @@
 #include <mutex>
 #include <random>
 #include <stdexcept>
-#include <stb/stb_image_write.h>
 #include <unistd.h>
 
 namespace sonarsim {
 
 Bytes to_bytes(const std::string& t) {
     return Bytes(t.begin(), t.end());
-}
-
-Bytes encode_png(const Image8& img) {
-    Bytes out;
-    auto sink = [](void* ctx, void* data, int size) {
-        auto* o = static_cast<Bytes*>(ctx);
-        o->insert(o->end(), static_cast<std::uint8_t*>(data), static_cast<std::uint8_t*>(data) + size);
-    };
-    if (!stbi_write_png_to_func(sink, &out, img.width, img.height, img.channels, img.pixels.data(),
-                                img.width * img.channels))
-        throw std::runtime_error("PNG encoding failed");
-    return out;
 }
 
 Bytes encode_npy_array(const void* data, std::size_t bytes, const std::string& descr,

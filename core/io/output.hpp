@@ -2,6 +2,7 @@
 // (every target checked, then temporaries, then renames).
 #pragma once
 #include "core/display/image.hpp"
+#include "core/io/png.hpp"
 #include "core/scene/params.hpp"
 #include "core/shading/shade.hpp"
 
@@ -14,9 +15,7 @@
 namespace sonarsim {
 
 struct Frame;
-using Bytes = std::vector<std::uint8_t>;
 
-Bytes encode_png(const Image8& image);
 /// NumPy .npy v1.0, little-endian float32, C order, shape (bins, beams).
 Bytes encode_npy(const PolarImage& image);
 /// NumPy .npy v1.0 of `bytes` bytes at `data`, C order: `descr` "<f4" or "<i4", `shape` e.g. {bins, beams,

@@ -1,5 +1,6 @@
 // ARIS and MCAP files read back by readers written here from the specifications (SENSORS.md §3.1 and
-// Appendix A; the MCAP specification and OMG CDR), not with the writers' code.
+// Appendix A; the MCAP specification and OMG CDR), not with the writers' code; PNG files likewise (chunks
+// and CRCs here, pixels decoded by stb_image).
 #include "support.hpp"
 
 #include "core/io/aris.hpp"
@@ -12,6 +13,9 @@
 #include "core/shading/physics.hpp"
 
 #include <catch2/catch.hpp>
+#include <cstdlib>
+#include <random>
+#include <stb/stb_image.h>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -333,4 +337,84 @@ TEST_CASE("a ROS 2 sonar message carries each beam's bearing and width from its 
         const double y = c.get<double>(true), z = c.get<double>(true);
         CHECK(std::atan2(-y, z) * 180 / kPi == Approx(t.centre_deg[i]).margin(1e-9)); // positive to port
     }
+}
+
+namespace {
+
+std::uint32_t be32(const std::vector<std::uint8_t>& b, size_t at) {
+    return std::uint32_t(b[at]) << 24 | std::uint32_t(b[at + 1]) << 16 | std::uint32_t(b[at + 2]) << 8 |
+           b[at + 3];
+}
+
+Image8 random_image(int w, int h, int channels, std::uint32_t seed) {
+    Image8 img{w, h, channels, {}};
+    img.pixels.resize(size_t(w) * size_t(h) * size_t(channels));
+    std::mt19937 rng(seed);
+    // Runs of one value with noise between them, like a fan image's background and its echoes.
+    for (size_t i = 0; i < img.pixels.size(); ++i)
+        img.pixels[i] = (i / 97) % 3 == 0 ? std::uint8_t(rng()) : std::uint8_t(i / 97);
+    return img;
+}
+
+} // namespace
+
+TEST_CASE("a PNG read from its specification gives back the pixels", "[png]") {
+    for (int channels : {1, 3, 4})
+        for (auto [w, h] : {std::pair{1, 1}, {1, 7}, {37, 5}, {300, 200}}) {
+            CAPTURE(channels, w, h);
+            const Image8 img = random_image(w, h, channels, std::uint32_t(w * 31 + h + channels));
+            const std::vector<std::uint8_t> png = encode_png(img);
+            // The signature, then chunks (big-endian length, type, data, CRC-32 of type and data): IHDR
+            // first, IEND last, the image data in IDAT.
+            const std::uint8_t signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+            REQUIRE(png.size() > 8);
+            REQUIRE(std::equal(signature, signature + 8, png.begin()));
+            std::vector<std::string> types;
+            std::vector<std::uint8_t> idat;
+            for (size_t at = 8; at < png.size();) {
+                REQUIRE(at + 12 <= png.size());
+                const size_t n = be32(png, at);
+                REQUIRE(at + 12 + n <= png.size());
+                const std::string type(png.begin() + long(at) + 4, png.begin() + long(at) + 8);
+                CHECK(be32(png, at + 8 + n) == bitwise_crc32(png.data() + at + 4, n + 4));
+                if (type == "IHDR") {
+                    REQUIRE(n == 13);
+                    CHECK(be32(png, at + 8) == std::uint32_t(w));
+                    CHECK(be32(png, at + 12) == std::uint32_t(h));
+                    CHECK(int(png[at + 16]) == 8); // bits per channel
+                    CHECK(int(png[at + 17]) == (channels == 1 ? 0 : channels == 3 ? 2 : 6));
+                    CHECK(int(png[at + 18]) + png[at + 19] + png[at + 20] ==
+                          0); // deflate, filters, no interlace
+                }
+                if (type == "IDAT")
+                    idat.insert(idat.end(), png.begin() + long(at) + 8, png.begin() + long(at + 8 + n));
+                types.push_back(type);
+                at += 12 + n;
+            }
+            REQUIRE(types.size() >= 3);
+            CHECK(types.front() == "IHDR");
+            CHECK(types.back() == "IEND");
+            // The zlib stream inflates (stb's own inflate) to one filter byte and the row for every row.
+            int raw_n = 0;
+            char* raw =
+                stbi_zlib_decode_malloc(reinterpret_cast<const char*>(idat.data()), int(idat.size()), &raw_n);
+            REQUIRE(raw != nullptr);
+            CHECK(raw_n == h * (1 + w * channels));
+            std::free(raw);
+            // A decoder written from the same specification elsewhere (stb_image) reads the same pixels.
+            int dw = 0, dh = 0, dc = 0;
+            unsigned char* px = stbi_load_from_memory(png.data(), int(png.size()), &dw, &dh, &dc, 0);
+            REQUIRE(px != nullptr);
+            CHECK((dw == w && dh == h && dc == channels));
+            CHECK(std::equal(img.pixels.begin(), img.pixels.end(), px));
+            stbi_image_free(px);
+        }
+}
+
+TEST_CASE("a PNG of an empty or malformed image is refused with what is wrong", "[png]") {
+    CHECK_THROWS_WITH(encode_png(Image8{0, 4, 3, {}}), Catch::Contains("empty"));
+    CHECK_THROWS_WITH(encode_png(Image8{2, 2, 2, std::vector<std::uint8_t>(8)}),
+                      Catch::Contains("allowed: 1, 3 or 4"));
+    CHECK_THROWS_WITH(encode_png(Image8{2, 2, 3, std::vector<std::uint8_t>(11)}),
+                      Catch::Contains("11 bytes for 2 x 2 x 3"));
 }
