@@ -20,7 +20,7 @@ void append_chunk(Bytes& out, const char (&type)[5], const std::uint8_t* data, s
     out.insert(out.end(), type, type + 4);
     if (n) out.insert(out.end(), data, data + n);
     uLong crc = ::crc32(0, out.data() + at, 4);
-    if (n) crc = ::crc32(crc, data, uInt(n)); // zlib's crc32 of a null buffer is its initial value, 0
+    if (n) crc = ::crc32_z(crc, data, n); // zlib's crc32 of a null buffer is its initial value, 0
     append_be32(out, std::uint32_t(crc));
 }
 
