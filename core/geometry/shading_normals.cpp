@@ -68,6 +68,33 @@ ShadingNormals corner_normals(const TriMesh& m, double crease_angle_deg) {
     for (size_t t = 0; t < T; ++t)
         for (int k = 0; k < 3; ++k) corners_at[fill[rep[m.triangles[t][k]]]++] = unsigned(3 * t + size_t(k));
 
+    // Where the faces around a vertex all lie within half the crease angle (less a margin far above rounding)
+    // of one direction, every pair of them lies within the crease angle, so every corner there sums all of
+    // them: one sum per vertex, in the order the per-corner loop below adds them (the same bits), instead of
+    // one per corner. Other vertices (creases, near-180-degree crease angles) take the per-corner loop.
+    const double half = 0.5 * deg2rad(std::min(crease_angle_deg, 180.0)) - 1e-6;
+    const bool cone_test = half > 1e-6 && crease_angle_deg < 179;
+    const double cos_half = std::cos(half);
+    std::vector<glm::dvec3> vertex_normal(cone_test ? m.vertices.size() : 0);
+    std::vector<unsigned char> one_sum(cone_test ? m.vertices.size() : 0, 0);
+    if (cone_test)
+        tbb::parallel_for(size_t(0), m.vertices.size(), [&](size_t v) {
+            if (start[v] == start[v + 1]) return;
+            glm::dvec3 mean(0), sum(0);
+            for (size_t i = start[v]; i < start[v + 1]; ++i) mean += face[corners_at[i] / 3];
+            const double len = glm::length(mean);
+            if (!(len > 0)) return;
+            mean /= len;
+            for (size_t i = start[v]; i < start[v + 1]; ++i) {
+                const unsigned c = corners_at[i];
+                const glm::dvec3& ng = face[c / 3];
+                if (ng == glm::dvec3(0)) continue; // degenerate: adds nothing either way
+                if (!(glm::dot(mean, ng) >= cos_half)) return;
+                sum += angle[c] * ng;
+            }
+            vertex_normal[v] = sum, one_sum[v] = 1;
+        });
+
     out.corner.assign(3 * T, glm::vec3(0));
     std::vector<unsigned char>& bent = out.bent; // a corner normal differs from its face normal
     bent.assign(T, 0);
@@ -77,10 +104,14 @@ ShadingNormals corner_normals(const TriMesh& m, double crease_angle_deg) {
         for (int k = 0; k < 3; ++k) {
             const unsigned v = rep[m.triangles[t][k]];
             glm::dvec3 sum(0);
-            for (size_t i = start[v]; i < start[v + 1]; ++i) {
-                const unsigned c = corners_at[i];
-                const glm::dvec3& ng = face[c / 3];
-                if (glm::dot(nf, ng) >= cos_crease) sum += angle[c] * ng;
+            if (cone_test && one_sum[v]) {
+                sum = vertex_normal[v];
+            } else {
+                for (size_t i = start[v]; i < start[v + 1]; ++i) {
+                    const unsigned c = corners_at[i];
+                    const glm::dvec3& ng = face[c / 3];
+                    if (glm::dot(nf, ng) >= cos_crease) sum += angle[c] * ng;
+                }
             }
             const double len = glm::length(sum);
             const glm::dvec3 n = len > 0 ? sum / len : nf;

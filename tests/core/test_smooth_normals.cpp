@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -319,4 +320,89 @@ TEST_CASE("phong_alpha is written like every key, read back, and changed in plac
     const json j = scene_to_json(s);
     CHECK(j["objects"][0]["phong_alpha"] == 0.75);
     CHECK(parse_scene(j.dump(), "", ".").objects[0].phong_alpha == 0.75);
+}
+
+namespace {
+
+/// Corner normals straight from their definition (shading_normals.hpp), one corner at a time: every face
+/// around the corner's vertex (welded by position) within the crease angle of the corner's face, weighted by
+/// its angle there, summed in the order of the faces' corners (the triangle, then its corner).
+std::vector<glm::vec3> corner_normals_by_definition(const TriMesh& m, double crease_deg) {
+    const size_t T = m.triangles.size();
+    std::vector<glm::dvec3> face(T, glm::dvec3(0));
+    std::vector<double> angle(3 * T, 0.0);
+    for (size_t t = 0; t < T; ++t) {
+        const glm::uvec3 tri = m.triangles[t];
+        const glm::dvec3 p[3] = {m.vertices[tri.x], m.vertices[tri.y], m.vertices[tri.z]};
+        const glm::dvec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
+        if (!(glm::length(n) > 0)) continue;
+        face[t] = n / glm::length(n);
+        for (int k = 0; k < 3; ++k) {
+            const glm::dvec3 a = p[(k + 1) % 3] - p[k], b = p[(k + 2) % 3] - p[k];
+            angle[3 * t + size_t(k)] = std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
+        }
+    }
+    std::map<std::tuple<float, float, float>, std::vector<size_t>> around; // position -> corners, in order
+    for (size_t t = 0; t < T; ++t)
+        for (int k = 0; k < 3; ++k) {
+            const glm::vec3 v = m.vertices[m.triangles[t][k]];
+            around[{v.x, v.y, v.z}].push_back(3 * t + size_t(k));
+        }
+    const double cos_crease = std::cos(deg2rad(std::min(crease_deg, 180.0)));
+    std::vector<glm::vec3> out(3 * T, glm::vec3(0));
+    for (size_t t = 0; t < T; ++t) {
+        if (face[t] == glm::dvec3(0)) continue;
+        for (int k = 0; k < 3; ++k) {
+            const glm::vec3 v = m.vertices[m.triangles[t][k]];
+            glm::dvec3 sum(0);
+            for (size_t c : around[{v.x, v.y, v.z}])
+                if (glm::dot(face[t], face[c / 3]) >= cos_crease) sum += angle[c] * face[c / 3];
+            const double len = glm::length(sum);
+            out[3 * t + size_t(k)] = glm::vec3(len > 0 ? sum / len : face[t]);
+        }
+    }
+    return out;
+}
+
+} // namespace
+
+TEST_CASE("corner normals equal their definition bit for bit, smooth vertices and creases alike",
+          "[smooth]") {
+    // A bumpy sphere (smooth everywhere at wide crease angles, creased at narrow ones), a box (creases
+    // only), the same sphere with split vertices (welded by position) and a degenerate face.
+    TriMesh bumpy = icosphere(3);
+    for (size_t i = 0; i < bumpy.vertices.size(); ++i)
+        bumpy.vertices[i] *= 1.0f + 0.08f * float(std::sin(double(i) * 1.7));
+    TriMesh split;
+    for (const glm::uvec3& f : icosphere(2).triangles) {
+        const TriMesh s2 = icosphere(2);
+        const unsigned n = unsigned(split.vertices.size());
+        split.vertices.insert(split.vertices.end(), {s2.vertices[f.x], s2.vertices[f.y], s2.vertices[f.z]});
+        split.triangles.push_back({n, n + 1, n + 2});
+    }
+    split.triangles.push_back({0, 0, 1}); // degenerate
+    const std::vector<std::pair<std::string, TriMesh>> meshes = {
+        {"bumpy sphere", bumpy}, {"box", make_box(Vec3d{2, 1, 0.5})}, {"split sphere", split}};
+    size_t corners = 0;
+    for (const auto& [name, mesh] : meshes)
+        for (double crease : {5.0, 20.0, 45.0, 60.0, 89.0, 91.0, 150.0, 179.5, 180.0}) {
+            INFO(name << ", crease " << crease << " deg");
+            const ShadingNormals n = corner_normals(mesh, crease);
+            const std::vector<glm::vec3> want = corner_normals_by_definition(mesh, crease);
+            if (!n.smooth()) { // nothing bent: every corner normal is its face normal
+                for (size_t t = 0; t < mesh.triangles.size(); ++t)
+                    for (int k = 0; k < 3; ++k) {
+                        const glm::vec3 w = want[3 * t + size_t(k)];
+                        CHECK((w == glm::vec3(0) || std::abs(glm::dot(w, want[3 * t]) - 1) < 1e-6));
+                    }
+                continue;
+            }
+            REQUIRE(n.corner.size() == want.size());
+            size_t differ = 0;
+            for (size_t i = 0; i < want.size(); ++i)
+                differ += std::memcmp(&n.corner[i], &want[i], sizeof want[i]) != 0;
+            CHECK(differ == 0);
+            corners += want.size();
+        }
+    CHECK(corners > 30000); // the comparison ran on smooth results
 }
