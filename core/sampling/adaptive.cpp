@@ -203,6 +203,8 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
                 samples[k] = sel[k].front();
             }
             if (control.preview) continue;
+            if (std::all_of(samples.begin(), samples.end(), [](int i) { return i < 0; }))
+                continue; // every group went denser: none refined here, nothing to estimate
             // The estimate's shares of the groups refined here: their sample beams, fine and coarse.
             PolarImage fine_img;
             if (all) { // the whole image in one pass: shade it once, for the estimate and the caller

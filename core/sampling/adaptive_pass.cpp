@@ -241,6 +241,8 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
                 beams[size_t(i)].clear();
             }
         }
+        // Every group went denser: nothing is left here to refine, collect or estimate.
+        if (std::find(out.bumped.begin(), out.bumped.end(), 0) == out.bumped.end()) return out;
     }
     set_base_image(sp, beams);
     // Ghosts far below the base image's direct echo are culled (multipath.hpp, kGhostCullShare).

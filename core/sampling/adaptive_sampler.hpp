@@ -174,7 +174,8 @@ using BumpRule = std::function<std::vector<char>(const std::vector<SampleError>&
 /// One pass at base grid M0 elevation rays over `groups`: traces their base grids; when `bump` is given,
 /// asks it which to leave unrefined (refinement fixes edges, not the error of every smooth cell, and a
 /// denser grid's refinement would redo it); refines the others and collects their cells, fine and (on each
-/// group's sample beam, unless previewing) one level coarser.
+/// group's sample beam, unless previewing) one level coarser. When every group goes denser it returns
+/// after the decision, with no cells (and the criteria's base image left as it was).
 /// `carried`: beams' base grids at M0 / 3 left by the last pass (kept and split, not traced again); it
 /// receives this pass's bumped beams' base grids.
 PassCells trace_pass(Sampler& sampler, int M0, const BeamGroups& groups, const BumpRule* bump,
