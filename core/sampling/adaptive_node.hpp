@@ -23,13 +23,12 @@ constexpr int kMaxPasses = 3;         // base grids a group may have: elevation_
 /// to the next base grid unrefined (refinement at edges does not close such a gap), until the rest would
 /// meet kSkipFactor x each tolerance.
 constexpr double kSkipFactor = 1;
-/// At every base grid, fast's bump decision counts the error of the triples that refinement will split (a
-/// pair discontinuous and significant against the base image, or a cell that splits alone) at this share:
-/// refinement closes most of it, so it is a weaker reason for a denser grid. Strict counts it in full. At
-/// 1/2 or 1/3 the wide sonars' wrecks (Gemini, Oculus M750d LF) stayed coarser with estimates 4-7 % below
-/// their measured error; at 2/3 every device row is as honest as with the full count. Counted so at the
-/// first base grid too (it was past the first only): the bunny 87 k -> 64 k rays for 0.77 -> 0.80 %,
-/// every device row unchanged (docs/accuracy-and-speed.md).
+/// Past the first base grid, fast's bump decision counts the error of the triples that refinement will
+/// split (a pair discontinuous and significant against the base image, or a cell that splits alone) at this
+/// share: refinement closes most of it, so it is a weaker reason for a denser grid. Strict counts it in
+/// full. At 1/2 or 1/3 the wide sonars' wrecks (Gemini, Oculus M750d LF) stayed coarser with estimates 4-7 %
+/// below their measured error; at 2/3 every device row is as honest as with the full count
+/// (docs/accuracy-and-speed.md).
 constexpr double kRefinableShare = 2.0 / 3;
 /// Cells whose errors may add up in one bin: a pair is worth refining when its possible error exceeds
 /// 1 / kErrorsPerBin of what the tolerance allows the bin.

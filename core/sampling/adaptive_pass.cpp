@@ -110,10 +110,10 @@ void set_base_image(Sampler& sp, const Beams& beams) {
 
 } // namespace
 
-/// Whether the bump decision may count the triples refinement will split at kRefinableShare (fast, at
-/// every base grid; strict counts them in full).
-static bool counts_refinable(const Sampler& sp) {
-    return !sp.strict;
+/// Whether fast's bump decision at base grid M0 may count the triples refinement will split at
+/// kRefinableShare (past the first base grid; strict counts them in full).
+static bool counts_refinable(const Sampler& sp, int M0) {
+    return !sp.strict && M0 > sp.s.sampling.elevation_rays;
 }
 
 /// The base grid's images of each group's sample beam for its own error (sample_errors, estimated as the
@@ -223,7 +223,8 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
         out.bumped = (*bump)(sample_errors(base.coarse, base.fine, sp.ref_db, images));
         // Fewer groups go denser with the refinable triples counted at their share: worth deciding again
         // only where some went (the base image first: the triples' significance is judged against it).
-        if (counts_refinable(sp) && std::find(out.bumped.begin(), out.bumped.end(), 1) != out.bumped.end()) {
+        if (counts_refinable(sp, M0) &&
+            std::find(out.bumped.begin(), out.bumped.end(), 1) != out.bumped.end()) {
             set_base_image(sp, beams);
             const PolarImage lasting = lasting_edges_image(sp, beams, groups);
             images.lasting_edges = &lasting;
