@@ -133,7 +133,10 @@ PolarImage shade_beams(const SceneDesc& s, TraceResult& r, const std::vector<int
 TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control) {
     Sampler sp(g, s, control);
     const int N = s.sonar.beams, T = int(sp.traced.size());
-    const int stride = T >= 8 * adaptive::kEstimateStride && !sp.multipath ? adaptive::kEstimateStride : 1;
+    const int stride = sp.multipath                         ? 1
+                       : T >= adaptive::kWideBeams          ? adaptive::kWideEstimateStride
+                       : T >= 8 * adaptive::kEstimateStride ? adaptive::kEstimateStride
+                                                            : 1;
     const BeamGroups groups = make_groups(sp.traced, stride);
     const size_t G = groups.size();
     std::vector<int> level(G, 0);
