@@ -50,9 +50,8 @@ std::vector<ParamSpec> sampling_rows() {
         "adaptive: what the sampler does with its error estimate (second order on smooth surfaces, first "
         "at edges, plus an azimuth probe: three ray columns against one beside some cells of every 4th "
         "beam, every 8th from 512 beams). fast: refines in elevation and at azimuth edges only, and reports "
-        "the probe's share "
-        "(sampling_error_estimate.azimuth_rel_l1, included in rel_l1); strict: probes three times as "
-        "many cells and traces three ray columns per beam where azimuth is the larger share",
+        "the probe's share (sampling_error_estimate.azimuth_rel_l1, included in rel_l1); strict: probes "
+        "three times as many cells and traces three ray columns per beam where azimuth is the larger share",
         [](S s) -> ErrorEstimate& { return s.sampling.estimate; }));
     t.push_back(integer("sampling.max_rays", 1000, kMaxRaysPerImage, Stage::Trace,
                         "adaptive: budget of rays per image, refinement and passes included; when reached, "
