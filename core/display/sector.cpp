@@ -274,6 +274,35 @@ Image8 SectorResampler::apply(const PolarImage& img, const DisplayParams& d, Ker
     return out;
 }
 
+void SectorResampler::paint_no_echo(const PolarImage& img, const std::array<std::uint8_t, 3>& rgb,
+                                    Image8& fan) const {
+    const int K = img.bins, N = img.beams;
+    if (K != grid_->bins || N != grid_->beams || fan.width != layout_.width() ||
+        fan.height != layout_.height() || fan.channels != 3)
+        throw std::invalid_argument(
+            "SectorResampler: the image or the fan is not of the sonar it was built for");
+    constexpr std::uint16_t half = kWeightOne / 2; // a weight of one half or more: the next sample is nearer
+    const double per_bin = 1.0 / (N + 1);
+    tbb::parallel_for(tbb::blocked_range<int>(0, fan.height, 16), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y < rows.end(); ++y) {
+            std::uint8_t* const row = fan.pixels.data() + size_t(y) * size_t(fan.width) * 3;
+            for (std::uint32_t r = row_runs_[size_t(y)]; r < row_runs_[size_t(y) + 1]; ++r) {
+                const Run run = runs_[r];
+                for (std::int32_t x = run.x0, k = std::int32_t(run.first); x < run.x1; ++x, ++k) {
+                    // index / (N + 1) by a product: (index + 1/2) / (N + 1) is at least 1 / (2 (N + 1))
+                    // from an integer, far beyond the rounding of the product.
+                    const std::int32_t index = tap_index_[size_t(k)],
+                                       b0 = std::int32_t((index + 0.5) * per_bin);
+                    const size_t b = size_t(b0 + (tap_wb_[size_t(k)] >= half)),
+                                 i = size_t(index - b0 * (N + 1) + (tap_wi_[size_t(k)] >= half));
+                    if (!(img.level_db[b * size_t(N) + i] > -INFINITY))
+                        std::memcpy(row + 3 * x, rgb.data(), 3);
+                }
+            }
+        }
+    });
+}
+
 Image8 sector_image(const PolarImage& img, const SonarParams& s, const DisplayParams& d, int height_px) {
     return SectorResampler(s, height_px).apply(img, d);
 }

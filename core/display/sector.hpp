@@ -64,6 +64,10 @@ class SectorResampler {
     /// AVX2 gathers where the CPU has them; both give the same pixels).
     enum class Kernel { Best, Portable };
     Image8 apply(const PolarImage& img, const DisplayParams& display, Kernel kernel = Kernel::Best) const;
+    /// Paints in `rgb` the pixels of `fan` (this resampler's apply of `img`) whose nearest sample in (bin,
+    /// beam) has no echo (level -inf): the map is the taps', so no pixel is mapped twice (parallel over
+    /// rows).
+    void paint_no_echo(const PolarImage& img, const std::array<std::uint8_t, 3>& rgb, Image8& fan) const;
     const SectorLayout& layout() const { return layout_; }
     static constexpr int kWeightOne = 1 << 15;
 

@@ -87,9 +87,10 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
     if (from <= Stage::Display) {
         const auto t0 = std::chrono::steady_clock::now();
         if (!resampler_ || !resampler_->matches(*next.grid_ptr, 0))
-            resampler_ = std::make_unique<SectorResampler>(next.grid_ptr, 0);
+            resampler_ = std::make_shared<const SectorResampler>(next.grid_ptr, 0);
         next.display = effective_display(*next.polar_ptr, scene_.display, *next.grid_ptr);
         next.sector_ptr = std::make_shared<const Image8>(resampler_->apply(*next.polar_ptr, next.display));
+        next.sector_map_ptr = resampler_;
         next.image_ms = ms_since(t0);
     }
     frame_ = std::move(next);

@@ -28,7 +28,9 @@ struct Frame {
     std::shared_ptr<const SensorInputs> inputs_ptr; ///< what the sensor needs beyond it (or null)
     std::shared_ptr<const PolarImage> polar_ptr;    ///< the sensor's output [dB]; ideal_ptr itself when ideal
     std::shared_ptr<const Image8> sector_ptr;       ///< RGB fan
-    std::shared_ptr<const GroundTruth> truth_ptr;   ///< when asked for (Simulator::request), else null
+    /// The fan's pixel -> (bin, beam) taps sector_ptr was formed with (kept while the geometry stays).
+    std::shared_ptr<const SectorResampler> sector_map_ptr;
+    std::shared_ptr<const GroundTruth> truth_ptr; ///< when asked for (Simulator::request), else null
     /// Per image cell the strongest contribution (for drawing its path), when asked for, else null.
     std::shared_ptr<const StrongestContribution> strongest_ptr;
     std::vector<double> path_order_db; ///< with multipath (sampling.bounces > 0): echo per path order [dB]
@@ -77,7 +79,7 @@ class Simulator {
     SceneDesc scene_;
     std::unique_ptr<SceneGeometry> geometry_;
     Frame frame_;
-    std::unique_ptr<SectorResampler> resampler_; ///< rebuilt only when the image geometry changes
+    std::shared_ptr<const SectorResampler> resampler_; ///< rebuilt only when the image geometry changes
     Stage dirty_ = Stage::Trace;
     FrameExtras extras_;
 };

@@ -210,6 +210,58 @@ TEST_CASE("the fast fan equals the per-pixel definition exactly", "[image]") {
         }
 }
 
+TEST_CASE("the no-echo colour marks the pixels whose nearest sample has no echo", "[image]") {
+    // Reference: each pixel's (bin, beam) from its range and azimuth, rounded to the nearest sample. The taps
+    // keep the fractions to 1/32768, so a pixel within that of the half-way line may go either way.
+    struct Case {
+        const char* what;
+        double fov_deg, r_min_m, r_max_m;
+        int beams, bins;
+        const char* table;
+    };
+    const Case cases[] = {{"a wide fan", 130, 1, 120, 96, 300, "uniform"},
+                          {"apex inside the image", 90, 0, 10, 64, 200, "uniform"},
+                          {"an asymmetric beam table", 28, 1, 5, 96, 200, "aris1800_96"}};
+    const std::array<std::uint8_t, 3> mark{1, 254, 3};
+    for (const Case& c : cases) {
+        INFO(c.what);
+        SonarParams s;
+        s.azimuth_fov_deg = c.fov_deg, s.range_min_m = c.r_min_m, s.range_max_m = c.r_max_m;
+        s.beams = c.beams, s.range_bins = c.bins, s.beam_table = c.table;
+        if (std::string(c.table) != "uniform") s.azimuth_fov_deg = sonar_grid(s)->fov_deg;
+        const PolarImage img = varied_image(s); // every 11th sample -inf
+        const SectorResampler fan(s, 0);
+        Image8 out = fan.apply(img, DisplayParams{});
+        fan.paint_no_echo(img, mark, out);
+        const SectorLayout& L = fan.layout();
+        long marked = 0, want_marked = 0, ties = 0, wrong = 0;
+        for (int py = 0; py < L.height(); ++py)
+            for (int px = 0; px < L.width(); ++px) {
+                const std::uint8_t* p = out.pixels.data() + (size_t(py) * size_t(L.width()) + size_t(px)) * 3;
+                const bool got = p[0] == mark[0] && p[1] == mark[1] && p[2] == mark[2];
+                marked += got;
+                double r, a, fb, fi;
+                if (!L.pixel_to_polar(px + 0.5, py + 0.5, r, a)) {
+                    wrong += got;
+                    continue;
+                }
+                L.polar_to_index(r, a, fb, fi);
+                fb = std::clamp(fb, 0.0, s.range_bins - 1.0), fi = std::clamp(fi, 0.0, s.beams - 1.0);
+                const int b = int(std::lround(fb)), i = int(std::lround(fi));
+                const bool want = !(img.at(b, i) > -INFINITY);
+                want_marked += want;
+                if (got == want) continue;
+                const double tie =
+                    std::min(std::abs(fb - std::floor(fb) - 0.5), std::abs(fi - std::floor(fi) - 0.5));
+                (tie < 2.0 / SectorResampler::kWeightOne ? ties : wrong) += 1;
+            }
+        CHECK(want_marked > 1000);
+        CHECK(wrong == 0);
+        CHECK(ties <= want_marked / 1000);
+        CHECK(std::abs(marked - want_marked) <= ties);
+    }
+}
+
 TEST_CASE("default sector height: one row per bin, width within bounds", "[image]") {
     SonarParams s;
     s.azimuth_fov_deg = 130, s.range_min_m = 1, s.range_max_m = 120, s.beams = 512, s.range_bins = 1500;

@@ -60,7 +60,7 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
     const SonarParams& s = shown->scene.sonar;
     if (uploaded_count_ != session.shown_count() || uploaded_polar_ != polar) {
         texture_.upload(polar ? polar_color_image(f.polar(), f.display)
-                              : no_echo_.paint(f.sector(), f.polar(), s, shown->scene.display.colormap));
+                              : fan_with_no_echo(f, shown->scene.display.colormap));
         uploaded_count_ = session.shown_count(), uploaded_polar_ = polar;
     }
     PanelContent content{s, f.display.lo_db, f.display.hi_db, colorbar_title(shown->scene), polar};

@@ -53,7 +53,6 @@ class SonarPanel {
     void draw_measure(const Rect& r, const RenderResult& shown);
 
     gl::Texture texture_;
-    NoEchoPainter no_echo_;
     std::uint64_t uploaded_count_ = 0;
     bool uploaded_polar_ = false;
     std::optional<ImagePlace> hovered_;

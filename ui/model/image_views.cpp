@@ -22,28 +22,11 @@ Image8 polar_color_image(const PolarImage& img, const DisplayParams& d) {
     return out;
 }
 
-Image8 NoEchoPainter::paint(const Image8& fan, const PolarImage& img, const SonarParams& s, Colormap map) {
-    std::shared_ptr<const SonarGrid> grid = sonar_grid(s);
-    const bool same = w_ == fan.width && h_ == fan.height && key_ == grid;
-    if (!same) {
-        const SectorLayout L(grid, fan.height);
-        cell_.assign(size_t(fan.width) * size_t(fan.height), -1);
-        for (int y = 0; y < fan.height; ++y)
-            for (int x = 0; x < fan.width; ++x) {
-                double r = 0, a = 0;
-                if (!L.pixel_to_polar(x + 0.5, y + 0.5, r, a)) continue;
-                int bin = 0, beam = 0;
-                if (polar_to_cell(s, r, a, bin, beam))
-                    cell_[size_t(y) * size_t(fan.width) + size_t(x)] = bin * s.beams + beam;
-            }
-        key_ = std::move(grid), w_ = fan.width, h_ = fan.height;
-    }
-    Image8 out = fan;
-    if (out.channels != 3 || img.beams != s.beams || img.bins != s.range_bins) return out;
-    const auto c = no_echo_rgb(map);
-    for (size_t p = 0; p < cell_.size(); ++p)
-        if (cell_[p] >= 0 && !(img.level_db[size_t(cell_[p])] > -INFINITY))
-            std::copy(c.begin(), c.end(), out.pixels.begin() + long(p * 3));
+Image8 fan_with_no_echo(const Frame& f, Colormap map) {
+    Image8 out = f.sector();
+    const std::shared_ptr<const SectorResampler> taps =
+        f.sector_map_ptr ? f.sector_map_ptr : std::make_shared<const SectorResampler>(f.grid_ptr, out.height);
+    taps->paint_no_echo(f.polar(), no_echo_rgb(map), out);
     return out;
 }
 

@@ -2,6 +2,7 @@
 // echo levels (A-scan).
 #pragma once
 #include "core/display/image.hpp"
+#include "core/pipeline/simulator.hpp"
 #include "core/shading/shade.hpp"
 
 #include <cstdint>
@@ -14,17 +15,9 @@ namespace sonarsim::ui {
 /// top), like polar_gray_image but RGB; cells where nothing echoes in no_echo_rgb.
 Image8 polar_color_image(const PolarImage& image, const DisplayParams& display);
 
-/// The fan (sector image) with the pixels whose nearest cell has no echo painted in no_echo_rgb. The
-/// pixel -> cell map is kept and rebuilt only when the fan's geometry changes.
-class NoEchoPainter {
-  public:
-    Image8 paint(const Image8& fan, const PolarImage& image, const SonarParams& sonar, Colormap map);
-
-  private:
-    std::vector<std::int32_t> cell_;       ///< per pixel: bin * beams + beam, or -1 outside the fan
-    std::shared_ptr<const SonarGrid> key_; ///< the grid the map was built for
-    int w_ = 0, h_ = 0;
-};
+/// The frame's fan (sector image) with the pixels whose nearest sample has no echo painted in no_echo_rgb,
+/// through the taps the fan was formed with (Frame::sector_map_ptr): no per-pixel geometry here.
+Image8 fan_with_no_echo(const Frame& frame, Colormap map);
 
 /// A "nice" tick step (1, 2 or 5 x 10^k) giving about `count` ticks over `span`.
 double nice_step(double span, int count);
