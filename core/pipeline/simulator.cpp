@@ -14,6 +14,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 namespace sonarsim {
 Simulator::Simulator(const SceneDesc& scene)
@@ -30,6 +31,13 @@ void Simulator::set_scene(const SceneDesc& scene, Stage s) {
         geometry_ = std::make_unique<SceneGeometry>(scene);
     scene_ = scene;
     dirty_ = std::min(dirty_, s == Stage::Geometry ? Stage::Trace : s);
+}
+
+void Simulator::set_fan_height_px(int height_px) {
+    if (height_px < 0)
+        throw std::invalid_argument("Simulator: a fan height is 0 (the default) or more pixels");
+    if (height_px != fan_height_px_) dirty_ = std::min(dirty_, Stage::Display);
+    fan_height_px_ = height_px;
 }
 
 void Simulator::request(const FrameExtras& extras) {
@@ -86,8 +94,8 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
     }
     if (from <= Stage::Display) {
         const auto t0 = std::chrono::steady_clock::now();
-        if (!resampler_ || !resampler_->matches(*next.grid_ptr, 0))
-            resampler_ = std::make_shared<const SectorResampler>(next.grid_ptr, 0);
+        if (!resampler_ || !resampler_->matches(*next.grid_ptr, fan_height_px_))
+            resampler_ = std::make_shared<const SectorResampler>(next.grid_ptr, fan_height_px_);
         next.display = effective_display(*next.polar_ptr, scene_.display, *next.grid_ptr);
         next.sector_ptr = std::make_shared<const Image8>(resampler_->apply(*next.polar_ptr, next.display));
         next.sector_map_ptr = resampler_;

@@ -74,6 +74,12 @@ class Simulator {
     void request(const FrameExtras& extras);
     /// Stage that the next render() starts at.
     Stage pending() const { return dirty_; }
+    /// Height of the fan (Frame::sector) the display stage forms [px]; 0 (the default): the grid's
+    /// default_fan_height_px, one row per range bin. A viewer shows the fan a few hundred pixels high and
+    /// asks for that: a 512 x 2048 fan is 3721 x 2048 px, its map 160 ms to build. A change re-forms the fan
+    /// only.
+    void set_fan_height_px(int height_px);
+    int fan_height_px() const { return fan_height_px_; }
 
   private:
     SceneDesc scene_;
@@ -82,6 +88,7 @@ class Simulator {
     std::shared_ptr<const SectorResampler> resampler_; ///< rebuilt only when the image geometry changes
     Stage dirty_ = Stage::Trace;
     FrameExtras extras_;
+    int fan_height_px_ = 0;
 };
 
 /// Metadata of a rendered frame: every effective parameter plus derived values and timings.

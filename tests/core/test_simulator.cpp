@@ -127,6 +127,30 @@ TEST_CASE("frames share the stages a change leaves alone", "[simulator]") {
     CHECK(again->sector_ptr == shaded->sector_ptr);
 }
 
+TEST_CASE("a fan height re-forms the fan only, at that height", "[simulator]") {
+    SceneDesc s = default_scene(); // 512 bins: the default fan is 512 px high
+    Simulator sim(s);
+    const auto full = sim.render();
+    REQUIRE(full->sector().height == 512);
+    sim.set_fan_height_px(256);
+    CHECK(sim.pending() == Stage::Display);
+    const auto small = sim.render();
+    CHECK(small->hits_ptr == full->hits_ptr);
+    CHECK(small->polar_ptr == full->polar_ptr);
+    CHECK(small->sector().height == 256);
+    CHECK(small->sector().width == SectorLayout(s.sonar, 256).width());
+    CHECK(small->sector_map_ptr->layout().height() == 256);
+    // The same pixels as the fan formed at that height from the same image.
+    CHECK(small->sector().pixels ==
+          SectorResampler(s.sonar, 256).apply(small->polar(), small->display).pixels);
+    sim.set_fan_height_px(256); // unchanged: nothing stale
+    CHECK(sim.pending() == Stage::None);
+    sim.set_fan_height_px(0);
+    const auto back = sim.render();
+    CHECK(back->sector().pixels == full->sector().pixels);
+    CHECK_THROWS_AS(sim.set_fan_height_px(-1), std::invalid_argument);
+}
+
 TEST_CASE("a cancelled render leaves the simulator consistent", "[simulator]") {
     SceneDesc s = default_scene();
     Simulator sim(s);

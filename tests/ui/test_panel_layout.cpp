@@ -104,3 +104,20 @@ TEST_CASE("the colour bar's title names the ideal level or the device's, with TV
     s.sensor.gain_db = 0;
     CHECK(colorbar_title(s) == "device level dB (no TVG, gain +0 dB)");
 }
+
+TEST_CASE("the fan is formed as high as it is shown, in steps of 64 px, never above one row per bin",
+          "[ui][layout]") {
+    SonarParams s;
+    s.beams = 512, s.azimuth_fov_deg = 130, s.range_min_m = 1, s.range_max_m = 120, s.range_bins = 1500;
+    const SonarGrid& g = *sonar_grid(s); // one row per bin: 1500 px
+    REQUIRE(g.default_fan_height_px() == 1500);
+    CHECK(fan_height_to_form(190, g) == 256); // at least 256
+    CHECK(fan_height_to_form(256, g) == 256);
+    CHECK(fan_height_to_form(257, g) == 320);
+    CHECK(fan_height_to_form(700.5, g) == 704);
+    CHECK(fan_height_to_form(1440, g) == 1472);
+    CHECK(fan_height_to_form(1473, g) == 0); // 1536 would pass the full fan: the full fan
+    CHECK(fan_height_to_form(4000, g) == 0);
+    s.range_bins = 200; // a full fan of 256 px (its least): nothing smaller is formed
+    CHECK(fan_height_to_form(100, *sonar_grid(s)) == 0);
+}

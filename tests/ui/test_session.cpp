@@ -7,6 +7,7 @@
 #include "ui/model/session.hpp"
 
 #include "core/io/output.hpp"
+#include "core/io/png.hpp"
 #include "core/scene/scene_io.hpp"
 
 #include <catch2/catch.hpp>
@@ -261,4 +262,25 @@ TEST_CASE("with ground truth on the worker adds it to full frames and snapshots 
     const std::string prefix = test::ui_out_path("ground_truth");
     REQUIRE(session.snapshot(prefix, {}));
     for (auto& [path, bytes] : ground_truth_files(prefix, expect)) CHECK(test::read_bytes(path) == bytes);
+}
+
+TEST_CASE("the worker forms the fan at the panel's height; snapshots still write the full fan",
+          "[ui][session]") {
+    ui::Session session(default_scene()); // 512 bins: the full fan is 512 px high
+    session.submit();
+    REQUIRE(session.wait_latest(60s));
+    REQUIRE(session.shown()->frame->sector().height == 512);
+    const auto hits = session.shown()->frame->hits_ptr;
+    session.set_fan_height_px(320);
+    REQUIRE(session.submit() != 0); // the same scene again: its fan only
+    REQUIRE(session.wait_latest(60s));
+    const Frame& f = *session.shown()->frame;
+    CHECK(f.sector().height == 320);
+    CHECK(f.hits_ptr == hits);
+    const std::string prefix = test::ui_out_path("small_fan");
+    REQUIRE(session.snapshot(prefix, {}));
+    Simulator fresh(session.scene());
+    CHECK(test::read_bytes(prefix + ".png") == encode_png(fresh.render()->sector()));
+    session.set_fan_height_px(320);
+    CHECK(session.submit() == 0); // unchanged: nothing to do
 }

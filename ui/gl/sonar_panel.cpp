@@ -53,6 +53,14 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
 
     if (!shown) {
         ImGui::TextDisabled("rendering the first image...");
+        if (!polar) { // the first image at the height it will be shown
+            const SceneDesc& sc = session.scene();
+            const SonarPanelLayout first = sonar_panel_layout(
+                area, {sc.sonar, sc.display.lo_db, sc.display.hi_db, colorbar_title(sc), false},
+                {ImGui::CalcTextSize("0").x, ImGui::GetTextLineHeight()}, scale);
+            session.set_fan_height_px(fan_height_to_form(
+                double(first.image.h) * ImGui::GetIO().DisplayFramebufferScale.y, *sonar_grid(sc.sonar)));
+        }
         ImGui::End();
         return;
     }
@@ -68,6 +76,11 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
         sonar_panel_layout(area, content, {ImGui::CalcTextSize("0").x, ImGui::GetTextLineHeight()}, scale);
     has_layout_ = true;
     const SonarPanelLayout& L = layout_;
+    // The fan formed as high as it is shown (in device pixels), not one row per range bin: a 512-beam fan is
+    // 3721 x 2048 px at full size. The next image comes at this height.
+    if (!polar)
+        session.set_fan_height_px(
+            fan_height_to_form(double(L.image.h) * ImGui::GetIO().DisplayFramebufferScale.y, f.grid()));
     { // What an annotated snapshot holds: the image, its labels, the colour bar with its ticks and title.
         Rect a = L.image;
         auto add = [&](const Rect& r) {

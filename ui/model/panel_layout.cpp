@@ -152,6 +152,13 @@ std::string colorbar_title(const SceneDesc& scene) {
     return buf;
 }
 
+int fan_height_to_form(double shown_h_px, const SonarGrid& grid) {
+    const int full = grid.default_fan_height_px();
+    if (!(shown_h_px < full)) return 0;
+    const int h = std::max(256, 64 * int(std::ceil(shown_h_px / 64)));
+    return h < full ? h : 0;
+}
+
 double fan_aspect(const SonarParams& s) {
     const FanLayout fan = sonar_grid(s)->fan_layout(default_sector_height(s));
     return double(fan.width_px) / fan.height_px;

@@ -8,6 +8,7 @@
 
 #include "core/display/image.hpp"
 #include "core/scene/scene.hpp"
+#include "core/scene/sonar_grid.hpp"
 
 #include <glm/glm.hpp>
 #include <string>
@@ -65,6 +66,11 @@ SonarPanelLayout sonar_panel_layout(const Rect& panel, const PanelContent& conte
 
 /// The colour bar's title: "L_EN dB" for the ideal image, "level dB (TVG, gain)" for the device sensor's.
 std::string colorbar_title(const SceneDesc& scene);
+
+/// The fan height to form for a fan shown `shown_h_px` device pixels high (Simulator::set_fan_height_px):
+/// that height rounded up to a multiple of 64, at least 256 (a resize does not re-form the fan at every
+/// pixel), or 0 (one row per range bin) where that is no taller.
+int fan_height_to_form(double shown_h_px, const SonarGrid& grid);
 
 /// Width / height of the fan (the sector image) of these sonar settings.
 double fan_aspect(const SonarParams& sonar);

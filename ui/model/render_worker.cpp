@@ -20,7 +20,7 @@ RenderWorker::~RenderWorker() {
 }
 
 std::uint64_t RenderWorker::request(const SceneDesc& scene, bool preview, bool ground_truth,
-                                    std::optional<Stage> changed) {
+                                    std::optional<Stage> changed, int fan_height_px) {
     std::uint64_t id;
     {
         std::lock_guard<std::mutex> lock(mutex_);
@@ -28,7 +28,7 @@ std::uint64_t RenderWorker::request(const SceneDesc& scene, bool preview, bool g
         // A replaced request's change still has to be made: the earlier of the two stages.
         if (changed && queued_)
             changed = queued_->changed ? std::min(*changed, *queued_->changed) : queued_->changed;
-        queued_ = Job{id, scene, preview, ground_truth, changed};
+        queued_ = Job{id, scene, preview, ground_truth, changed, fan_height_px};
         // Restart on change: a full render of an outdated scene is stopped inside its trace. A running
         // preview is let finish (a few ms): cancelling previews in favour of newer previews while the user
         // drags would show nothing at all.
@@ -99,6 +99,7 @@ void RenderWorker::loop() {
                 sim->set_scene(job.scene, r.stage); // a bad mesh throws; the last good geometry stays
             }
             known = true;
+            sim->set_fan_height_px(job.fan_height_px); // a new height re-forms the fan only
             TraceControl control;
             control.cancel = &cancel_;
             control.preview = job.preview;

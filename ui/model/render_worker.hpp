@@ -43,8 +43,9 @@ class RenderWorker {
     /// (increasing).
     /// `changed`: changed_stage from the scene of the previous request to this one, when the caller knows it
     /// (computed once per edit); otherwise the worker compares the scenes itself.
+    /// `fan_height_px`: Simulator::set_fan_height_px (0: one row per range bin).
     std::uint64_t request(const SceneDesc& scene, bool preview = false, bool ground_truth = false,
-                          std::optional<Stage> changed = std::nullopt);
+                          std::optional<Stage> changed = std::nullopt, int fan_height_px = 0);
     /// The newest finished result not yet taken, if any (older unread results are dropped).
     std::optional<RenderResult> take();
     /// Waits until the result of request `id` (or a newer one) is done; false on timeout.
@@ -70,6 +71,7 @@ class RenderWorker {
         bool preview = false;
         bool ground_truth = false;
         std::optional<Stage> changed; ///< changed_stage from the previous request's scene, if known
+        int fan_height_px = 0;
     };
     std::optional<Job> queued_;
     std::optional<RenderResult> result_;

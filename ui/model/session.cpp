@@ -126,14 +126,15 @@ std::uint64_t Session::submit(bool interacting, Clock::time_point now) {
         dirty_ = false;
         last_change_ = now;
         full_pending_ = interacting;
-        requested_id_ = worker_.request(scene_, interacting, ground_truth_, changed_);
+        requested_id_ = worker_.request(scene_, interacting, ground_truth_, changed_, fan_height_px_);
         changed_ = Stage::None;
         return requested_id_;
     }
     if (full_pending_ && (!interacting || now - last_change_ >= kRest)) {
         // The input rests: the same scene again, in full quality (the worker re-traces a preview).
         full_pending_ = false;
-        requested_id_ = worker_.request(scene_, false, ground_truth_); // the worker compares the scenes
+        // The worker compares the scenes.
+        requested_id_ = worker_.request(scene_, false, ground_truth_, std::nullopt, fan_height_px_);
         changed_ = Stage::None;
         return requested_id_;
     }
@@ -186,6 +187,12 @@ void Session::set_ground_truth(bool on) {
     if (on) dirty_ = true; // the shown frame has none: render it again with it
 }
 
+void Session::set_fan_height_px(int height_px) {
+    if (height_px == fan_height_px_) return;
+    fan_height_px_ = height_px;
+    dirty_ = true; // the same scene again: the worker re-forms its fan
+}
+
 bool Session::snapshot(const std::string& prefix, const Bytes& view3d_png) {
     if (!shown_) {
         error_ = "no sonar image yet: nothing to snapshot";
@@ -200,7 +207,14 @@ bool Session::snapshot(const std::string& prefix, const Bytes& view3d_png) {
             error_ = "snapshot: the ground truth is not ready";
             return false;
         }
-        const auto paths = write_snapshot(prefix, shown_->scene, *shown_->frame, view3d_png,
+        // The files hold the fan at one row per range bin, whatever the panel shows.
+        Frame frame = *shown_->frame;
+        if (frame.sector().height != frame.grid().default_fan_height_px()) {
+            frame.sector_map_ptr = std::make_shared<const SectorResampler>(frame.grid_ptr, 0);
+            frame.sector_ptr =
+                std::make_shared<const Image8>(frame.sector_map_ptr->apply(frame.polar(), frame.display));
+        }
+        const auto paths = write_snapshot(prefix, shown_->scene, frame, view3d_png,
                                           ground_truth_ ? shown_->ground_truth.get() : nullptr);
         status_ = "snapshot:";
         for (auto& p : paths) status_ += " " + std::filesystem::path(p).filename().string();

@@ -87,6 +87,10 @@ class Session {
     /// and written by snapshots as PREFIX_gt_<name>.npy. Turning it on re-requests the shown scene.
     void set_ground_truth(bool on);
     bool ground_truth() const { return ground_truth_; }
+    /// Height of the fan the worker forms [px] (Simulator::set_fan_height_px; 0: one row per range bin), as
+    /// the panel shows it. A change re-forms the shown frame's fan; snapshots still write the full fan.
+    void set_fan_height_px(int height_px);
+    int fan_height_px() const { return fan_height_px_; }
 
   private:
     void set_scene(SceneDesc next);
@@ -101,6 +105,7 @@ class Session {
     /// changed_stage since the last request, accumulated edit by edit (empty: unknown, the worker compares).
     std::optional<Stage> changed_;
     bool ground_truth_ = false;
+    int fan_height_px_ = 0;
     std::uint64_t requested_id_ = 0, shown_count_ = 0;
     bool full_pending_ = false;       ///< the last request for scene_ was a preview
     Clock::time_point last_change_{}; ///< when the last changed scene was sent
