@@ -36,6 +36,19 @@ void SonarPanel::draw_header(const Session& session, Session& edit) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("colour map (display.colormap)");
 }
 
+void SonarPanel::ask_fan_height(const Rect& area, Session& session, float scale) {
+    // The fan formed as high as it is shown (in device pixels), not one row per range bin: a 512-beam fan is
+    // 3721 x 2048 px in full. Asked from the layout of the full fan, so that the fan's own layout (its width
+    // rounds up at each height) cannot feed back. The next image comes at this height.
+    if (polar) return;
+    const SceneDesc& sc = session.scene();
+    const SonarPanelLayout L =
+        sonar_panel_layout(area, {sc.sonar, sc.display.lo_db, sc.display.hi_db, colorbar_title(sc), false},
+                           {ImGui::CalcTextSize("0").x, ImGui::GetTextLineHeight()}, scale);
+    session.set_fan_height_px(fan_height_to_form(double(L.image.h) * ImGui::GetIO().DisplayFramebufferScale.y,
+                                                 *sonar_grid(sc.sonar)));
+}
+
 void SonarPanel::draw(const Rect& area, Session& session, const std::optional<glm::dvec3>& marker,
                       float scale) {
     hovered_.reset();
@@ -53,14 +66,7 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
 
     if (!shown) {
         ImGui::TextDisabled("rendering the first image...");
-        if (!polar) { // the first image at the height it will be shown
-            const SceneDesc& sc = session.scene();
-            const SonarPanelLayout first = sonar_panel_layout(
-                area, {sc.sonar, sc.display.lo_db, sc.display.hi_db, colorbar_title(sc), false},
-                {ImGui::CalcTextSize("0").x, ImGui::GetTextLineHeight()}, scale);
-            session.set_fan_height_px(fan_height_to_form(
-                double(first.image.h) * ImGui::GetIO().DisplayFramebufferScale.y, *sonar_grid(sc.sonar)));
-        }
+        ask_fan_height(area, session, scale); // the first image at the height it will be shown
         ImGui::End();
         return;
     }
@@ -71,16 +77,18 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
                               : fan_with_no_echo(f, shown->scene.display.colormap));
         uploaded_count_ = session.shown_count(), uploaded_polar_ = polar;
     }
-    PanelContent content{s, f.display.lo_db, f.display.hi_db, colorbar_title(shown->scene), polar};
+    // The layout of the fan as formed (its pixel width is rounded up at its own height).
+    PanelContent content{s,
+                         f.display.lo_db,
+                         f.display.hi_db,
+                         colorbar_title(shown->scene),
+                         polar,
+                         polar ? 0 : f.sector().height};
     layout_ =
         sonar_panel_layout(area, content, {ImGui::CalcTextSize("0").x, ImGui::GetTextLineHeight()}, scale);
     has_layout_ = true;
     const SonarPanelLayout& L = layout_;
-    // The fan formed as high as it is shown (in device pixels), not one row per range bin: a 512-beam fan is
-    // 3721 x 2048 px at full size. The next image comes at this height.
-    if (!polar)
-        session.set_fan_height_px(
-            fan_height_to_form(double(L.image.h) * ImGui::GetIO().DisplayFramebufferScale.y, f.grid()));
+    ask_fan_height(area, session, scale);
     { // What an annotated snapshot holds: the image, its labels, the colour bar with its ticks and title.
         Rect a = L.image;
         auto add = [&](const Rect& r) {

@@ -47,6 +47,7 @@ class SonarPanel {
     void draw_colorbar(const DisplayParams& d);
     void draw_ascan(const Rect& r, const RenderResult& shown);
     void draw_header(const Session& session, Session& edit);
+    void ask_fan_height(const Rect& area, Session& session, float scale);
     /// The place at screen point q, or nullopt off the image.
     std::optional<ImagePlace> place_at(const Rect& r, const RenderResult& shown, ImVec2 q) const;
     ImVec2 screen_of(const Rect& r, const RenderResult& shown, double range_m, double azimuth_deg) const;

@@ -201,7 +201,7 @@ SonarPanelLayout sonar_panel_layout(const Rect& p, const PanelContent& c, const 
     const float ascan_min = std::max(kAscanMinH * k, kAscanMinFrac * p.h);
     const Rect room{p.x + pad, top, bar_x_max - 2 * pad - (p.x + pad), p.y + p.h - pad - ascan_min - top};
     const SonarParams& s = c.sonar;
-    const SectorLayout sector(s, default_sector_height(s));
+    const SectorLayout sector(s, c.fan_height_px > 0 ? c.fan_height_px : default_sector_height(s));
     FanOnScreen fan;
     auto fits = [&](float w) {
         const Labels l = place_labels(c, sector, 0, 0, w, t, fan);

@@ -58,6 +58,7 @@ struct PanelContent {
     double lo_db = 0, hi_db = 1; ///< the displayed range (colour bar ticks)
     std::string colorbar_title;  ///< what the colours are (colorbar_title())
     bool polar = false;          ///< the raw polar image instead of the fan
+    int fan_height_px = 0;       ///< the fan image's height [px] (0: one row per range bin)
 };
 
 /// `panel`: the sonar panel [window px]; `scale`: the UI scale (paddings).
