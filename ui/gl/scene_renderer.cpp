@@ -197,7 +197,7 @@ void SceneRenderer::draw(const SceneDesc& scene, const OrbitCamera& cam, int x, 
     const SonarParams& s = scene.sonar;
     std::vector<Vertex> v;
 
-    // Seafloor and its grid (1 m major, 0.25 m minor lines), around the sonar's reach.
+    // Seafloor and its grid, around the sonar's reach.
     if (scene.seafloor) {
         const double z = scene.seafloor->height_m;
         const double half = std::ceil(std::max(3.0, s.range_max_m + 1.0));
@@ -213,15 +213,21 @@ void SceneRenderer::draw(const SceneDesc& scene, const OrbitCamera& cam, int x, 
         floor_.draw(GL_TRIANGLES);
         glDisable(GL_POLYGON_OFFSET_FILL);
         v.clear();
-        const double step = half > 10 ? 1.0 : 0.25;
-        const int n_lines = int(std::lround(2 * half / step));
-        for (int k = 0; k <= n_lines; ++k) {
-            const double t = -half + k * step;
-            const bool major = std::abs(std::remainder(t + cx, 1.0)) < 1e-6;
-            const glm::vec4 c = major ? kGridMajor : kGridMinor;
-            v.push_back({P(cx + t, cy - half), {}, c}), v.push_back({P(cx + t, cy + half), {}, c});
-            v.push_back({P(cx - half, cy + t), {}, c}), v.push_back({P(cx + half, cy + t), {}, c});
-        }
+        // At most ~64 lines each way (0.25, 0.5, 1, 2, 5, 10 ... m apart), each at a multiple of the step:
+        // more would blend into a moire pattern at long range and cost fill under software OpenGL. Major
+        // lines every metre, or every 5 steps when a step is a metre or more.
+        double step = 0.25;
+        for (double m : {0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0})
+            if (2 * half / step > 64) step = m;
+        const double major_m = step < 1 ? 1.0 : 5 * step;
+        auto line_at = [&](double t) { // t: a world coordinate, the same for both directions
+            const bool major = std::abs(std::remainder(t, major_m)) < 1e-6 * major_m;
+            return major ? kGridMajor : kGridMinor;
+        };
+        for (double t = std::ceil((cx - half) / step) * step; t <= cx + half + 1e-9; t += step)
+            v.push_back({P(t, cy - half), {}, line_at(t)}), v.push_back({P(t, cy + half), {}, line_at(t)});
+        for (double t = std::ceil((cy - half) / step) * step; t <= cy + half + 1e-9; t += step)
+            v.push_back({P(cx - half, t), {}, line_at(t)}), v.push_back({P(cx + half, t), {}, line_at(t)});
         grid_.upload(v);
         grid_.draw(GL_LINES);
         // Where the field of view meets the floor: the outline of the insonified patch.
