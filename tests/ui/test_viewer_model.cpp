@@ -187,6 +187,37 @@ TEST_CASE("no echo has its own colour in every map and the maps differ", "[ui][c
     CHECK(tops.size() == 4);
 }
 
+TEST_CASE("the raw image in colour: each cell's gray level, rounded, through the map; far range on top",
+          "[ui][colormap]") {
+    PolarImage img;
+    img.bins = 70, img.beams = 33;
+    img.level_db.resize(size_t(img.bins) * size_t(img.beams));
+    for (size_t n = 0; n < img.level_db.size(); ++n)
+        img.level_db[n] = n % 13 == 0 ? -INFINITY : float(60 + double((n * 7919) % 7000) / 100);
+    img.level_db[5] = std::numeric_limits<float>::quiet_NaN();
+    DisplayParams d;
+    d.lo_db = 75, d.hi_db = 118;
+    for (Colormap m : {Colormap::Gray, Colormap::Viridis, Colormap::Copper, Colormap::Hot}) {
+        d.colormap = m;
+        const Image8 out = polar_color_image(img, d);
+        REQUIRE(out.width == 33);
+        REQUIRE(out.height == 70);
+        long wrong = 0, continuous_differs = 0;
+        for (int b = 0; b < img.bins; ++b)
+            for (int i = 0; i < img.beams; ++i) {
+                const float v = img.at(b, i);
+                const double g = gray_level(v, d.lo_db, d.hi_db);
+                const auto want = v > -INFINITY ? colormap_rgb(m, std::lround(g) / 255.0) : no_echo_rgb(m);
+                const std::uint8_t* p = &out.pixels[(size_t(img.bins - 1 - b) * 33 + size_t(i)) * 3];
+                wrong += std::array<std::uint8_t, 3>{p[0], p[1], p[2]} != want;
+                if (v > -INFINITY) continuous_differs += colormap_rgb(m, g / 255.0) != want;
+            }
+        INFO(int(m));
+        CHECK(wrong == 0);
+        if (m == Colormap::Gray) CHECK(continuous_differs == 0); // rounding first changes no gray pixel
+    }
+}
+
 TEST_CASE("every binding has an input and an action and docs/viewer.md names each input", "[ui][bindings]") {
     std::ifstream f(std::string(SONARSIM_SOURCE_DIR) + "/docs/viewer.md");
     const std::string readme((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());

@@ -3,22 +3,32 @@
 #include "ui/model/sonar_geometry.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace sonarsim::ui {
 
 Image8 polar_color_image(const PolarImage& img, const DisplayParams& d) {
+    // As the fan does it: the gray level rounded to one of 256, through the map's 256 colours (a table).
+    std::array<std::array<std::uint8_t, 3>, 256> lut;
+    for (int g = 0; g < 256; ++g) lut[size_t(g)] = colormap_rgb(d.colormap, g / 255.0);
+    const std::array<std::uint8_t, 3> none = no_echo_rgb(d.colormap);
     Image8 out;
     out.width = img.beams, out.height = img.bins, out.channels = 3;
-    out.pixels.resize(size_t(img.beams) * img.bins * 3);
-    for (int b = 0; b < img.bins; ++b)
-        for (int i = 0; i < img.beams; ++i) {
-            const float v = img.at(b, i);
-            const auto c = v > -INFINITY ? colormap_rgb(d.colormap, gray_level(v, d.lo_db, d.hi_db) / 255.0)
-                                         : no_echo_rgb(d.colormap);
-            std::copy(c.begin(), c.end(),
-                      out.pixels.begin() + long((size_t(img.bins - 1 - b) * img.beams + i) * 3));
+    out.pixels.resize(size_t(img.beams) * size_t(img.bins) * 3);
+    tbb::parallel_for(tbb::blocked_range<int>(0, img.bins, 64), [&](const tbb::blocked_range<int>& bins) {
+        for (int b = bins.begin(); b < bins.end(); ++b) {
+            std::uint8_t* row = out.pixels.data() + size_t(img.bins - 1 - b) * size_t(img.beams) * 3;
+            for (int i = 0; i < img.beams; ++i, row += 3) {
+                const float v = img.at(b, i);
+                const auto& c =
+                    v > -INFINITY ? lut[size_t(int(gray_level(v, d.lo_db, d.hi_db) + 0.5f))] : none;
+                row[0] = c[0], row[1] = c[1], row[2] = c[2];
+            }
         }
+    });
     return out;
 }
 

@@ -12,7 +12,8 @@
 namespace sonarsim::ui {
 
 /// The raw image in the display's colour map: width = beams (beam 0 left), height = bins (far range on
-/// top), like polar_gray_image but RGB; cells where nothing echoes in no_echo_rgb.
+/// top), like polar_gray_image but RGB; cells where nothing echoes in no_echo_rgb. The gray level is rounded
+/// to one of 256 before the colour map, as in the fan.
 Image8 polar_color_image(const PolarImage& image, const DisplayParams& display);
 
 /// The frame's fan (sector image) with the pixels whose nearest sample has no echo painted in no_echo_rgb,
