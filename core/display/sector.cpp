@@ -96,9 +96,9 @@ SectorResampler::SectorResampler(std::shared_ptr<const SonarGrid> grid, int heig
     // x >= 0: x * 2^15 + 1/2 is exact, so its floor is std::lround(x * 2^15) (no library call).
     auto weight = [](double x) { return std::uint16_t(x * kWeightOne + 0.5); };
     // `bin` is (r - r0) / dr - 0.5, the same for a pixel and its mirror image.
-    auto tap = [&g, K, N, weight](double bin, double a) {
+    auto tap = [&g, K, N, weight](double bin, double a, int& hint) {
         const double fb = std::clamp(bin, 0.0, K - 1.0),
-                     fi = std::clamp(g.beam_index_of_azimuth_deg(a), 0.0, N - 1.0);
+                     fi = std::clamp(g.beam_index_of_azimuth_deg(a, hint), 0.0, N - 1.0);
         const int b0 = std::min(int(fb), K - 1), i0 = std::min(int(fi), N - 1);
         return Tap{b0 * (N + 1) + i0, weight(fb - b0), weight(fi - i0)};
     };
@@ -137,10 +137,11 @@ SectorResampler::SectorResampler(std::shared_ptr<const SonarGrid> grid, int heig
                 taps.push_back(t);
             };
             taps.reserve(2 * left.size());
+            int hint = 0; // the azimuth decreases from port to starboard: each tap's beam from the last one's
             for (const Inside& p : left)
-                if (p.port) add(p.px, tap(p.bin, p.a));
+                if (p.port) add(p.px, tap(p.bin, p.a, hint));
             for (auto p = left.rbegin(); p != left.rend(); ++p)
-                if (p->starboard && W - 1 - p->px != p->px) add(W - 1 - p->px, tap(p->bin, -p->a));
+                if (p->starboard && W - 1 - p->px != p->px) add(W - 1 - p->px, tap(p->bin, -p->a, hint));
         }
     });
     row_runs_.assign(size_t(H) + 1, 0);

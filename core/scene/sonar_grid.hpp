@@ -99,6 +99,18 @@ class SonarGrid {
         const int i = std::clamp(beam_of_table(a_deg, c), 1, beams - 1) - 1; // c[i] >= a > c[i + 1] inside
         return i + (c[size_t(i)] - a_deg) / (c[size_t(i)] - c[size_t(i) + 1]);
     }
+    /// The same, cheaper for azimuths visited in decreasing order (a fan's row from port to starboard):
+    /// `hint` is the table index the previous call ended at (start at 0); it walks from there instead of
+    /// a binary search.
+    double beam_index_of_azimuth_deg(double a_deg, int& hint) const {
+        if (!table_) return beam_index_of_azimuth_deg(a_deg);
+        const std::vector<double>& c =
+            table_->centre_deg; // descending: the first c[j] <= a, as beam_of_table
+        while (hint > 0 && c[size_t(hint) - 1] <= a_deg) --hint; // (any order stays exact)
+        while (hint < beams && c[size_t(hint)] > a_deg) ++hint;
+        const int i = std::clamp(std::min(hint, beams - 1), 1, beams - 1) - 1;
+        return i + (c[size_t(i)] - a_deg) / (c[size_t(i)] - c[size_t(i) + 1]);
+    }
     /// Azimuth at continuous column x of the raw image (beam i spans columns [i, i + 1), column 0 at the
     /// port edge) [deg].
     double column_azimuth_deg(double x) const {

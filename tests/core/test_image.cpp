@@ -183,17 +183,24 @@ TEST_CASE("the fast fan equals the per-pixel definition exactly", "[image]") {
         const char* what;
         double fov_deg, r_min_m, r_max_m;
         int beams, bins, height_px;
+        const char* table = "uniform"; ///< a beam table: its own field of view
     };
     const Case cases[] = {
-        {"the paper's sonar", 32, 0.5, 5, 128, 512, 0},         {"a wide fan", 130, 1, 120, 96, 300, 0},
-        {"apex inside the image", 90, 0, 10, 64, 200, 333},     {"one beam, few bins", 20, 1, 2, 1, 3, 64},
-        {"a thin annulus", 130, 100, 120, 40, 2048, 0},         {"a half disc", 180, 0.2, 3, 50, 256, 0},
-        {"wider than a right angle", 100, 0.5, 8, 33, 400, 401}};
+        {"the paper's sonar", 32, 0.5, 5, 128, 512, 0},
+        {"a wide fan", 130, 1, 120, 96, 300, 0},
+        {"apex inside the image", 90, 0, 10, 64, 200, 333},
+        {"one beam, few bins", 20, 1, 2, 1, 3, 64},
+        {"a thin annulus", 130, 100, 120, 40, 2048, 0},
+        {"a half disc", 180, 0.2, 3, 50, 256, 0},
+        {"wider than a right angle", 100, 0.5, 8, 33, 400, 401},
+        {"a measured beam table (Oculus M750d LF)", 0, 0.1, 40, 512, 500, 0, "oculus_m750d_lf_512"},
+        {"an asymmetric beam table (ARIS 1800)", 0, 1, 5, 96, 300, 0, "aris1800_96"}};
     for (const Case& c : cases)
         for (Colormap map : {Colormap::Gray, Colormap::Viridis}) {
             SonarParams s;
             s.azimuth_fov_deg = c.fov_deg, s.range_min_m = c.r_min_m, s.range_max_m = c.r_max_m;
-            s.beams = c.beams, s.range_bins = c.bins;
+            s.beams = c.beams, s.range_bins = c.bins, s.beam_table = c.table;
+            if (s.beam_table != "uniform") s.azimuth_fov_deg = sonar_grid(s)->fov_deg;
             DisplayParams d;
             d.colormap = map;
             const PolarImage img = varied_image(s);
