@@ -104,9 +104,10 @@ class SonarGrid {
     /// a binary search.
     double beam_index_of_azimuth_deg(double a_deg, int& hint) const {
         if (!table_) return beam_index_of_azimuth_deg(a_deg);
-        const std::vector<double>& c =
-            table_->centre_deg; // descending: the first c[j] <= a, as beam_of_table
-        while (hint > 0 && c[size_t(hint) - 1] <= a_deg) --hint; // (any order stays exact)
+        // Descending centres: the first c[j] <= a, as beam_of_table finds it (walking back first keeps any
+        // order of calls exact).
+        const std::vector<double>& c = table_->centre_deg;
+        while (hint > 0 && c[size_t(hint) - 1] <= a_deg) --hint;
         while (hint < beams && c[size_t(hint)] > a_deg) ++hint;
         const int i = std::clamp(std::min(hint, beams - 1), 1, beams - 1) - 1;
         return i + (c[size_t(i)] - a_deg) / (c[size_t(i)] - c[size_t(i) + 1]);

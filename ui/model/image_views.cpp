@@ -1,7 +1,5 @@
 #include "ui/model/image_views.hpp"
 
-#include "ui/model/sonar_geometry.hpp"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
