@@ -48,6 +48,12 @@ std::array<std::uint8_t, 3> colormap_rgb(Colormap map, double t) {
     return ramp(v, t);
 }
 
+std::array<std::array<std::uint8_t, 3>, 256> colormap_table(Colormap map) {
+    std::array<std::array<std::uint8_t, 3>, 256> table;
+    for (int g = 0; g < 256; ++g) table[size_t(g)] = colormap_rgb(map, g / 255.0);
+    return table;
+}
+
 std::array<std::uint8_t, 3> no_echo_rgb(Colormap map) {
     // Unlike the low end of every map: dark blue beside black, black beside viridis' purple.
     return map == Colormap::Viridis ? std::array<std::uint8_t, 3>{0, 0, 0}

@@ -18,6 +18,8 @@ float gray_level(float level_db, double lo_db, double hi_db);
 
 /// RGB of a colour map at t in [0, 1].
 std::array<std::uint8_t, 3> colormap_rgb(Colormap map, double t);
+/// The map's 256 display colours: entry g is colormap_rgb(map, g / 255), for a gray level rounded to g.
+std::array<std::array<std::uint8_t, 3>, 256> colormap_table(Colormap map);
 /// The colour a viewer shows for cells where nothing echoes (L_EN = -inf), distinct from the map's low end.
 std::array<std::uint8_t, 3> no_echo_rgb(Colormap map);
 

@@ -187,9 +187,9 @@ Image8 SectorResampler::apply(const PolarImage& img, const DisplayParams& d, Ker
     });
     // RGB of each gray level in the low three bytes (little-endian order of the bytes in memory).
     std::array<std::uint32_t, 256> lut;
+    const auto table = colormap_table(d.colormap);
     for (int g = 0; g < 256; ++g) {
-        const auto c = colormap_rgb(d.colormap, g / 255.0);
-        std::uint8_t rgba[4] = {c[0], c[1], c[2], 0};
+        const std::uint8_t rgba[4] = {table[size_t(g)][0], table[size_t(g)][1], table[size_t(g)][2], 0};
         std::memcpy(&lut[size_t(g)], rgba, 4);
     }
 

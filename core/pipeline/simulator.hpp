@@ -79,7 +79,6 @@ class Simulator {
     /// asks for that: a 512 x 2048 fan is 3721 x 2048 px, its map 160 ms to build. A change re-forms the fan
     /// only.
     void set_fan_height_px(int height_px);
-    int fan_height_px() const { return fan_height_px_; }
 
   private:
     SceneDesc scene_;

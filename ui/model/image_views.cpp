@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -10,8 +11,7 @@ namespace sonarsim::ui {
 
 Image8 polar_color_image(const PolarImage& img, const DisplayParams& d) {
     // As the fan does it: the gray level rounded to one of 256, through the map's 256 colours (a table).
-    std::array<std::array<std::uint8_t, 3>, 256> lut;
-    for (int g = 0; g < 256; ++g) lut[size_t(g)] = colormap_rgb(d.colormap, g / 255.0);
+    const auto lut = colormap_table(d.colormap);
     const std::array<std::uint8_t, 3> none = no_echo_rgb(d.colormap);
     Image8 out;
     out.width = img.beams, out.height = img.bins, out.channels = 3;
@@ -31,10 +31,9 @@ Image8 polar_color_image(const PolarImage& img, const DisplayParams& d) {
 }
 
 Image8 fan_with_no_echo(const Frame& f, Colormap map) {
+    if (!f.sector_map_ptr) throw std::invalid_argument("fan_with_no_echo: the frame has no fan map");
     Image8 out = f.sector();
-    const std::shared_ptr<const SectorResampler> taps =
-        f.sector_map_ptr ? f.sector_map_ptr : std::make_shared<const SectorResampler>(f.grid_ptr, out.height);
-    taps->paint_no_echo(f.polar(), no_echo_rgb(map), out);
+    f.sector_map_ptr->paint_no_echo(f.polar(), no_echo_rgb(map), out);
     return out;
 }
 

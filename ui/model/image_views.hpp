@@ -17,7 +17,8 @@ namespace sonarsim::ui {
 Image8 polar_color_image(const PolarImage& image, const DisplayParams& display);
 
 /// The frame's fan (sector image) with the pixels whose nearest sample has no echo painted in no_echo_rgb,
-/// through the taps the fan was formed with (Frame::sector_map_ptr): no per-pixel geometry here.
+/// through the taps the fan was formed with (Frame::sector_map_ptr): no per-pixel geometry here. Throws
+/// std::invalid_argument for a frame without them (every frame a Simulator makes has them).
 Image8 fan_with_no_echo(const Frame& frame, Colormap map);
 
 /// A "nice" tick step (1, 2 or 5 x 10^k) giving about `count` ticks over `span`.

@@ -90,7 +90,6 @@ class Session {
     /// Height of the fan the worker forms [px] (Simulator::set_fan_height_px; 0: one row per range bin), as
     /// the panel shows it. A change re-forms the shown frame's fan; snapshots still write the full fan.
     void set_fan_height_px(int height_px);
-    int fan_height_px() const { return fan_height_px_; }
 
   private:
     void set_scene(SceneDesc next);
