@@ -40,13 +40,31 @@ void SonarPanel::ask_fan_height(const Rect& area, Session& session, float scale)
     // The fan formed as high as it is shown (in device pixels), not one row per range bin: a 512-beam fan is
     // 3721 x 2048 px in full. Asked from the layout of the full fan, so that the fan's own layout (its width
     // rounds up at each height) cannot feed back. The next image comes at this height.
+    // Laid out again only when what the layout reads changed (the grid stands for the fan's geometry).
     if (polar) return;
     const SceneDesc& sc = session.scene();
-    const SonarPanelLayout L =
-        sonar_panel_layout(area, {sc.sonar, sc.display.lo_db, sc.display.hi_db, colorbar_title(sc), false},
-                           {ImGui::CalcTextSize("0").x, ImGui::GetTextLineHeight()}, scale);
-    session.set_fan_height_px(fan_height_to_form(double(L.image.h) * ImGui::GetIO().DisplayFramebufferScale.y,
-                                                 *sonar_grid(sc.sonar)));
+    FanHeightAsked now{area,
+                       scale,
+                       ImGui::GetIO().DisplayFramebufferScale.y,
+                       {ImGui::CalcTextSize("0").x, ImGui::GetTextLineHeight()},
+                       sonar_grid(sc.sonar),
+                       sc.display.lo_db,
+                       sc.display.hi_db,
+                       colorbar_title(sc)};
+    if (!asked_ || !asked_->same_as(now)) {
+        const SonarPanelLayout L =
+            sonar_panel_layout(area, {sc.sonar, now.lo_db, now.hi_db, now.title, false}, now.text, scale);
+        now.height_px = fan_height_to_form(double(L.image.h) * now.framebuffer_scale, *now.grid);
+        asked_ = std::move(now);
+    }
+    session.set_fan_height_px(asked_->height_px);
+}
+
+bool SonarPanel::FanHeightAsked::same_as(const FanHeightAsked& o) const {
+    return area.x == o.area.x && area.y == o.area.y && area.w == o.area.w && area.h == o.area.h &&
+           scale == o.scale && framebuffer_scale == o.framebuffer_scale && text.char_w == o.text.char_w &&
+           text.line_h == o.text.line_h && grid == o.grid && lo_db == o.lo_db && hi_db == o.hi_db &&
+           title == o.title;
 }
 
 void SonarPanel::draw(const Rect& area, Session& session, const std::optional<glm::dvec3>& marker,

@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <imgui.h>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -65,6 +66,18 @@ class SonarPanel {
     Rect annotated_;
     SonarPanelLayout layout_;
     bool has_layout_ = false;
+    /// What the fan height last asked for (ask_fan_height) was laid out from, and that height.
+    struct FanHeightAsked {
+        Rect area;
+        float scale = 1, framebuffer_scale = 1;
+        TextMetrics text;
+        std::shared_ptr<const SonarGrid> grid;
+        double lo_db = 0, hi_db = 0;
+        std::string title;
+        int height_px = 0;
+        bool same_as(const FanHeightAsked& other) const; ///< the same inputs (height_px aside)
+    };
+    std::optional<FanHeightAsked> asked_;
     std::string last_measure_; ///< the measurement's numbers, shown under the image
     float scale_ = 1;
 };
