@@ -1,16 +1,18 @@
 #include "core/base/scratch_pool.hpp"
 
+#include <cstdint>
 #include <mutex>
 
 namespace sonarsim::scratch {
 namespace {
 
-std::mutex pool_mutex;
+// Never destroyed: a shared frame may give its buffer back while the process exits (Python's shutdown).
+std::mutex& pool_mutex = *new std::mutex;
 
 /// The kept buffers of an element type, at their last size.
 template <class T> std::vector<std::vector<T>>& pool() {
-    static std::vector<std::vector<T>> kept;
-    return kept;
+    static auto* kept = new std::vector<std::vector<T>>;
+    return *kept;
 }
 
 } // namespace
@@ -48,5 +50,7 @@ template std::vector<double> take<double>(std::size_t);
 template std::vector<float> take<float>(std::size_t);
 template void give<double>(std::vector<double>&&);
 template void give<float>(std::vector<float>&&);
+template std::vector<std::uint8_t> take<std::uint8_t>(std::size_t);
+template void give<std::uint8_t>(std::vector<std::uint8_t>&&);
 
 } // namespace sonarsim::scratch

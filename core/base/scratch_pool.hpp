@@ -1,7 +1,8 @@
 // Large per-frame buffers kept between frames. A stage that needs tens of megabytes every frame takes them
 // here and gives them back when done, so that the next frame writes into memory already mapped: fresh pages
 // from the system cost a fault and a clear every 4 KiB (at 30 MB a frame, milliseconds). Thread-safe; keeps
-// at most kScratchPoolBuffers buffers of each element type (double and float).
+// at most kScratchPoolBuffers buffers of each element type (double, float and std::uint8_t: the fan's
+// pixels, given back when the last frame holding them is dropped, see Simulator).
 #pragma once
 #include <cstddef>
 #include <vector>

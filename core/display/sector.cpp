@@ -1,6 +1,7 @@
 #include "core/display/sector.hpp"
 
 #include "core/base/pose.hpp"
+#include "core/base/scratch_pool.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -167,12 +168,19 @@ SectorResampler::SectorResampler(std::shared_ptr<const SonarGrid> grid, int heig
 }
 
 Image8 SectorResampler::apply(const PolarImage& img, const DisplayParams& d, Kernel kernel) const {
+    Image8 out;
+    apply_into(img, d, out, kernel);
+    return out;
+}
+
+void SectorResampler::apply_into(const PolarImage& img, const DisplayParams& d, Image8& out,
+                                 Kernel kernel) const {
     const int K = img.bins, N = img.beams;
     if (K != grid_->bins || N != grid_->beams)
         throw std::invalid_argument("SectorResampler: the image is not of the sonar it was built for");
     // Gray level of every sample once, padded with a copy of the last bin and of the last beam.
     const double lo = d.lo_db, span = d.hi_db - d.lo_db;
-    std::vector<float> gray(size_t(K + 1) * size_t(N + 1));
+    std::vector<float> gray = scratch::take<float>(size_t(K + 1) * size_t(N + 1)); // every value written
     tbb::parallel_for(tbb::blocked_range<int>(0, K + 1, 64), [&](const tbb::blocked_range<int>& bins) {
         for (int b = bins.begin(); b < bins.end(); ++b) {
             const float* in = img.level_db.data() + size_t(std::min(b, K - 1)) * size_t(N);
@@ -193,9 +201,8 @@ Image8 SectorResampler::apply(const PolarImage& img, const DisplayParams& d, Ker
         std::memcpy(&lut[size_t(g)], rgba, 4);
     }
 
-    Image8 out;
     out.width = layout_.width(), out.height = layout_.height(), out.channels = 3;
-    out.pixels.resize(size_t(out.width) * size_t(out.height) * 3);
+    out.pixels.resize(size_t(out.width) * size_t(out.height) * 3); // every pixel written below
     const float* const G = gray.data();
     const std::int32_t* const I = tap_index_.data();
     const std::uint16_t *const WB = tap_wb_.data(), *const WI = tap_wi_.data();
@@ -272,7 +279,7 @@ Image8 SectorResampler::apply(const PolarImage& img, const DisplayParams& d, Ker
             background(x, W);
         }
     });
-    return out;
+    scratch::give(std::move(gray));
 }
 
 void SectorResampler::paint_no_echo(const PolarImage& img, const std::array<std::uint8_t, 3>& rgb,

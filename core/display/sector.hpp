@@ -64,6 +64,10 @@ class SectorResampler {
     /// AVX2 gathers where the CPU has them; both give the same pixels).
     enum class Kernel { Best, Portable };
     Image8 apply(const PolarImage& img, const DisplayParams& display, Kernel kernel = Kernel::Best) const;
+    /// The same fan written into `out` (its pixels resized to the fan; every byte written, so a buffer kept
+    /// from an earlier fan needs no clearing).
+    void apply_into(const PolarImage& img, const DisplayParams& display, Image8& out,
+                    Kernel kernel = Kernel::Best) const;
     /// Paints in `rgb` the pixels of `fan` (this resampler's apply of `img`) whose nearest sample in (bin,
     /// beam) has no echo (level -inf): the map is the taps', so no pixel is mapped twice (parallel over
     /// rows).

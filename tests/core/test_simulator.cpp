@@ -2,7 +2,10 @@
 #include "core/scene/scene_io.hpp"
 #include "core/scene/sampling_scheme.hpp"
 #include "core/pipeline/simulator.hpp"
+#include "core/base/scratch_pool.hpp"
+#include "core/display/sector.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <catch2/catch.hpp>
 #include <functional>
@@ -185,4 +188,33 @@ TEST_CASE("a preview is never taken for the full image", "[simulator]") {
     CHECK(full->polar().level_db == fresh.render()->polar().level_db);
     const auto full_again = sim.render(preview); // the full image is better than a preview: keep it
     CHECK(full_again->hits_ptr == full->hits_ptr);
+}
+
+TEST_CASE("a frame's fan goes back to the scratch pool, and a kept buffer is written over in full",
+          "[simulator]") {
+    SceneDesc s = default_scene();
+    Simulator sim(s);
+    const size_t n = size_t(SectorLayout(s.sonar, 0).width()) * size_t(SectorLayout(s.sonar, 0).height()) * 3;
+    // Empty the pool of byte buffers (it keeps at most kScratchPoolBuffers), then fill it with poisoned ones.
+    std::vector<std::vector<std::uint8_t>> drained;
+    for (int i = 0; i < scratch::kScratchPoolBuffers; ++i) drained.push_back(scratch::take<std::uint8_t>(n));
+    for (auto& v : drained) std::fill(v.begin(), v.end(), std::uint8_t(0xAB)), scratch::give(std::move(v));
+
+    auto first = sim.render(); // formed in a poisoned buffer
+    const auto fresh = SectorResampler(s.sonar, 0).apply(first->polar(), first->display);
+    CHECK(first->sector().width == fresh.width);
+    CHECK(first->sector().height == fresh.height);
+    CHECK((first->sector().pixels == fresh.pixels)); // no byte left from the buffer's last use
+
+    // Dropped by its last holder, the fan's buffer is the pool's again.
+    drained.clear();
+    for (int i = 0; i < scratch::kScratchPoolBuffers; ++i) drained.push_back(scratch::take<std::uint8_t>(n));
+    const std::uint8_t* const pixels = first->sector().pixels.data();
+    s.sonar.pose.orientation_deg[2] += 1;
+    sim.set_scene(s);
+    const auto second = sim.render(); // the simulator holds the second frame only, `first` its own
+    CHECK(scratch::take<std::uint8_t>(n).data() != pixels);
+    first.reset();
+    CHECK(scratch::take<std::uint8_t>(n).data() == pixels);
+    CHECK(second->sector().pixels.data() != pixels);
 }
