@@ -151,9 +151,9 @@ SectorResampler::SectorResampler(std::shared_ptr<const SonarGrid> grid, int heig
         row_runs_[size_t(y) + 1] = row_runs_[size_t(y)] + std::uint32_t(row_runs[size_t(y)].size());
         row_first[size_t(y) + 1] = row_first[size_t(y)] + row_taps[size_t(y)].size();
     }
-    tap_index_.resize(row_first[size_t(H)]);
-    tap_wb_.resize(row_first[size_t(H)]);
-    tap_wi_.resize(row_first[size_t(H)]);
+    const size_t taps = row_first[size_t(H)];
+    tap_index_.reset(new std::int32_t[taps]), tap_wb_.reset(new std::uint16_t[taps]);
+    tap_wi_.reset(new std::uint16_t[taps]);
     runs_.resize(row_runs_[size_t(H)]);
     tbb::parallel_for(0, H, [&](int y) {
         size_t n = row_first[size_t(y)];
@@ -204,8 +204,8 @@ void SectorResampler::apply_into(const PolarImage& img, const DisplayParams& d, 
     out.width = layout_.width(), out.height = layout_.height(), out.channels = 3;
     out.pixels.resize(size_t(out.width) * size_t(out.height) * 3); // every pixel written below
     const float* const G = gray.data();
-    const std::int32_t* const I = tap_index_.data();
-    const std::uint16_t *const WB = tap_wb_.data(), *const WI = tap_wi_.data();
+    const std::int32_t* const I = tap_index_.get();
+    const std::uint16_t *const WB = tap_wb_.get(), *const WI = tap_wi_.get();
     const Run* const R = runs_.data();
     const std::uint32_t* const row_runs = row_runs_.data();
     const std::uint32_t* const C = lut.data();
