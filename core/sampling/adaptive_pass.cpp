@@ -84,16 +84,24 @@ void base_echo(const SceneDesc& s, double bin_m, const std::vector<Column>& cols
 }
 
 /// The base grid's image sets the scale of what is worth refining (none when nothing is refined).
-void set_base_image(Sampler& sp, const Beams& beams) {
+/// `rows_kept`: the image was set from these beams before some of them were emptied (groups sent to a
+/// denser grid); only the emptied beams' rows change (each row depends on its own beam only).
+void set_base_image(Sampler& sp, const Beams& beams, bool rows_kept = false) {
     const SceneDesc& s = sp.s;
     const int N = s.sonar.beams, K = s.sonar.range_bins;
     auto& base_db = sp.criteria.base_db;
-    base_db.clear();
-    if (sp.elevation_levels == 0 && sp.azimuth_levels == 0) return;
-    base_db.assign(size_t(N) * size_t(K), -std::numeric_limits<float>::infinity());
-    tbb::parallel_for(0, N, [&](int i) {
-        base_echo(s, sp.criteria.bin_m(), beams[size_t(i)], base_db.data() + size_t(i) * size_t(K));
-    });
+    if (sp.elevation_levels == 0 && sp.azimuth_levels == 0) return base_db.clear();
+    constexpr float none = -std::numeric_limits<float>::infinity();
+    if (rows_kept && base_db.size() == size_t(N) * size_t(K)) {
+        for (int i = 0; i < N; ++i)
+            if (beams[size_t(i)].empty())
+                std::fill_n(base_db.begin() + std::ptrdiff_t(size_t(i) * size_t(K)), K, none);
+    } else {
+        base_db.assign(size_t(N) * size_t(K), none);
+        tbb::parallel_for(0, N, [&](int i) {
+            base_echo(s, sp.criteria.bin_m(), beams[size_t(i)], base_db.data() + size_t(i) * size_t(K));
+        });
+    }
     double peak = -std::numeric_limits<double>::infinity(), cells = 0;
     for (float v : base_db) peak = std::max(peak, double(v));
     for (const auto& b : beams)
@@ -217,6 +225,7 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
     Beams beams = trace_base_grid(sp, M0, carried);
     PassCells out;
     out.bumped.assign(size_t(G), 0);
+    bool base_image_set = false; // from every beam of this base grid
     if (bump && !sp.control.preview && !sp.multipath && M0 >= 9) {
         const BaseImages base = base_images(sp, beams, groups);
         EstimateImages images{&base.edges};
@@ -226,6 +235,7 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
         if (counts_refinable(sp, M0) &&
             std::find(out.bumped.begin(), out.bumped.end(), 1) != out.bumped.end()) {
             set_base_image(sp, beams);
+            base_image_set = true;
             const PolarImage lasting = lasting_edges_image(sp, beams, groups);
             images.lasting_edges = &lasting;
             out.bumped = (*bump)(sample_errors(base.coarse, base.fine, sp.ref_db, images));
@@ -245,7 +255,7 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
         // Every group went denser: nothing is left here to refine, collect or estimate.
         if (std::find(out.bumped.begin(), out.bumped.end(), 0) == out.bumped.end()) return out;
     }
-    set_base_image(sp, beams);
+    set_base_image(sp, beams, base_image_set);
     // Ghosts far below the base image's direct echo are culled (multipath.hpp, kGhostCullShare).
     if (sp.multipath)
         sp.mp.set_cull_floor({&sp.criteria.base_db,
