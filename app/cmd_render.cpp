@@ -5,6 +5,7 @@
 #include "core/base/errors.hpp"
 #include "core/shading/ground_truth.hpp"
 #include "core/io/output.hpp"
+#include "core/pipeline/memory_report.hpp"
 #include "core/pipeline/simulator.hpp"
 
 #include <cmath>
@@ -79,7 +80,8 @@ int run_render(const RenderOptions& o) {
     if (!o.view3d.empty()) std::cout << "wrote " << o.view3d << " (3D view)\n";
     std::cout << "wrote " << render_outputs_text(o.out, &scene) << "; image " << f->polar().bins << " x "
               << f->polar().beams << ", sector " << f->sector().width << "x" << f->sector().height << "\n"
-              << "rays " << f->hits().rays_traced << ", " << stage_times(*f) << "\n";
+              << "rays " << f->hits().rays_traced << ", " << stage_times(*f) << "\n"
+              << "memory kept: " << to_string(memory_report()) << "\n";
     return 0;
 }
 

@@ -15,6 +15,16 @@ template <class T> std::vector<std::vector<T>>& pool() {
     return *kept;
 }
 
+/// Bytes of one type's kept buffers (under pool_mutex).
+template <class T> std::size_t bytes_of() {
+    std::size_t n = 0;
+    for (const auto& v : pool<T>()) n += v.capacity() * sizeof(T);
+    return n;
+}
+std::size_t all_bytes() {
+    return bytes_of<double>() + bytes_of<float>() + bytes_of<std::uint8_t>();
+}
+
 } // namespace
 
 template <class T> std::vector<T> take(std::size_t n) {
@@ -42,8 +52,15 @@ template <class T> std::vector<T> take(std::size_t n) {
 
 template <class T> void give(std::vector<T>&& v) {
     std::lock_guard<std::mutex> lock(pool_mutex);
-    if (int(pool<T>().size()) < kScratchPoolBuffers) pool<T>().push_back(std::move(v));
+    if (int(pool<T>().size()) < kScratchPoolBuffers &&
+        all_bytes() + v.capacity() * sizeof(T) <= kScratchPoolMaxBytes)
+        pool<T>().push_back(std::move(v));
     v = {};
+}
+
+std::size_t kept_bytes() {
+    std::lock_guard<std::mutex> lock(pool_mutex);
+    return all_bytes();
 }
 
 template std::vector<double> take<double>(std::size_t);

@@ -2,6 +2,7 @@
 #include "core/scene/scene_io.hpp"
 #include "core/scene/sampling_scheme.hpp"
 #include "core/pipeline/simulator.hpp"
+#include "core/pipeline/memory_report.hpp"
 #include "core/base/scratch_pool.hpp"
 #include "core/display/sector.hpp"
 
@@ -217,4 +218,31 @@ TEST_CASE("a frame's fan goes back to the scratch pool, and a kept buffer is wri
     first.reset();
     CHECK(scratch::take<std::uint8_t>(n).data() == pixels);
     CHECK(second->sector().pixels.data() != pixels);
+}
+
+TEST_CASE("the scratch pool keeps at most its byte budget and reports what it keeps", "[simulator]") {
+    // Empty the pool: buffers taken out and dropped are freed, not given back.
+    for (int i = 0; i < 3 * scratch::kScratchPoolBuffers && scratch::kept_bytes() > 0; ++i)
+        (void)scratch::take<double>(0), (void)scratch::take<float>(0), (void)scratch::take<std::uint8_t>(0);
+    REQUIRE(scratch::kept_bytes() == 0);
+    // Capacity counts, not size: reserved and never touched, so the test maps no memory.
+    const std::size_t half = scratch::kScratchPoolMaxBytes / 2;
+    std::vector<std::uint8_t> bytes;
+    bytes.reserve(half);
+    scratch::give(std::move(bytes));
+    CHECK(scratch::kept_bytes() == half);
+    std::vector<float> floats;
+    floats.reserve(half / sizeof(float));
+    scratch::give(std::move(floats));
+    CHECK(scratch::kept_bytes() == 2 * half); // exactly the budget
+    std::vector<double> one(1);
+    scratch::give(std::move(one)); // past the budget: freed
+    CHECK(scratch::kept_bytes() == 2 * half);
+    // Taken out again, the bytes are no longer the pool's.
+    (void)scratch::take<std::uint8_t>(16);
+    CHECK(scratch::kept_bytes() == half);
+    const MemoryReport m = memory_report();
+    CHECK(m.kept_bytes == half);
+    CHECK(m.kept_budget_bytes == scratch::kScratchPoolMaxBytes);
+    CHECK(to_string(m).find("kept buffers 256 of 512 MiB") != std::string::npos);
 }

@@ -4,6 +4,7 @@
 #include "ui/model/scene_labels.hpp"
 
 #include "core/geometry/mesh_formats.hpp"
+#include "core/pipeline/memory_report.hpp"
 #include "core/shading/physics.hpp"
 
 #include <imgui.h>
@@ -312,7 +313,10 @@ void stats_section(Session& session, const ControlsUi& ui) {
         ImGui::SameLine();
         ImGui::Text("  image %.1f ms%s", r->wall_ms, f.preview() ? " (preview)" : "");
         ImGui::TextDisabled("trace %.1f  shade %.1f  map %.1f ms", f.trace_ms, f.shade_ms, f.image_ms);
-        ImGui::TextDisabled("%llu rays", static_cast<unsigned long long>(f.hits().rays_traced));
+        const MemoryReport m = memory_report();
+        ImGui::TextDisabled("%llu rays  kept %.0f MiB", static_cast<unsigned long long>(f.hits().rays_traced),
+                            double(m.mesh_bytes + m.kept_bytes) / double(1 << 20));
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Kept between images: %s", to_string(m).c_str());
         estimate_line(s, f.hits().error_estimate);
     } else {
         ImGui::SameLine();
