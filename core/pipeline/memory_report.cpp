@@ -15,13 +15,15 @@ MemoryReport memory_report() {
     return m;
 }
 
+std::string mib_text(std::size_t bytes) {
+    char t[32];
+    const double v = double(bytes) / double(1 << 20);
+    std::snprintf(t, sizeof t, v < 10 && bytes > 0 ? "%.1f" : "%.0f", v);
+    return t;
+}
+
 std::string to_string(const MemoryReport& m) {
-    const auto mib = [](std::size_t b) { // a tenth below 10 MiB (a small mesh is not "0")
-        char t[32];
-        const double v = double(b) / double(1 << 20);
-        std::snprintf(t, sizeof t, v < 10 && b > 0 ? "%.1f" : "%.0f", v);
-        return std::string(t);
-    };
+    const auto mib = mib_text;
     return "meshes " + mib(m.mesh_bytes) + " of " + mib(m.mesh_budget_bytes) + " MiB, kept buffers " +
            mib(m.kept_bytes) + " of " + mib(m.kept_budget_bytes) + " MiB";
 }

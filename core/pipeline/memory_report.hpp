@@ -14,6 +14,9 @@ struct MemoryReport {
 /// The process's figures now.
 MemoryReport memory_report();
 
+/// Bytes as MiB: a tenth below 10 MiB (a small mesh is not "0"), whole above ("0.4", "30").
+std::string mib_text(std::size_t bytes);
+
 /// "meshes 12 of 2048 MiB, kept buffers 30 of 512 MiB".
 std::string to_string(const MemoryReport& m);
 

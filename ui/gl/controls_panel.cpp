@@ -314,8 +314,8 @@ void stats_section(Session& session, const ControlsUi& ui) {
         ImGui::Text("  image %.1f ms%s", r->wall_ms, f.preview() ? " (preview)" : "");
         ImGui::TextDisabled("trace %.1f  shade %.1f  map %.1f ms", f.trace_ms, f.shade_ms, f.image_ms);
         const MemoryReport m = memory_report();
-        ImGui::TextDisabled("%llu rays  kept %.0f MiB", static_cast<unsigned long long>(f.hits().rays_traced),
-                            double(m.mesh_bytes + m.kept_bytes) / double(1 << 20));
+        ImGui::TextDisabled("%llu rays  kept %s MiB", static_cast<unsigned long long>(f.hits().rays_traced),
+                            mib_text(m.mesh_bytes + m.kept_bytes).c_str());
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("Kept between images: %s", to_string(m).c_str());
         estimate_line(s, f.hits().error_estimate);
     } else {
