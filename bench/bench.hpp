@@ -88,9 +88,15 @@ int run_multipath_bench(const std::string& repo, int repeats, const std::vector<
 
 /// `sonarsim_bench devices`: every device preset at its own window over the terrain and the wreck: warm
 /// image, rays, error against a reference, the floor and the device's own frame interval, as a Markdown
-/// table. `settings`: "key=value" overrides applied to every row after its preset.
+/// table (rows printed as they are measured). `settings`: "key=value" overrides applied to every row after
+/// its preset. `json_out` (if not empty): the rows as JSON ({"repeats", "settings", "rows"}), for RESULTS.md.
 int run_devices_bench(const Paths& paths, int repeats, const std::vector<std::string>& only = {},
-                      const std::vector<std::string>& settings = {});
+                      const std::vector<std::string>& settings = {}, const std::string& json_out = "");
+/// The devices table's Markdown: its header, one row (a JSON row of run_devices_bench) and the count of live
+/// rows, shared by the terminal and RESULTS.md.
+std::string devices_table_header();
+std::string devices_table_row(const json& row);
+std::string devices_table_summary(const json& rows);
 
 /// `sonarsim_bench warm`: each scene file's warm image (median of `repeats`), rays, the sampler's estimate
 /// and the floor, one line each (warm.cpp). `settings` as for devices.

@@ -20,6 +20,7 @@
 #include "core/analysis/reference.hpp"
 #include "core/base/pose.hpp"
 #include "core/devices/devices.hpp"
+#include "core/io/output.hpp"
 #include "core/pipeline/simulator.hpp"
 #include "core/sampling/acquisition.hpp"
 #include "core/scene/params.hpp"
@@ -175,8 +176,38 @@ ImageError error_against_reference(const Frame& f, SceneDesc at_pose) {
     return compare_images(f.ideal(), Simulator(at_pose).render()->ideal());
 }
 
+std::string devices_table_header() {
+    return "| device | scene | beams x bins | range m | rays | warm ms | floor ms | warm / floor | rel L1 % "
+           "| "
+           "median dB | holes % | estimate rel L1 % | device frame ms | live |\n"
+           "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+}
+
+std::string devices_table_row(const json& r) {
+    auto num = [&](const char* k) { return r.at(k).get<double>(); };
+    char b[512];
+    std::snprintf(
+        b, sizeof b,
+        "| %s | %s | %d x %d | %g-%g | %llu | %.1f | %.1f | %.1f | %.2f | %.3f | %.2f | %.2f | %.0f (%s) "
+        "| %s |\n",
+        r.at("device").get<std::string>().c_str(), r.at("scene").get<std::string>().c_str(),
+        r.at("beams").get<int>(), r.at("range_bins").get<int>(), num("range_min_m"), num("range_max_m"),
+        (unsigned long long)r.at("rays").get<std::uint64_t>(), num("warm_ms"), num("floor_ms"),
+        num("warm_ms") / num("floor_ms"), 100 * num("rel_l1"), num("median_abs_db"), 100 * num("holes_share"),
+        100 * num("estimate_rel_l1"), num("device_frame_ms"),
+        r.at("device_frame_how").get<std::string>().c_str(), r.at("live").get<bool>() ? "yes" : "no");
+    return b;
+}
+
+std::string devices_table_summary(const json& rows) {
+    int live = 0;
+    for (const json& r : rows) live += r.at("live").get<bool>();
+    return std::to_string(live) + " of " + std::to_string(rows.size()) +
+           " rows live: warm image shorter than the device's frame and at most 50 ms.\n";
+}
+
 int run_devices_bench(const Paths& p, int repeats, const std::vector<std::string>& only,
-                      const std::vector<std::string>& settings) {
+                      const std::vector<std::string>& settings, const std::string& json_out) {
     const std::string work = p.work.empty() ? "build/bench" : p.work;
     std::filesystem::create_directories(work);
     const std::string mesh = work + "/terrain_317.ply";
@@ -185,12 +216,9 @@ int run_devices_bench(const Paths& p, int repeats, const std::vector<std::string
                 "median of %d; reference: spread %d x %d, ideal sensor\n\n",
                 repeats, kReferenceRays, kReferenceColumns);
     for (const auto& a : settings) std::printf("--set %s\n", a.c_str());
-    std::printf(
-        "| device | scene | beams x bins | range m | rays | warm ms | floor ms | warm / floor | rel L1 %% | "
-        "median dB | holes %% | estimate rel L1 %% | device frame ms | live |\n"
-        "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+    std::printf("%s", devices_table_header().c_str());
     std::fflush(stdout);
-    int live = 0, total = 0;
+    json rows = json::array();
     for (const DevicePreset& d : device_presets())
         for (int scene = 0; scene < 2; ++scene) {
             if (!only.empty() && std::find(only.begin(), only.end(), d.name) == only.end()) continue;
@@ -198,22 +226,34 @@ int run_devices_bench(const Paths& p, int repeats, const std::vector<std::string
             SceneDesc s = scene ? wreck_case(p.repo, d.name) : terrain_case(mesh, d.name);
             for (const auto& a : settings) apply_setting_text(s, a, "--set");
             const Row r = measure(s, d.name, repeats);
-            const double holes =
-                r.err.echoing_ref ? 100.0 * double(r.err.holes) / double(r.err.echoing_ref) : 0;
-            const bool ok = r.warm_ms < r.interval_ms && r.warm_ms <= 50;
-            live += ok, ++total;
+            const json row = {
+                {"device", d.name},
+                {"scene", scene ? "wreck" : "terrain"},
+                {"beams", s.sonar.beams},
+                {"range_bins", s.sonar.range_bins},
+                {"range_min_m", s.sonar.range_min_m},
+                {"range_max_m", s.sonar.range_max_m},
+                {"rays", r.rays},
+                {"warm_ms", r.warm_ms},
+                {"floor_ms", r.floor_ms},
+                {"rel_l1", r.err.rel_l1},
+                {"median_abs_db", r.err.median_abs_db},
+                {"holes_share", r.err.echoing_ref ? double(r.err.holes) / double(r.err.echoing_ref) : 0.0},
+                {"estimate_rel_l1", r.est_rel_l1},
+                {"device_frame_ms", r.interval_ms},
+                {"device_frame_how", r.interval_how},
+                {"live", r.warm_ms < r.interval_ms && r.warm_ms <= 50},
+            };
+            rows.push_back(row);
             status_line("");
-            std::printf("| %s | %s | %d x %d | %g-%g | %llu | %.1f | %.1f | %.1f | %.2f | %.3f | %.2f | %.2f "
-                        "| %.0f (%s) | "
-                        "%s |\n",
-                        d.name.c_str(), scene ? "wreck" : "terrain", s.sonar.beams, s.sonar.range_bins,
-                        s.sonar.range_min_m, s.sonar.range_max_m, (unsigned long long)r.rays, r.warm_ms,
-                        r.floor_ms, r.warm_ms / r.floor_ms, 100 * r.err.rel_l1, r.err.median_abs_db, holes,
-                        100 * r.est_rel_l1, r.interval_ms, r.interval_how, ok ? "yes" : "no");
+            std::printf("%s", devices_table_row(row).c_str());
             std::fflush(stdout);
         }
-    std::printf("\n%d of %d rows live: warm image shorter than the device's frame and at most 50 ms.\n", live,
-                total);
+    std::printf("\n%s", devices_table_summary(rows).c_str());
+    if (!json_out.empty()) {
+        const json out = {{"repeats", repeats}, {"settings", settings}, {"rows", rows}};
+        write_files_atomically({{json_out, to_bytes(out.dump(1) + "\n")}});
+    }
     return 0;
 }
 

@@ -35,8 +35,8 @@ struct DriverOptions {
     Paths paths;
     std::string out;
     std::vector<std::string> only;
-    bool quick = false, no_view = false;
-    int view_frames = 150;
+    bool quick = false, no_view = false, no_devices = false;
+    int view_frames = 150, device_repeats = 3;
     std::string command; ///< as typed, for the report
 };
 
@@ -312,16 +312,34 @@ int run_driver(const DriverOptions& o) {
         std::cout << line << std::endl;
         all.push_back(j);
     }
+    json devices;
+    if (!o.quick && !o.no_devices && o.only.empty()) {
+        // Every device preset over the terrain and the wreck, in its own process like the scenes; its rows
+        // print as they are measured.
+        std::cout << "[devices] every device preset at its own window, over the terrain and the wreck"
+                  << std::endl;
+        const std::string djson = p.work + "/results/devices.json";
+        fs::remove(djson);
+        const Child c = run_child({self_exe(), "--work", p.work, "--repo", p.repo, "devices", "--repeats",
+                                   std::to_string(o.device_repeats), "--json", djson},
+                                  "", "");
+        devices = c.status == 0 && fs::exists(djson)
+                      ? json::parse(read_text(djson))
+                      : json{{"error", "exit status " + std::to_string(c.status)}};
+        devices["wall_s"] = c.wall_ms / 1000;
+    }
     meta["loadavg_end"] = load_average();
     meta["wall_s"] = ms_since(t_start) / 1000;
-    const std::string md = write_reports({{"meta", meta}, {"scenes", all}}, o.out);
+    json results = {{"meta", meta}, {"scenes", all}};
+    if (!devices.is_null()) results["devices"] = devices;
+    const std::string md = write_reports(results, o.out);
     std::cout << "\nwrote " << o.out << "/RESULTS.md, results.csv, results.json\n";
     // The summary table on the terminal.
     const size_t a = md.find("## Summary"), b = md.find("## Per scene");
     if (a != std::string::npos && b != std::string::npos) std::cout << "\n" << md.substr(a, b - a);
     for (const json& sc : all)
         if (sc.contains("error")) return 1;
-    return 0;
+    return devices.contains("error") ? 1 : 0;
 }
 
 } // namespace
@@ -352,6 +370,10 @@ int main(int argc, char** argv) {
     app.add_option("--shared", o.paths.shared, "Shared mesh collection (default: REPO/../shared)");
     app.add_option("--sonarsim", o.paths.sonarsim, "The sonarsim executable")->capture_default_str();
     app.add_flag("--no-view", o.no_view, "Skip the viewer timings");
+    app.add_flag("--no-devices", o.no_devices,
+                 "Skip the device presets' table (also skipped with --quick or --scenes)");
+    app.add_option("--device-repeats", o.device_repeats, "Repeats of each device preset's warm image")
+        ->capture_default_str();
     app.add_option("--view-frames", o.view_frames, "Frames of each viewer timing")->capture_default_str();
 
     WorkerOptions w;
@@ -387,6 +409,8 @@ int main(int argc, char** argv) {
     std::vector<std::string> devices_only;
     devices->add_option("--only", devices_only, "Only these presets (default: every one)");
     std::vector<std::string> devices_settings;
+    std::string devices_json;
+    devices->add_option("--json", devices_json, "Also write the rows as JSON to this file");
     devices->add_option(
         "--set", devices_settings,
         "Override a parameter of every row after its preset, e.g. --set sampling.estimate=strict "
@@ -423,7 +447,8 @@ int main(int argc, char** argv) {
         if (*sensor) return run_sensor_bench(sensor_repeats);
         if (*multipath) return run_multipath_bench(o.paths.repo, multipath_repeats, multipath_settings);
         if (*warm) return run_warm_bench(warm_scenes, warm_repeats, warm_settings);
-        if (*devices) return run_devices_bench(o.paths, devices_repeats, devices_only, devices_settings);
+        if (*devices)
+            return run_devices_bench(o.paths, devices_repeats, devices_only, devices_settings, devices_json);
         if (*terrain) {
             write_terrain_ply(terrain_out, grid);
             std::cout << "wrote " << terrain_out << " (" << terrain_triangles(grid) << " triangles)\n";
