@@ -44,8 +44,15 @@ struct Sampler {
     int elevation_levels, azimuth_levels;
     mutable std::atomic<std::uint64_t> rays{0}; ///< rays traced or reserved in this image, all passes
     mutable std::atomic<bool> budget_hit{false};
+    /// The first base grid's cell edges [rad], top down (sampling.elevation_rays + 1 of them): even for a
+    /// flat pattern; denser where a smooth pattern is strong, in triples of equal cells (pattern_grid).
+    std::vector<double> first_edges;
+    bool first_edges_even = true;   ///< the flat pattern's even grid
     std::vector<Angle> base_angles; ///< the base grid's elevations (set_base_grid)
-    std::vector<int> traced;        ///< the beams traced (TraceControl::beams; all by default)
+    std::vector<double> base_de;    ///< ... their cells' widths [rad]
+    /// ... the narrowest a refined cell of each may get [rad]: its first-grid cell's width / 3^levels
+    std::vector<double> base_de_min;
+    std::vector<int> traced; ///< the beams traced (TraceControl::beams; all by default)
     /// The beams of the pass being traced (one flag per beam; a pass traces the groups it refines).
     std::vector<char> pass_beams;
     /// The level [dB] linear error sums are taken relative to (the first estimated image's peak; NaN before).
@@ -119,7 +126,7 @@ struct Sampler {
   private:
     void trace_continuation(Node& n, const Angle& a) const;
     /// Marks the nodes of `col` to split at this level; returns how many.
-    size_t mark_for_split(Column& col, const Angle& a, double de_min) const;
+    size_t mark_for_split(Column& col, const Angle& a) const;
     /// Replaces each marked node by three of a third its width (the middle one is the node itself).
     void split_marked(Column& col, const Angle& a, size_t marked, int& next_group) const;
 };

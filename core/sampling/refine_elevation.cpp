@@ -3,9 +3,52 @@
 
 #include "core/shading/shade.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace sonarsim::adaptive {
+namespace {
+
+/// The first base grid's M + 1 cell edges over the traced aperture phi, top down. A flat pattern: even.
+/// A smooth one (gaussian, sinc), traced far into its tails: each triple of cells (and each cell of an
+/// incomplete last triple) holds an equal share of the integral of max(kTailDensity, B^kPatternExponent),
+/// so that the main lobe's cells are narrower and the tails' wider (docs/accuracy-and-speed.md).
+std::vector<double> pattern_grid(const ElevationWeight& w, double phi, int M) {
+    std::vector<double> edges(size_t(M) + 1);
+    if (w.flat()) {
+        for (int j = 0; j <= M; ++j) edges[size_t(j)] = phi / 2 - j * (phi / M);
+        return edges;
+    }
+    constexpr int kSteps = 4096;
+    std::vector<double> F(kSteps + 1, 0.0); // the density's integral from the top, at e_k = phi/2 - k h
+    const double h = phi / kSteps;
+    auto rho = [&](int k) { return std::max(kTailDensity, std::pow(w(phi / 2 - k * h), kPatternExponent)); };
+    double last = rho(0);
+    for (int k = 0; k < kSteps; ++k) {
+        const double next = rho(k + 1);
+        F[size_t(k) + 1] = F[size_t(k)] + h * 0.5 * (last + next), last = next;
+    }
+    const int T = M / 3, R = M % 3; // whole triples, then R single cells
+    const double units = T + R / 3.0, total = F.back();
+    auto edge_at = [&](double mass) { // e where the integral from the top reaches mass
+        const auto it = std::lower_bound(F.begin(), F.end(), mass);
+        if (it == F.begin()) return phi / 2;
+        if (it == F.end()) return -phi / 2;
+        const size_t k = size_t(it - F.begin());
+        const double f = (mass - F[k - 1]) / (F[k] - F[k - 1]);
+        return phi / 2 - (double(k) - 1 + f) * h;
+    };
+    edges[0] = phi / 2, edges[size_t(M)] = -phi / 2;
+    for (int t = 0; t < T; ++t) {
+        const double top = edges[size_t(3 * t)];
+        const double bottom = t + 1 == T && R == 0 ? -phi / 2 : edge_at(total * (t + 1) / units);
+        for (int k = 1; k <= 3; ++k) edges[size_t(3 * t + k)] = top - k * (top - bottom) / 3;
+    }
+    for (int r = 1; r < R; ++r) edges[size_t(3 * T + r)] = edge_at(total * (T + r / 3.0) / units);
+    return edges;
+}
+
+} // namespace
 
 Sampler::Sampler(const SceneGeometry& geo, const SceneDesc& scene, const TraceControl& c)
     : g(geo), s(scene), control(c), frame(scene), multipath(detail::multipath_active(scene)),
@@ -15,13 +58,33 @@ Sampler::Sampler(const SceneGeometry& geo, const SceneDesc& scene, const TraceCo
       elevation_levels(c.preview ? 0 : kElevationLevels), azimuth_levels(c.preview ? 0 : kAzimuthLevels) {
     for (int i = 0; i < scene.sonar.beams; ++i)
         if (c.traces(i)) traced.push_back(i);
+    first_edges = pattern_grid(frame.elevation_weight, phi, scene.sampling.elevation_rays);
+    first_edges_even = frame.elevation_weight.flat();
 }
 
 void Sampler::set_base_grid(int M0) {
     for (auto& store : via_store) store.clear(); // the last pass's nodes are gone
-    const double de0 = phi / M0;
-    base_angles.resize(size_t(M0));
-    for (int j = 0; j < M0; ++j) base_angles[size_t(j)] = Angle(phi / 2 - (j + 0.5) * de0);
+    base_angles.resize(size_t(M0)), base_de.resize(size_t(M0)), base_de_min.resize(size_t(M0));
+    const int M = int(first_edges.size()) - 1;
+    if (first_edges_even) { // as pattern_grid's, without rounding them through the edges
+        const double de0 = phi / M0, de_min = phi / M / std::pow(3.0, kElevationLevels) * 1.0001;
+        for (int j = 0; j < M0; ++j) base_angles[size_t(j)] = Angle(phi / 2 - (j + 0.5) * de0);
+        std::fill(base_de.begin(), base_de.end(), de0);
+        std::fill(base_de_min.begin(), base_de_min.end(), de_min);
+        return;
+    }
+    // Each cell of the first grid split evenly into sub = M0 / elevation_rays cells (a power of 3), so that
+    // a denser grid's cells are those a split of the coarser one's would make.
+    const int sub = M0 / M;
+    const double min_scale = 1.0001 / std::pow(3.0, kElevationLevels);
+    for (int j0 = 0; j0 < M; ++j0) {
+        const double top = first_edges[size_t(j0)], w = top - first_edges[size_t(j0) + 1], de = w / sub;
+        for (int k = 0; k < sub; ++k) {
+            const size_t j = size_t(j0 * sub + k);
+            base_angles[j] = Angle(top - (k + 0.5) * de);
+            base_de[j] = de, base_de_min[j] = w * min_scale;
+        }
+    }
 }
 
 bool Sampler::reserve(std::uint64_t n) const {
@@ -68,13 +131,12 @@ Column Sampler::trace_column(double a_rad, double da, int M0, int beam, int j0, 
     Column col;
     col.a = a_rad, col.da = da, col.beam = beam, col.j0 = j0, col.j1 = j1;
     const Angle a(a_rad);
-    const double de0 = phi / M0;
     col.nodes.reserve(size_t(j1 - j0));
     for (int j = j0; j < j1; ++j) {
         if (((j - j0) & 63) == 0 && control.cancelled()) return col;
         // Base triples share a group; the cells of an incomplete last triple get one each (never merged).
         const int group = j < M0 - M0 % 3 ? j / 3 : (M0 + 2) / 3 + j - (M0 - M0 % 3);
-        col.nodes.push_back(trace_node(a, base_angles[size_t(j)], de0, group));
+        col.nodes.push_back(trace_node(a, base_angles[size_t(j)], base_de[size_t(j)], group));
         col.nodes.back().j = j;
     }
     col.rays = std::uint64_t(j1 - j0);
@@ -96,10 +158,10 @@ void Sampler::densify_column(Column& col, int M0) const {
     if (azimuth_levels > 0) col.base = col.nodes;
 }
 
-size_t Sampler::mark_for_split(Column& col, const Angle& a, double de_min) const {
+size_t Sampler::mark_for_split(Column& col, const Angle& a) const {
     size_t marked = 0;
     auto mark = [&](Node& n) {
-        if (n.de > de_min && !n.refine) n.refine = true, ++marked;
+        if (n.de > base_de_min[size_t(n.j)] && !n.refine) n.refine = true, ++marked;
     };
     // Pairs of unchanged neighbours were compared before and found smooth: compare only fresh pairs.
     for (size_t n = 0; n + 1 < col.nodes.size(); ++n) {
@@ -152,13 +214,13 @@ void Sampler::split_marked(Column& col, const Angle& a, size_t marked, int& next
 
 void Sampler::refine_column(Column& col, int M0) const {
     const Angle a(col.a);
-    // The finest cell has the same width in every pass: a denser base grid (a later pass) refines fewer
-    // levels, so that its rays go to the cells the first pass left coarse, not deeper into its edges.
-    const double de_min = phi / s.sampling.elevation_rays / std::pow(3.0, kElevationLevels) * 1.0001;
+    // The finest cell has the same width in every pass (base_de_min): a denser base grid (a later pass)
+    // refines fewer levels, so that its rays go to the cells the first pass left coarse, not deeper into
+    // its edges.
     int next_group = M0 + 3; // above every base group id (j / 3, then one per cell of a partial triple)
     for (int level = 0; level < elevation_levels; ++level) {
         if (control.cancelled()) return;
-        const size_t marked = mark_for_split(col, a, de_min);
+        const size_t marked = mark_for_split(col, a);
         if (marked == 0) break;
         if (!reserve(2 * marked)) break; // budget spent: this column stays at its current level
         split_marked(col, a, marked, next_group);
