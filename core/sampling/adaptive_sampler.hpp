@@ -28,6 +28,12 @@ struct CellsOut {
     std::vector<GhostCell>* away = nullptr;
 };
 
+/// The first base grid's M + 1 cell edges over the traced aperture phi [rad], top down. A flat pattern:
+/// even. A smooth one (gaussian, sinc), traced far into its tails: each triple of cells (and each cell of
+/// an incomplete last triple) holds an equal share of the integral of max(kTailDensity, B^kPatternExponent)
+/// of the pattern B, so that the main lobe's cells are narrower and the tails' wider (refine_elevation.cpp).
+std::vector<double> pattern_grid(const ElevationWeight& pattern, double phi, int M);
+
 struct Sampler {
     const SceneGeometry& g;
     const SceneDesc& s;

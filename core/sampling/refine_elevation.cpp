@@ -7,12 +7,7 @@
 #include <cmath>
 
 namespace sonarsim::adaptive {
-namespace {
 
-/// The first base grid's M + 1 cell edges over the traced aperture phi, top down. A flat pattern: even.
-/// A smooth one (gaussian, sinc), traced far into its tails: each triple of cells (and each cell of an
-/// incomplete last triple) holds an equal share of the integral of max(kTailDensity, B^kPatternExponent),
-/// so that the main lobe's cells are narrower and the tails' wider (docs/accuracy-and-speed.md).
 std::vector<double> pattern_grid(const ElevationWeight& w, double phi, int M) {
     std::vector<double> edges(size_t(M) + 1);
     if (w.flat()) {
@@ -47,8 +42,6 @@ std::vector<double> pattern_grid(const ElevationWeight& w, double phi, int M) {
     for (int r = 1; r < R; ++r) edges[size_t(3 * T + r)] = edge_at(total * (T + r / 3.0) / units);
     return edges;
 }
-
-} // namespace
 
 Sampler::Sampler(const SceneGeometry& geo, const SceneDesc& scene, const TraceControl& c)
     : g(geo), s(scene), control(c), frame(scene), multipath(detail::multipath_active(scene)),

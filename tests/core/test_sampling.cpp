@@ -5,7 +5,9 @@
 #include "core/analysis/reference.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/pipeline/simulator.hpp"
+#include "core/sampling/adaptive_sampler.hpp"
 #include "core/sampling/trace.hpp"
+#include "core/sensor/sensor_patterns.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -357,4 +359,53 @@ TEST_CASE("an image of 512 beams, estimated on every 8th beam, says at least its
     // Overstated 3.5x here with every 4th beam as with every 8th (0.645 and 0.624 % for 0.18 %): the azimuth
     // probe's lone cells on smooth bathymetry (docs/accuracy-and-speed.md, "Why fast's probe overstates").
     CHECK(t.error_estimate.rel_l1 <= 4 * e.rel_l1);
+}
+
+TEST_CASE("a smooth elevation pattern's base grid is dense where the pattern is strong, in equal shares",
+          "[sampling]") {
+    using adaptive::kPatternExponent;
+    using adaptive::kTailDensity;
+    SceneDesc s = default_scene();
+    s.sensor.elevation_beamwidth_deg = 12;
+    for (auto kind : {ElevationPattern::Gaussian, ElevationPattern::Sinc})
+        for (int M : {101, 99, 31}) { // an incomplete last triple of 2 cells, none, and 1
+            s.sensor.elevation_pattern = kind;
+            const ElevationWeight w(s);
+            const double phi = w.traced_fov_rad();
+            const std::vector<double> e = adaptive::pattern_grid(w, phi, M);
+            REQUIRE(e.size() == size_t(M) + 1);
+            CHECK(e.front() == phi / 2);
+            CHECK(e.back() == -phi / 2);
+            for (int j = 0; j < M; ++j) CHECK(e[size_t(j)] > e[size_t(j) + 1]);
+            // Each whole triple: three equal cells holding an equal share of the density's integral,
+            // integrated here independently (midpoint rule, 20000 steps per triple).
+            auto share = [&](double top, double bottom) {
+                const int n = 20000;
+                double sum = 0;
+                for (int k = 0; k < n; ++k) {
+                    const double x = top - (k + 0.5) * (top - bottom) / n;
+                    sum += std::max(kTailDensity, std::pow(w(x), kPatternExponent));
+                }
+                return sum * (top - bottom) / n;
+            };
+            const int T = M / 3;
+            const double unit = share(phi / 2, -phi / 2) / (T + (M % 3) / 3.0);
+            for (int t = 0; t < T; ++t) {
+                const double a = e[size_t(3 * t)], b = e[size_t(3 * t + 1)], c = e[size_t(3 * t + 2)],
+                             d = e[size_t(3 * t + 3)];
+                CHECK(a - b == Approx(b - c).epsilon(1e-9));
+                CHECK(b - c == Approx(c - d).epsilon(1e-9));
+                CHECK(share(a, d) == Approx(unit).epsilon(2e-4));
+            }
+            for (int j = 3 * T; j < M; ++j)
+                CHECK(share(e[size_t(j)], e[size_t(j) + 1]) == Approx(unit / 3).epsilon(2e-4));
+            // The main lobe's cells against the tails': the density's ratio there, 1 to kTailDensity.
+            const int mid = (M / 2 / 3) * 3;
+            const double centre = e[size_t(mid)] - e[size_t(mid) + 1], outer = e[0] - e[1];
+            CHECK(centre / outer == Approx(kTailDensity).epsilon(0.06));
+        }
+    s.sensor.elevation_pattern = ElevationPattern::Flat;
+    const ElevationWeight flat(s);
+    const std::vector<double> e = adaptive::pattern_grid(flat, 0.3, 101);
+    for (int j = 0; j <= 101; ++j) CHECK(e[size_t(j)] == Approx(0.15 - j * 0.3 / 101).margin(1e-15));
 }
