@@ -19,11 +19,12 @@ constexpr int kElevationLevels = 5; // ternary splits: cells down to 1/243 of th
 constexpr int kAzimuthLevels = 3; // columns split in three locally: down to 1/27 of the base width (specular)
 constexpr int kEdgeAzimuthLevels = 2; // ... and down to 1/9 where neighbouring columns see different surfaces
 constexpr int kMaxPasses = 3;         // base grids a group may have: elevation_rays x 1, 3, 9 (adaptive.cpp)
-/// A smooth elevation pattern's base grid (refine_elevation.cpp): cells dense as max(kTailDensity,
-/// B^kPatternExponent) of the pattern B, in equal shares. Over the 24 device rows (a gaussian traced to
-/// -30 dB, 3.16 x its -3 dB width) 0.89 x the rays of an even grid, the wide sonars' wrecks 0.55-0.77 x;
-/// tails sparser than this (0.33, or B^0.5) left the ARIS wrecks past 1 % rel L1, and every setting tried
-/// (floors 0.33-0.6, exponents 0.15-0.5) saved 9-12 % (docs/accuracy-and-speed.md).
+/// A smooth elevation pattern's base grid (pattern_grid, refine_elevation.cpp): cells dense as
+/// max(kTailDensity, B^kPatternExponent) of the pattern B, in equal shares. Over the 24 device rows (a
+/// gaussian traced to -30 dB, 3.16 x its -3 dB width) 0.90 x the rays of an even grid, the wide sonars'
+/// wrecks 0.55-0.77 x, every estimate still at or above its error. Sparser tails (0.33, or B^0.5) left ARIS
+/// wrecks past 1 % rel L1; the other settings tried left an estimate below its error on some row
+/// (docs/accuracy-and-speed.md).
 constexpr double kTailDensity = 0.45;
 constexpr double kPatternExponent = 0.25;
 /// Before refining, a pass sends the groups with the largest shares of its base grid's own estimated error
