@@ -206,7 +206,8 @@ std::string write_reports(const json& input, const std::string& dir) {
            << " dB, " << count(get(cv, "echoing_bins")) << " echoing bins. "
            << "Peak memory of the benchmark process for this scene (reference and all settings): "
            << sig(get(sc, "process_peak_mb"))
-           << " MB (after the reference: " << sig(get(sc, "reference_peak_rss_mb")) << " MB).\n\n";
+           << " MB (the settings alone, timed before the reference: " << sig(get(sc, "settings_peak_rss_mb"))
+           << " MB).\n\n";
         md << "| sampling | role | rays | warm ms | (min) | floor ms | trace | shade | image | first image "
               "ms "
               "| render peak MB "
@@ -292,12 +293,14 @@ std::string write_reports(const json& input, const std::string& dir) {
 
     md << "\n## Columns\n\n"
           "- **rays**: rays traced for one image (adaptive: all refinement passes).\n"
-          "- **warm ms**: median over repeats of one image with the scene loaded and the BVH built: trace + "
-          "shade + sector image (the fan one row per range bin, from cached resampling taps), as `render` "
-          "makes it after a pose change (the viewer forms the fan only as high as its panel shows it). "
-          "**trace / shade / image**: medians of the three stages (adaptive shades while it "
-          "traces, "
-          "so its shade is 0). **(min)**: the fastest repeat, less sensitive to other jobs on the machine. "
+          "- **warm ms**: median over repeats of one image through a `Simulator` (as `render`, `batch` and "
+          "the "
+          "viewer make them) after a pose change (the yaw nudged by 0.01° each time), the scene loaded and "
+          "the BVH built: trace + shade + sensor + sector image (the full fan, from cached resampling taps; "
+          "the viewer forms it only as high as its panel shows it). Every setting is timed before the "
+          "reference is made. **trace / shade / image**: medians of the stages, *image* being the sensor "
+          "and the fan (adaptive shades while it traces, so its shade is 0). **(min)**: the fastest repeat, "
+          "less sensitive to other jobs on the machine. "
           "**floor ms** (adaptive rows): the same number of rays on a plain beam-ordered grid (spread, one "
           "column per beam), timed the same way.\n"
           "- **first image ms**: wall time of a whole `sonarsim render --scene FILE --set sampling...` "

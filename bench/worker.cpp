@@ -1,5 +1,6 @@
-// One scene measured in its own process (so that its peak memory is its own): the dense reference, then each
-// sampling setting timed warm (median of repeats of trace + shade + sector image) and compared with it.
+// One scene measured in its own process (so that its peak memory is its own): each sampling setting timed
+// warm (median of repeats of an image after a pose change, through a Simulator), then the dense reference,
+// then each setting's error against it.
 #include "bench.hpp"
 
 #include "core/display/image.hpp"
@@ -7,6 +8,7 @@
 #include "core/scene/scene_io.hpp"
 #include "core/shading/accumulate.hpp"
 #include "core/analysis/study.hpp"
+#include "core/pipeline/simulator.hpp"
 #include "core/base/timing.hpp"
 #include "core/sampling/trace.hpp"
 
@@ -66,32 +68,35 @@ json error_json(const ImageError& e) {
             {"holes", e.holes},   {"spurious", e.spurious},           {"echoing_bins", e.echoing_ref}};
 }
 
+/// A setting's images through a Simulator, as `render`, `batch` and the viewer make them after a pose change:
+/// the first at the scene's own pose (its ideal image is the one compared with the reference), then warm
+/// repeats, the yaw nudged by 0.01 deg each time so that every stage reruns (trace, shade, sensor, display).
+/// Timed as this worker did before (trace() and a resampler built once, called directly, after the
+/// reference), the bare floor took 11.9 ms where `render` and `sonarsim_bench warm` take 4.5 ms: most of its
+/// time went to page faults, the allocator mapping fresh pages for the sampler's buffers on every image.
 struct Timed {
-    PolarImage polar;
-    TraceResult::ErrorEstimate estimate;
-    std::uint64_t rays = 0;
-    double trace_ms = 0, shade_ms = 0, image_ms = 0;
-    double total() const { return trace_ms + shade_ms + image_ms; }
+    std::shared_ptr<const Frame> first;
+    std::vector<double> total, trace, shade, image; ///< per warm repeat [ms]; image: sensor + display
+    static double total_of(const Frame& f) { return f.trace_ms + f.shade_ms + f.sensor_ms + f.image_ms; }
 };
 
-/// One image as the Simulator makes it after a pose change: trace, shade (unless the tracer already did),
-/// sector image from the cached resampling taps.
-Timed render_once(const SceneGeometry& g, const SceneDesc& s, const SectorResampler& resampler) {
-    Timed r;
-    auto t0 = Clock::now();
-    TraceResult t = trace(g, s);
-    r.trace_ms = ms_since(t0);
-    t0 = Clock::now();
-    r.polar = t.shaded ? *t.shaded->image : shade(t, s);
-    r.shade_ms = ms_since(t0);
-    r.rays = t.rays_traced;
-    r.estimate = t.error_estimate;
-    t = TraceResult{};
-    t0 = Clock::now();
-    const Image8 sector = resampler.apply(r.polar, s.display);
-    r.image_ms = ms_since(t0);
-    if (sector.pixels.empty()) r.image_ms = -1; // never: keeps the call from being optimised away
-    return r;
+/// The first image, then as many warm repeats as `budget_ms` allows (from the first's time), within
+/// [1, max_repeats]; `repeats` (when > 0) sets their number instead.
+Timed time_setting(SceneDesc s, double budget_ms, int max_repeats, int repeats = 0) {
+    Timed t;
+    Simulator sim(s);
+    t.first = sim.render();
+    if (repeats <= 0)
+        repeats = std::clamp(int(budget_ms / std::max(Timed::total_of(*t.first), 1e-3)), 1, max_repeats);
+    const double yaw0 = s.sonar.pose.orientation_deg[2];
+    for (int r = 1; r <= repeats; ++r) {
+        s.sonar.pose.orientation_deg[2] = yaw0 + 0.01 * r;
+        sim.set_scene(s);
+        const auto f = sim.render();
+        t.total.push_back(Timed::total_of(*f)), t.trace.push_back(f->trace_ms),
+            t.shade.push_back(f->shade_ms), t.image.push_back(f->sensor_ms + f->image_ms);
+    }
+    return t;
 }
 
 } // namespace
@@ -122,11 +127,63 @@ int run_worker(const WorkerOptions& o) {
     auto t0 = Clock::now();
     const SceneGeometry g(scene);
     out["geometry_ms"] = ms_since(t0);
-    t0 = Clock::now();
-    const SectorResampler resampler(scene.sonar, 0);
-    out["resampler_ms"] = ms_since(t0);
     out["beams"] = scene.sonar.beams;
     out["range_bins"] = scene.sonar.range_bins;
+
+    // Every setting is timed first, after a few untimed images (the process's first images grow its heap
+    // and thread pools), and before the reference: timed through a Simulator but with neither, the bare
+    // floor still took 7-8 ms; with both, the 4.5-5 ms of `render`.
+    const std::vector<Setting> list = settings(scene, o.quick);
+    json rows = json::array();
+    std::vector<PolarImage> images; // each setting's first image, compared with the reference below
+    time_setting(scene, 0, 0, 4);
+    for (size_t n = 0; n < list.size(); ++n) {
+        const Setting& st = list[n];
+        SceneDesc s = scene;
+        set_scheme(s.sampling, st.sampling.scheme);
+        s.sampling.elevation_rays = st.sampling.elevation_rays;
+        s.sampling.azimuth_rays = st.sampling.azimuth_rays;
+        s.sampling.estimate = st.estimate;
+        status_line("  " + o.name + ": [" + std::to_string(n + 1) + "/" + std::to_string(list.size()) + "] " +
+                    st.label());
+        const Timed t = time_setting(s, budget_ms, max_repeats);
+        const Frame& first = *t.first;
+        const auto& e = first.hits().error_estimate;
+        const std::uint64_t rays = first.hits().rays_traced;
+        json floor = nullptr;
+        if (st.sampling.scheme == SamplingScheme::Adaptive) {
+            // The floor, timed as the setting is: warm / floor is what the sampler's bookkeeping costs.
+            const SceneDesc grid = floor_grid(scene, rays);
+            const Timed ft = time_setting(grid, 0, 0, int(t.total.size()));
+            floor = {{"elevation_rays", grid.sampling.elevation_rays}, {"warm_ms", median(ft.total)}};
+        }
+        images.push_back(first.ideal());
+        rows.push_back({{"label", st.label()},
+                        {"role", st.role},
+                        {"scheme", scheme_name(st.sampling.scheme)},
+                        {"elevation_rays", st.sampling.elevation_rays},
+                        {"azimuth_rays", st.sampling.azimuth_rays},
+                        {"sampling_estimate", find_param("sampling.estimate")->get(s)}, // the table's name
+                        {"rays", rays},
+                        {"repeats", t.total.size()},
+                        {"warm_ms", median(t.total)},
+                        {"warm_min_ms", *std::min_element(t.total.begin(), t.total.end())},
+                        {"trace_ms", median(t.trace)},
+                        {"shade_ms", median(t.shade)},
+                        {"image_ms", median(t.image)},
+                        {"floor", floor},
+                        {"estimate", e.valid ? json{{"rel_l1", e.rel_l1},
+                                                    {"median_abs_db", e.median_abs_db},
+                                                    {"p95_abs_db", e.p95_abs_db},
+                                                    {"passes", e.passes}}
+                                             : json(nullptr)}});
+    }
+    const double settings_peak_mb = self_peak_rss_mb();
+    // The sector resampler's build, for the report (after the settings: its tables, freed, would also
+    // leave the allocator mapping fresh pages for later images).
+    t0 = Clock::now();
+    { const SectorResampler resampler(scene.sonar, 0); }
+    out["resampler_ms"] = ms_since(t0);
 
     const StudyReference ref = make_reference(
         g, scene,
@@ -137,59 +194,9 @@ int run_worker(const WorkerOptions& o) {
                         {"time_ms", ref.time_ms},
                         {"rays", ref.rays},
                         {"convergence", error_json(ref.convergence)}};
-    out["reference_peak_rss_mb"] = self_peak_rss_mb();
-
-    const std::vector<Setting> list = settings(scene, o.quick);
-    json rows = json::array();
-    for (size_t n = 0; n < list.size(); ++n) {
-        const Setting& st = list[n];
-        SceneDesc s = scene;
-        set_scheme(s.sampling, st.sampling.scheme);
-        s.sampling.elevation_rays = st.sampling.elevation_rays;
-        s.sampling.azimuth_rays = st.sampling.azimuth_rays;
-        s.sampling.estimate = st.estimate;
-        status_line("  " + o.name + ": [" + std::to_string(n + 1) + "/" + std::to_string(list.size()) + "] " +
-                    st.label());
-        // The first image warms caches and the allocator; its image is the one compared with the reference.
-        const Timed first = render_once(g, s, resampler);
-        const int repeats = std::clamp(int(budget_ms / std::max(first.total(), 1e-3)), 1, max_repeats);
-        std::vector<double> total, tr, sh, im;
-        for (int r = 0; r < repeats; ++r) {
-            const Timed t = render_once(g, s, resampler);
-            total.push_back(t.total()), tr.push_back(t.trace_ms), sh.push_back(t.shade_ms),
-                im.push_back(t.image_ms);
-        }
-        const auto& e = first.estimate;
-        json floor = nullptr;
-        if (st.sampling.scheme == SamplingScheme::Adaptive) {
-            // The floor, timed as the setting is: warm / floor is what the sampler's bookkeeping costs.
-            const SceneDesc grid = floor_grid(scene, first.rays);
-            render_once(g, grid, resampler);
-            std::vector<double> ft;
-            for (int r = 0; r < repeats; ++r) ft.push_back(render_once(g, grid, resampler).total());
-            floor = {{"elevation_rays", grid.sampling.elevation_rays}, {"warm_ms", median(ft)}};
-        }
-        rows.push_back({{"label", st.label()},
-                        {"role", st.role},
-                        {"scheme", scheme_name(st.sampling.scheme)},
-                        {"elevation_rays", st.sampling.elevation_rays},
-                        {"azimuth_rays", st.sampling.azimuth_rays},
-                        {"sampling_estimate", find_param("sampling.estimate")->get(s)}, // the table's name
-                        {"rays", first.rays},
-                        {"repeats", repeats},
-                        {"warm_ms", median(total)},
-                        {"warm_min_ms", *std::min_element(total.begin(), total.end())},
-                        {"trace_ms", median(tr)},
-                        {"shade_ms", median(sh)},
-                        {"image_ms", median(im)},
-                        {"floor", floor},
-                        {"error", error_json(compare_images(first.polar, ref.image))},
-                        {"estimate", e.valid ? json{{"rel_l1", e.rel_l1},
-                                                    {"median_abs_db", e.median_abs_db},
-                                                    {"p95_abs_db", e.p95_abs_db},
-                                                    {"passes", e.passes}}
-                                             : json(nullptr)}});
-    }
+    out["settings_peak_rss_mb"] = settings_peak_mb;
+    for (size_t n = 0; n < images.size(); ++n)
+        rows[n]["error"] = error_json(compare_images(images[n], ref.image));
     status_line("");
     out["rows"] = rows;
     out["peak_rss_mb"] = self_peak_rss_mb();
