@@ -50,10 +50,9 @@ struct Sampler {
     int elevation_levels, azimuth_levels;
     mutable std::atomic<std::uint64_t> rays{0}; ///< rays traced or reserved in this image, all passes
     mutable std::atomic<bool> budget_hit{false};
-    /// The first base grid's cell edges [rad], top down (sampling.elevation_rays + 1 of them): even for a
-    /// flat pattern; denser where a smooth pattern is strong, in triples of equal cells (pattern_grid).
+    /// A smooth pattern's first base grid's cell edges [rad], top down (sampling.elevation_rays + 1 of them,
+    /// denser where the pattern is strong: pattern_grid); empty for the flat pattern's even grid.
     std::vector<double> first_edges;
-    bool first_edges_even = true;   ///< the flat pattern's even grid
     std::vector<Angle> base_angles; ///< the base grid's elevations (set_base_grid)
     std::vector<double> base_de;    ///< ... their cells' widths [rad]
     /// ... the narrowest a refined cell of each may get [rad]: its first-grid cell's width / 3^levels

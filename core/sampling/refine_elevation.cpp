@@ -51,15 +51,15 @@ Sampler::Sampler(const SceneGeometry& geo, const SceneDesc& scene, const TraceCo
       elevation_levels(c.preview ? 0 : kElevationLevels), azimuth_levels(c.preview ? 0 : kAzimuthLevels) {
     for (int i = 0; i < scene.sonar.beams; ++i)
         if (c.traces(i)) traced.push_back(i);
-    first_edges = pattern_grid(frame.elevation_weight, phi, scene.sampling.elevation_rays);
-    first_edges_even = frame.elevation_weight.flat();
+    if (!frame.elevation_weight.flat()) // the flat pattern's even grid needs no edges (set_base_grid)
+        first_edges = pattern_grid(frame.elevation_weight, phi, scene.sampling.elevation_rays);
 }
 
 void Sampler::set_base_grid(int M0) {
     for (auto& store : via_store) store.clear(); // the last pass's nodes are gone
     base_angles.resize(size_t(M0)), base_de.resize(size_t(M0)), base_de_min.resize(size_t(M0));
-    const int M = int(first_edges.size()) - 1;
-    if (first_edges_even) { // as pattern_grid's, without rounding them through the edges
+    const int M = s.sampling.elevation_rays;
+    if (first_edges.empty()) { // even: as pattern_grid's, without rounding them through the edges
         const double de0 = phi / M0, de_min = phi / M / std::pow(3.0, kElevationLevels) * 1.0001;
         for (int j = 0; j < M0; ++j) base_angles[size_t(j)] = Angle(phi / 2 - (j + 0.5) * de0);
         std::fill(base_de.begin(), base_de.end(), de0);
