@@ -61,6 +61,20 @@ def normalise(path, root):
 ENV = dict(os.environ, SONARSIM_EMBREE_CONFIG="isa=avx2")
 
 
+def cpu():
+    """The CPU maker and model: Embree's ray-triangle kernels use the processor's approximate reciprocal, whose
+    last bits differ between makers, so hit distances (and every image of a mesh) differ in their last bits."""
+    info = {}
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                k, _, v = line.partition(":")
+                info.setdefault(k.strip(), v.strip())
+    except OSError:
+        pass
+    return "%s %s" % (info.get("vendor_id", "?"), info.get("model name", "?"))
+
+
 def run(cmd):
     r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=ENV)
     if r.returncode != 0:
@@ -93,13 +107,18 @@ def main():
             sums[rel] = normalise(p, os.path.dirname(os.path.abspath(assets)))
     if update:
         with open(manifest, "w") as f:
+            f.write("# cpu: %s\n" % cpu())
             for k in sorted(sums):
                 f.write("%s  %s\n" % (sums[k], k))
         print("golden: wrote %d sums to %s" % (len(sums), manifest))
         return
     want = {}
+    taken_on = None
     with open(manifest) as f:
         for line in f:
+            if line.startswith("# cpu:"):
+                taken_on = line[len("# cpu:"):].strip()
+                continue
             h, k = line.split(None, 1)
             want[k.strip()] = h
     bad = []
@@ -113,6 +132,10 @@ def main():
     if bad:
         print("golden: %d of %d files differ from %s:" % (len(bad), len(want), manifest))
         print("\n".join("  " + b for b in bad))
+        if taken_on != cpu():
+            print("golden: the manifest was taken on '%s', this machine is '%s': mesh scenes differ in their "
+                  "last bits between CPU makers (Embree's approximate reciprocal); retake it with --update only "
+                  "when HEAD's unchanged outputs differ the same way" % (taken_on, cpu()))
         sys.exit(1)
     print("golden: all %d files byte-identical" % len(want))
 
