@@ -103,6 +103,10 @@ std::string devices_table_summary(const json& rows);
 int run_warm_bench(const std::vector<std::string>& scenes, int repeats,
                    const std::vector<std::string>& settings);
 
+/// `sonarsim_bench slider`: each physics slider of the viewer dragged over each scene file: the preview
+/// image's median wall time, the rays the previews traced, the full image once it rests (slider.cpp).
+int run_slider_bench(const std::vector<std::string>& scenes, int repeats);
+
 /// Peak resident set size of this process so far [MB] (getrusage ru_maxrss).
 double self_peak_rss_mb();
 

@@ -423,6 +423,13 @@ int main(int argc, char** argv) {
     warm->add_option("scenes", warm_scenes, "Scene files")->required();
     warm->add_option("--repeats", warm_repeats, "Repeats")->capture_default_str();
     warm->add_option("--set", warm_settings, "Override a parameter of every scene (repeatable)");
+    int slider_repeats = 21;
+    std::vector<std::string> slider_scenes;
+    CLI::App* slider = app.add_subcommand(
+        "slider",
+        "Drag each physics slider over scene files: preview time (median), rays traced, full image");
+    slider->add_option("scenes", slider_scenes, "Scene files")->required();
+    slider->add_option("--repeats", slider_repeats, "Repeats")->capture_default_str();
     CLI::App* report = app.add_subcommand("report", "Rewrite RESULTS.md and results.csv from a results.json");
     report->add_option("results_json", report_in)->required();
     report->add_option("--out", report_out, "Directory (default: the JSON's)");
@@ -447,6 +454,7 @@ int main(int argc, char** argv) {
         if (*sensor) return run_sensor_bench(sensor_repeats);
         if (*multipath) return run_multipath_bench(o.paths.repo, multipath_repeats, multipath_settings);
         if (*warm) return run_warm_bench(warm_scenes, warm_repeats, warm_settings);
+        if (*slider) return run_slider_bench(slider_scenes, slider_repeats);
         if (*devices)
             return run_devices_bench(o.paths, devices_repeats, devices_only, devices_settings, devices_json);
         if (*terrain) {

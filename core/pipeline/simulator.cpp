@@ -68,8 +68,11 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
     // shared.
     Frame next = frame_;
     next.grid_ptr = sonar_grid(scene_.sonar); // the same object while the sonar's geometry stays
-    const bool retrace = dirty_ <= Stage::Trace || !next.hits_ptr || (next.preview() && !control.preview);
-    const Stage from = retrace ? Stage::Trace : dirty_;
+    next.trace_ms = next.shade_ms = next.sensor_ms = next.image_ms = 0; // this frame's work only
+    // A full-quality image never keeps a preview's hits, nor hits placed for an earlier scene's shading.
+    const bool retrace = dirty_ <= Stage::Trace || !next.hits_ptr ||
+                         ((next.preview() || dirty_ == Stage::Place) && !control.preview);
+    const Stage from = retrace ? Stage::Trace : std::max(dirty_, Stage::Shade);
     // One accumulation pass: every channel this frame needs that is not shared with the frame before.
     const bool reshade = from <= Stage::Shade;
     Channels c;
@@ -85,16 +88,17 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
         traced.channels = c;
         TraceResult t = trace(*geometry_, scene_, traced); // TraceCancelled: nothing has changed yet
         next.trace_ms = t.trace_ms;
+        next.placement_stale = false;
+        rays_traced_ += t.rays_traced + t.multipath_rays;
         pass = std::move(t.shaded); // the tracer ran the pass on its cells with this very scene
         next.hits_ptr = std::make_shared<const TraceResult>(std::move(t));
     }
+    if (!retrace && dirty_ == Stage::Place) next.placement_stale = true; // a preview's re-shade
     if (!pass && c.any()) {
         const auto t0 = std::chrono::steady_clock::now();
         pass = std::make_shared<const Accumulation>(accumulate(*next.hits_ptr, scene_, c));
         next.shade_ms = ms_since(t0);
-    } else if (reshade) {
-        next.shade_ms = 0; // shaded in the trace (its time is in trace_ms)
-    }
+    } // else shaded in the trace (its time is in trace_ms), or shared
     if (pass) {
         if (c.image) next.ideal_ptr = pass->image;
         if (reshade) next.inputs_ptr = pass->inputs;

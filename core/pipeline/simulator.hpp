@@ -36,7 +36,9 @@ struct Frame {
     std::vector<double> path_order_db; ///< with multipath (sampling.bounces > 0): echo per path order [dB]
     DisplayParams display;             ///< the display range it is shown with (display.auto)
     double alpha_db_per_m = 0;
-    double trace_ms = 0, shade_ms = 0, sensor_ms = 0, image_ms = 0; ///< each stage's latest run
+    /// Each stage's time in making this frame; 0 where the frame shares the stage's result with an earlier
+    /// one.
+    double trace_ms = 0, shade_ms = 0, sensor_ms = 0, image_ms = 0;
 
     const TraceResult& hits() const { return *hits_ptr; }
     const SonarGrid& grid() const { return *grid_ptr; }
@@ -45,8 +47,12 @@ struct Frame {
     const PolarImage& ideal() const { return *ideal_ptr; }
     bool sensor_applied() const { return polar_ptr != ideal_ptr; }
     const Image8& sector() const { return *sector_ptr; }
-    /// A coarse preview (TraceControl::preview): never to be taken for the full-quality image.
-    bool preview() const { return hits_ptr && hits_ptr->preview; }
+    /// The hits were placed by the adaptive sampler for an earlier scene: a preview re-shaded them after a
+    /// `steers_sampler` value changed (Stage::Place). Its images are this scene's; its error estimate is not.
+    bool placement_stale = false;
+    /// A coarse preview (TraceControl::preview: the base grid, or hits placed for an earlier scene): never
+    /// to be taken for the full-quality image.
+    bool preview() const { return (hits_ptr && hits_ptr->preview) || placement_stale; }
 };
 
 /// What a frame carries beyond the images, each made in the shading pass only when asked for.
@@ -67,13 +73,17 @@ class Simulator {
     /// Recomputes what is stale and returns the frame, which shares the unchanged stages with earlier ones.
     /// `control.cancel` stops the trace within milliseconds: render() then throws TraceCancelled and the
     /// simulator is as before the call (its stale stages stay stale). `control.preview` (adaptive scheme)
-    /// traces the base grid only; the next render() without it re-traces, even if the scene is unchanged.
+    /// traces the base grid only, or, when only `steers_sampler` values changed (Stage::Place), re-shades the
+    /// hits it has and traces nothing; the next render() without it re-traces, even if the scene is
+    /// unchanged, so that a full-quality image is always the one a fresh Simulator makes.
     std::shared_ptr<const Frame> render(const TraceControl& control = {});
     /// The extras the next frames carry; asking for one the last frame lacks re-runs the shading pass for it
     /// alone on the next render() (the image stages are shared).
     void request(const FrameExtras& extras);
     /// Stage that the next render() starts at.
     Stage pending() const { return dirty_; }
+    /// Rays (multipath continuations included) traced by this simulator's renders so far.
+    std::uint64_t rays_traced() const { return rays_traced_; }
     /// Height of the fan (Frame::sector) the display stage forms [px]; 0 (the default): the grid's
     /// default_fan_height_px, one row per range bin. A viewer shows the fan a few hundred pixels high and
     /// asks for that: a 512 x 2048 fan is 3721 x 2048 px, its map 160 ms to build. A change re-forms the fan
@@ -87,6 +97,7 @@ class Simulator {
     std::shared_ptr<const SectorResampler> resampler_; ///< rebuilt only when the image geometry changes
     Stage dirty_ = Stage::Trace;
     FrameExtras extras_;
+    std::uint64_t rays_traced_ = 0;
     int fan_height_px_ = 0;
 };
 

@@ -17,7 +17,10 @@ using json = nlohmann::json;
 enum class ParamType { Number, Integer, Vec3, Enum, Bool, String };
 
 /// What must be recomputed when a parameter changes (each stage implies the ones after it).
-enum class Stage { Geometry = 0, Trace = 1, Shade = 2, Sensor = 3, Display = 4, None = 5 };
+/// Place: the stored hits stay valid, but the adaptive sampler placed its rays by a value that changed (a
+/// `steers_sampler` row): a preview re-shades the hits it has, any other render re-traces
+/// (Simulator::render), so that a full-quality image is the one a fresh render makes.
+enum class Stage { Geometry = 0, Trace = 1, Place = 2, Shade = 3, Sensor = 4, Display = 5, None = 6 };
 
 /// Where the viewer's controls panel shows a row (None: not in the viewer).
 enum class Section { None, Pose, Sonar, Water, Material, Object, Display, Sensor, Sampling, Motion };
@@ -74,7 +77,8 @@ struct ValueSpec {
     Stage stage = Stage::Trace;
     bool optional = false; ///< null (or absent from a scene file) is allowed: the value is absent
     /// The adaptive sampler places its rays by this value (it shapes how the echo varies over a surface or
-    /// between materials): under the adaptive scheme a change re-traces, otherwise it costs `stage`.
+    /// between materials): under the adaptive scheme a change costs Stage::Place (a preview re-shades, a
+    /// full image re-traces), otherwise `stage`.
     bool steers_sampler = false;
     /// A device preset (assets/devices/*.json) may set it; loading a preset that sets another key fails.
     bool preset_may_set = false;

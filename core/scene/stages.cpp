@@ -1,5 +1,5 @@
-// What an edit invalidates, from the table alone: each row's stage (earlier under adaptive placement for
-// the rows that steer the sampler, a mirror appearing or disappearing re-traces), and the earliest stage at
+// What an edit invalidates, from the table alone: each row's stage (Place under adaptive placement for the
+// rows that steer the sampler, a mirror appearing or disappearing re-traces), and the earliest stage at
 // which two scenes differ.
 #include "core/scene/params.hpp"
 
@@ -10,7 +10,7 @@ namespace sonarsim {
 
 Stage ValueSpec::effective_stage(const SceneDesc& scene) const {
     return steers_sampler && scene.sampling.placement == RayPlacement::Adaptive
-               ? std::min(stage, Stage::Trace)
+               ? std::min(stage, Stage::Place)
                : stage;
 }
 

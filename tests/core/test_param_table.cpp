@@ -164,7 +164,7 @@ TEST_CASE("an edit of any row recomputes exactly its effective stage and re-uses
             inc.set_scene(t);
             CHECK(inc.pending() == std::max(expected, Stage::Trace));
             const auto after = inc.render();
-            CHECK((after->hits_ptr == before->hits_ptr) == (expected > Stage::Trace));
+            CHECK((after->hits_ptr == before->hits_ptr) == (expected > Stage::Place)); // Place: re-traced
             CHECK((after->ideal_ptr == before->ideal_ptr) == (expected > Stage::Shade));
             if (after->sensor_applied()) // else the polar image is the ideal one
                 CHECK((after->polar_ptr == before->polar_ptr) == (expected > Stage::Sensor));

@@ -1,4 +1,5 @@
 // The staged pipeline: a change re-runs only the stages it affects, and the result equals a fresh render.
+#include "core/analysis/reference.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/scene/sampling_scheme.hpp"
 #include "core/pipeline/simulator.hpp"
@@ -25,10 +26,10 @@ TEST_CASE("incremental re-render equals a fresh render and starts at the right s
         {"colour map", [](SceneDesc& s) { s.display.colormap = Colormap::Viridis; }, Stage::Display},
         {"source level", [](SceneDesc& s) { s.sonar.source_level_db = 220; }, Stage::Shade},
         {"temperature", [](SceneDesc& s) { s.water.temperature_c = 20; },
-         Stage::Trace}, // adaptive: see below
-        {"floor material", [](SceneDesc& s) { s.seafloor->material.nu_db = -30; }, Stage::Trace}, // adaptive
-        {"object material", [](SceneDesc& s) { s.objects[0].material.nu_db = -40; }, Stage::Trace},
-        {"object specular lobe", [](SceneDesc& s) { s.objects[0].material.mu = 0.5; }, Stage::Trace},
+         Stage::Place}, // adaptive: see below
+        {"floor material", [](SceneDesc& s) { s.seafloor->material.nu_db = -30; }, Stage::Place}, // adaptive
+        {"object material", [](SceneDesc& s) { s.objects[0].material.nu_db = -40; }, Stage::Place},
+        {"object specular lobe", [](SceneDesc& s) { s.objects[0].material.mu = 0.5; }, Stage::Place},
         {"pose", [](SceneDesc& s) { s.sonar.pose.orientation_deg[2] = -35; }, Stage::Trace},
         {"range window", [](SceneDesc& s) { s.sonar.range_max_m = 3; }, Stage::Trace},
         {"floor height", [](SceneDesc& s) { s.seafloor->height_m = -0.1; }, Stage::Trace},
@@ -81,12 +82,13 @@ TEST_CASE("uniform and spread schemes re-shade on absorption and material change
     }
 }
 
-TEST_CASE("a material edit re-traces under the adaptive scheme and re-shades otherwise", "[simulator]") {
+TEST_CASE("a material edit re-traces a full image under the adaptive scheme and re-shades otherwise",
+          "[simulator]") {
     // The adaptive sampler places its rays by the materials' levels: the re-render equals a fresh render
     // only if it re-traces. apply_setting, changed_stage and the Simulator give the same answer.
     for (SamplingScheme scheme :
          {SamplingScheme::Adaptive, SamplingScheme::Uniform, SamplingScheme::Spread}) {
-        const Stage expected = scheme == SamplingScheme::Adaptive ? Stage::Trace : Stage::Shade;
+        const Stage expected = scheme == SamplingScheme::Adaptive ? Stage::Place : Stage::Shade;
         SceneDesc before = default_scene();
         set_scheme(before.sampling, scheme);
         SceneDesc after = before;
@@ -189,6 +191,57 @@ TEST_CASE("a preview is never taken for the full image", "[simulator]") {
     CHECK(full->polar().level_db == fresh.render()->polar().level_db);
     const auto full_again = sim.render(preview); // the full image is better than a preview: keep it
     CHECK(full_again->hits_ptr == full->hits_ptr);
+}
+
+TEST_CASE("a preview after a shading-only change re-shades the hits it has and traces no ray",
+          "[simulator]") {
+    // The viewer's sliders: frequency, temperature, depth and every material value steer the adaptive
+    // sampler (Stage::Place), the source level does not (Stage::Shade). Either way a preview traces nothing;
+    // the full image that follows re-traces only where the placement was steered, and equals a fresh render.
+    struct Change {
+        std::string what;
+        std::function<void(SceneDesc&)> apply;
+        Stage stage;
+    };
+    const Change changes[] = {
+        {"floor nu", [](SceneDesc& s) { s.seafloor->material.nu_db = -20; }, Stage::Place},
+        {"object q", [](SceneDesc& s) { s.objects[0].material.q = 4; }, Stage::Place},
+        {"temperature", [](SceneDesc& s) { s.water.temperature_c = 25; }, Stage::Place},
+        {"depth", [](SceneDesc& s) { s.water.depth_m = 500; }, Stage::Place},
+        {"frequency", [](SceneDesc& s) { s.sonar.frequency_khz = 1500; }, Stage::Place},
+        {"source level", [](SceneDesc& s) { s.sonar.source_level_db = 215; }, Stage::Shade},
+    };
+    TraceControl preview;
+    preview.preview = true;
+    for (const Change& c : changes) {
+        INFO(c.what);
+        const SceneDesc before = default_scene();
+        REQUIRE(scheme_of(before.sampling) == SamplingScheme::Adaptive);
+        SceneDesc after = before;
+        c.apply(after);
+        REQUIRE(changed_stage(before, after) == c.stage);
+        Simulator sim(before);
+        const auto full = sim.render();
+        const std::uint64_t rays = sim.rays_traced();
+        CHECK(rays == full->hits().rays_traced + full->hits().multipath_rays);
+        sim.set_scene(after);
+        const auto shaded = sim.render(preview);
+        CHECK(sim.rays_traced() == rays); // counted: no ray traced
+        CHECK(shaded->hits_ptr == full->hits_ptr);
+        CHECK(shaded->ideal().level_db != full->ideal().level_db);
+        CHECK(shaded->preview() == (c.stage == Stage::Place)); // its placement is an earlier scene's
+        // The kept rays shade the new scene within the sampler's tolerances of what its own rays give.
+        Simulator fresh(after);
+        const auto ref = fresh.render();
+        const ImageError e = compare_images(shaded->ideal(), ref->ideal());
+        CHECK(e.rel_l1 <= after.sampling.tolerance_rel_l1);
+        CHECK(e.median_abs_db <= after.sampling.tolerance_db);
+        const auto settled = sim.render(); // the full image: re-traced only if the placement was steered
+        CHECK((sim.rays_traced() > rays) == (c.stage == Stage::Place));
+        CHECK_FALSE(settled->preview());
+        CHECK(settled->polar().level_db == ref->polar().level_db);
+        CHECK(settled->sector().pixels == ref->sector().pixels);
+    }
 }
 
 TEST_CASE("a frame's fan goes back to the scratch pool, and a kept buffer is written over in full",

@@ -113,10 +113,12 @@ TEST_CASE("a mesh the worker cannot load is reported and the old geometry stays"
     id = worker.request(s);
     REQUIRE(worker.wait_for(id, 60s));
     CHECK(worker.take()->stage == Stage::Trace);
-    s.water.temperature_c = 16; // adaptive rays follow how the level varies: absorption retraces
+    s.water.temperature_c = 16; // adaptive rays follow how the level varies: a full image re-traces
     id = worker.request(s);
     REQUIRE(worker.wait_for(id, 60s));
-    CHECK(worker.take()->stage == Stage::Trace);
+    r = worker.take();
+    CHECK(r->stage == Stage::Place);
+    CHECK_FALSE(r->frame->preview());
 }
 
 TEST_CASE("every slider visibly changes the image", "[ui][params]") {

@@ -39,7 +39,8 @@ class RenderWorker {
     RenderWorker& operator=(const RenderWorker&) = delete;
 
     /// Queues a scene; replaces a queued one that has not started and cancels a running full render.
-    /// `preview`: the adaptive sampler's base grid only (TraceControl::preview). Returns the request id
+    /// `preview`: TraceControl::preview (the adaptive sampler's base grid only, or the kept hits re-shaded
+    /// when only values that steer the sampler changed). Returns the request id
     /// (increasing).
     /// `changed`: changed_stage from the scene of the previous request to this one, when the caller knows it
     /// (computed once per edit); otherwise the worker compares the scenes itself.
