@@ -8,6 +8,10 @@ the repository's absolute path (mesh paths in the metadata) is replaced by a pla
 
   golden.py SONARSIM ASSETS OUTDIR MANIFEST            compare (exit 1 listing every file that differs)
   golden.py SONARSIM ASSETS OUTDIR MANIFEST --update   rewrite the manifest (only when an image is meant to change)
+
+MANIFEST names the pair kept beside it, one per CPU maker (MANIFEST.GenuineIntel.sha256,
+MANIFEST.AuthenticAMD.sha256): images of meshes differ in their last bits between makers (cpu()). An update
+rewrites this machine's; the other is then stale until a machine of that maker retakes it.
 """
 import hashlib
 import json
@@ -75,6 +79,13 @@ def cpu():
     return "%s %s" % (info.get("vendor_id", "?"), info.get("model name", "?"))
 
 
+def vendor_manifest(path):
+    """MANIFEST.VENDOR.sha256 beside the MANIFEST.sha256 named: one manifest per CPU maker (see cpu())."""
+    root, ext = os.path.splitext(path)
+    vendor = cpu().split()[0]
+    return "%s.%s%s" % (root, vendor, ext)
+
+
 def run(cmd):
     r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=ENV)
     if r.returncode != 0:
@@ -85,7 +96,11 @@ def main():
     if len(sys.argv) < 5:
         sys.exit(__doc__)
     exe, assets, out, manifest = sys.argv[1:5]
+    manifest = vendor_manifest(manifest)
     update = "--update" in sys.argv[5:]
+    if not update and not os.path.exists(manifest):
+        sys.exit("golden: no manifest for this CPU maker (%s): take one with --update from an unchanged HEAD"
+                 % manifest)
     shutil.rmtree(out, ignore_errors=True)
     os.makedirs(out)
     for i, (name, scene, extra) in enumerate(CASES):
