@@ -62,7 +62,9 @@ int run_batch_command(const BatchCliOptions& o) {
     options.ground_truth = o.ground_truth;
     StatusLine status;
     options.progress = [&](const BatchProgress& p) { status.show(progress_text(p)); };
-    if (!o.aris.empty()) check_aris(scene, o.scene.scene_file.empty() ? "--aris" : o.scene.scene_file);
+    if (!o.aris.empty()) // before rendering: the scene as an ARIS mode, and its frames no faster than it
+        check_aris_frame_times(scene, trajectory, o.scene.scene_file.empty() ? "--aris" : o.scene.scene_file,
+                               o.trajectory.empty() ? "--rate" : o.trajectory);
     prepare_dataset(o.out, scene, trajectory);
     options.stop = &g_stop;
     std::signal(SIGINT, on_stop_signal);

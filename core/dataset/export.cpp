@@ -16,7 +16,9 @@ ExportReport export_dataset(const std::string& dir, const std::string& path, Exp
     load_dataset(dir, scene, poses);
     scene.exports = exports;
     if (!(scene.exports.start_time_s > 0)) scene.exports.start_time_s = dataset_start_time_s(dir);
-    if (format == ExportFormat::Aris) check_aris(scene, origin);
+    if (format == ExportFormat::Aris)
+        check_aris_frame_times(scene, poses, origin,
+                               (std::filesystem::path(dir) / "trajectory.csv").string());
     const FrameImageSource images = dataset_images(dir, poses.size(), origin);
     const bool bytes = format != ExportFormat::McapFloat32;
     const ByteMapping mapping = bytes ? choose_byte_mapping(exports, poses.size(), images) : ByteMapping{};

@@ -18,16 +18,20 @@ constexpr size_t kHeaderBytes = 1024;
 
 /// The ARIS modes (Sound Metrics' SystemConfiguration: FrequencyLow/High per system; ping modes and
 /// beams of the file SDK's FrameFuncs.c). TheSystemType: 0 = ARIS 1800, 1 = ARIS 3000, 2 = ARIS 1200.
+/// A frame is `pings` pings of 16 beams each, one CyclePeriod apart (the integration SDK's Reorder.cpp).
 struct ArisMode {
     const char *name, *preset;
     int beams;
     double frequency_khz;
     std::uint32_t ping_mode, system_type, high_frequency;
+    int pings;
 };
-constexpr ArisMode kModes[] = {
-    {"ARIS 3000 HF", "aris3000-hf", 128, 3000, 9, 1, 1}, {"ARIS 3000 LF", "aris3000-lf", 64, 1800, 6, 1, 0},
-    {"ARIS 1800 HF", "aris1800-hf", 96, 1800, 3, 0, 1},  {"ARIS 1800 LF", "aris1800-lf", 48, 1100, 1, 0, 0},
-    {"ARIS 1200 HF", "aris1200", 48, 1200, 1, 2, 1},     {"ARIS 1200 LF", "aris1200", 48, 700, 1, 2, 0}};
+constexpr ArisMode kModes[] = {{"ARIS 3000 HF", "aris3000-hf", 128, 3000, 9, 1, 1, 8},
+                               {"ARIS 3000 LF", "aris3000-lf", 64, 1800, 6, 1, 0, 4},
+                               {"ARIS 1800 HF", "aris1800-hf", 96, 1800, 3, 0, 1, 6},
+                               {"ARIS 1800 LF", "aris1800-lf", 48, 1100, 1, 0, 0, 3},
+                               {"ARIS 1200 HF", "aris1200", 48, 1200, 1, 2, 1, 3},
+                               {"ARIS 1200 LF", "aris1200", 48, 700, 1, 2, 0, 3}};
 constexpr double kFrequencyTolerance = 0.25; ///< relative distance from the mode's frequency allowed
 
 /// The longest CyclePeriod of each system [us] (Sound Metrics' SystemConfiguration: ARIS 1800 1802-80000,
@@ -140,6 +144,24 @@ le::Bytes frame_header(const SceneDesc& s, const ArisMode& mode, const ArisTimin
 
 void check_aris(const SceneDesc& s, const std::string& origin) {
     aris_timing(s, max_cycle_us(aris_mode(s.sonar, origin)), origin);
+}
+
+void check_aris_frame_times(const SceneDesc& s, const Trajectory& frames, const std::string& origin,
+                            const std::string& times_origin) {
+    const ArisMode& mode = aris_mode(s.sonar, origin);
+    const ArisTiming tm = aris_timing(s, max_cycle_us(mode), origin);
+    const double frame_s = mode.pings * tm.cycle_period_us * 1e-6;
+    for (size_t k = 1; k < frames.size(); ++k) {
+        const double dt = frames[k].t_s - frames[k - 1].t_s;
+        if (dt >= frame_s * (1 - 1e-9)) continue;
+        std::ostringstream m;
+        m << "frame " << k << " comes " << dt * 1e3 << " ms after the one before, sooner than the "
+          << mode.name << " mode images a frame (" << mode.pings << " pings of CyclePeriod "
+          << tm.cycle_period_us << " us = " << frame_s * 1e3
+          << " ms), which ARIS tools reject; the fastest it allows is " << std::floor(100 / frame_s) / 100
+          << " frames/s";
+        throw InputError(times_origin, "", m.str());
+    }
 }
 
 ExportReport write_aris(const std::string& path, const SceneDesc& s, const Trajectory& trajectory,

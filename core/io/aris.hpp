@@ -19,6 +19,13 @@ namespace sonarsim {
 /// grid whose header fields lie in the documented ranges (aris_grid.hpp).
 void check_aris(const SceneDesc& scene, const std::string& origin);
 
+/// Throws an InputError naming `times_origin` (where the frame times came from: "--rate", a trajectory file)
+/// when a frame of `frames` follows the one before sooner than the scene's ARIS mode images one (its pings
+/// per frame, 3, 4, 6 or 8 of 16 beams, times the CyclePeriod of its range grid): a recording faster than
+/// the device. Throws what check_aris throws (naming `origin`) first.
+void check_aris_frame_times(const SceneDesc& scene, const Trajectory& frames, const std::string& origin,
+                            const std::string& times_origin);
+
 /// Writes every frame of `trajectory` as one .aris file (atomically: a temporary, then a rename) on the
 /// device's grid (aris_timing; the image resampled onto it by aris_resample), each sample the byte of its
 /// image level (the frame's .npy: the sensor's output, TVG and gain included; with

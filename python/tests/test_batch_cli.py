@@ -36,6 +36,21 @@ def test_aris_needs_an_aris_beam_count(sonarsim_exe, scratch):
     assert not (scratch / "o").exists()
 
 
+def test_aris_is_never_faster_than_its_mode(sonarsim_exe, scratch):
+    # 48 beams at 1200 kHz out to 25 m: ARIS 1200 HF, 3 pings of CyclePeriod 33926 us, 101.8 ms a frame.
+    scene = write_small_scene(scratch, sonar={"beams": 48, "frequency_khz": 1200, "range_min_m": 1.0,
+                                              "range_max_m": 25.0, "range_bins": 1000})
+    args = [sonarsim_exe, "batch", "--scene", str(scene), "--line", "0.3,2.4,0.9,0.4,2.4,0.9,2",
+            "--out", str(scratch / "o"), "--aris", str(scratch / "x.aris")]
+    r = subprocess.run(args + ["--rate", "10"], capture_output=True, text=True)
+    assert r.returncode == 2
+    assert len(r.stderr.splitlines()) == 1
+    assert r.stderr.startswith("sonarsim: error: --rate: frame 1 comes 100 ms after the one before")
+    fastest = float(r.stderr.split("the fastest it allows is ")[1].split()[0])
+    assert 9.5 < fastest < 10  # 1 / (3 CyclePeriods), CyclePeriod = 1 m start delay + 24 m window + 360 us
+    assert not (scratch / "o").exists() and not (scratch / "x.aris").exists()
+
+
 def test_aris_needs_a_frequency_of_the_beams_mode(sonarsim_exe, scratch):
     scene = write_scene(scratch, beams=64)  # ARIS 3000 LF: 1800 kHz, not the scene's 1200
     r = subprocess.run([sonarsim_exe, "batch", "--scene", str(scene), "--line", "0.3,2.4,0.9,0.4,2.4,0.9,2",

@@ -260,3 +260,37 @@ TEST_CASE("an ARIS file holds each beam of a table at the device's number of it"
     CHECK(ours == lit[size_t(table.device_beam[size_t(k)])]);
     CHECK(others == 0);
 }
+
+TEST_CASE("an ARIS recording is never faster than its mode images a frame", "[aris]") {
+    // The frame times ARIS tools accept (issue 46, checked with the vendor's validation): CyclePeriod x
+    // pings per frame of each preset's own window.
+    const struct {
+        const char* preset;
+        double frame_ms;
+    } modes[] = {{"aris3000-lf", 108.9}, {"aris1800-hf", 123.0}, {"aris1800-lf", 202.5}, {"aris1200", 101.8}};
+    for (const auto& m : modes) {
+        INFO(m.preset);
+        const SceneDesc s = with(small_scene(), {("sonar.device=" + std::string(m.preset)).c_str()});
+        auto at_rate = [&](double hz) {
+            return line_trajectory("0.3,2.4,0.9,0.4,2.3,0.9,3", {-1, 30, -39}, hz, "test");
+        };
+        CHECK_NOTHROW(check_aris_frame_times(s, at_rate(1000 / (m.frame_ms + 0.15)), "scene.json", "--rate"));
+        try {
+            check_aris_frame_times(s, at_rate(1000 / (m.frame_ms - 0.15)), "scene.json", "--rate");
+            FAIL("a rate faster than the device was accepted");
+        } catch (const InputError& e) {
+            const std::string what = e.what(), tag = "the fastest it allows is ";
+            CHECK(what.rfind("--rate: frame 1 comes ", 0) == 0);
+            REQUIRE(what.find(tag) != std::string::npos);
+            const double fastest_hz = std::stod(what.substr(what.find(tag) + tag.size()));
+            CHECK(fastest_hz <= 1000 / m.frame_ms + 1e-9); // rounded down: a rate it names is allowed
+            CHECK(fastest_hz > 1000 / m.frame_ms - 0.015);
+        }
+    }
+    // A trajectory file's own times are judged the same way, naming the file.
+    Trajectory t = line_trajectory("0.3,2.4,0.9,0.4,2.3,0.9,3", {-1, 30, -39}, 5, "test");
+    t[2].t_s = t[1].t_s + 0.05;
+    CHECK_THROWS_WITH(
+        check_aris_frame_times(with(small_scene(), {"sonar.device=aris1200"}), t, "s", "traj.csv"),
+        Catch::StartsWith("traj.csv: frame 2 comes 50 ms after the one before"));
+}
