@@ -99,6 +99,7 @@ int run_batch_command(const BatchCliOptions& o) {
         std::cout << line << "\n";
         if (const std::string w = format == ExportFormat::McapFloat32 ? "" : x.warning(path); !w.empty())
             std::cerr << "sonarsim: " << w << "\n";
+        for (const std::string& note : x.notes) std::cout << path << ": " << note << "\n";
     };
     const std::string frames = std::to_string(trajectory.size());
     if (!o.aris.empty()) pack(o.aris, ExportFormat::Aris, "ARIS recording, " + frames + " frames");

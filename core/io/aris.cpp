@@ -34,11 +34,14 @@ constexpr ArisMode kModes[] = {{"ARIS 3000 HF", "aris3000-hf", 128, 3000, 9, 1, 
                                {"ARIS 1200 LF", "aris1200", 48, 700, 1, 2, 0, 3}};
 constexpr double kFrequencyTolerance = 0.25; ///< relative distance from the mode's frequency allowed
 
-/// The longest CyclePeriod of each system [us] (Sound Metrics' SystemConfiguration: ARIS 1800 1802-80000,
-/// ARIS 3000 1802-40000, ARIS 1200 1802-150000): a 50 m window needs more than the 65535 the frame
-/// header's comment gives.
-std::uint32_t max_cycle_us(const ArisMode& m) {
-    return m.system_type == 1 ? 40000 : m.system_type == 0 ? 80000 : 150000;
+/// Each system's maxima (Sound Metrics' integration SDK, SonarConfig.fs systemTypeRangeMap): SamplePeriod,
+/// SampleStartDelay, PulseWidth, CyclePeriod [us], window start and end [m]. A 50 m window needs a longer
+/// CyclePeriod than the 65535 the frame header's comment gives.
+const ArisLimits& limits_of(const ArisMode& m) {
+    static const ArisLimits k1800{"ARIS 1800", 32, 36000, 40, 80000, 25.0, 50.0};
+    static const ArisLimits k3000{"ARIS 3000", 26, 18000, 24, 40000, 12.0, 20.0};
+    static const ArisLimits k1200{"ARIS 1200", 40, 60000, 80, 150000, 40.0, 100.0};
+    return m.system_type == 1 ? k3000 : m.system_type == 0 ? k1800 : k1200;
 }
 
 /// The system an ARIS preset fixes (TheSystemType), or -1 for any other device.
@@ -143,13 +146,13 @@ le::Bytes frame_header(const SceneDesc& s, const ArisMode& mode, const ArisTimin
 } // namespace
 
 void check_aris(const SceneDesc& s, const std::string& origin) {
-    aris_timing(s, max_cycle_us(aris_mode(s.sonar, origin)), origin);
+    aris_timing(s, limits_of(aris_mode(s.sonar, origin)), origin);
 }
 
 void check_aris_frame_times(const SceneDesc& s, const Trajectory& frames, const std::string& origin,
                             const std::string& times_origin) {
     const ArisMode& mode = aris_mode(s.sonar, origin);
-    const ArisTiming tm = aris_timing(s, max_cycle_us(mode), origin);
+    const ArisTiming tm = aris_timing(s, limits_of(mode), origin);
     const double frame_s = mode.pings * tm.cycle_period_us * 1e-6;
     for (size_t k = 1; k < frames.size(); ++k) {
         const double dt = frames[k].t_s - frames[k - 1].t_s;
@@ -168,7 +171,7 @@ ExportReport write_aris(const std::string& path, const SceneDesc& s, const Traje
                         const FrameImageSource& image, const ByteMapping& mapping,
                         const std::string& origin) {
     const ArisMode& mode = aris_mode(s.sonar, origin);
-    const ArisTiming tm = aris_timing(s, max_cycle_us(mode), origin);
+    const ArisTiming tm = aris_timing(s, limits_of(mode), origin);
     const int beams = s.sonar.beams, samples = int(tm.samples);
     AtomicFile out(path);
     out.write(file_header(mode, tm, trajectory.size(), s.exports.start_time_s));
@@ -179,6 +182,7 @@ ExportReport write_aris(const std::string& path, const SceneDesc& s, const Traje
         device_beam[size_t(b)] = table ? table->device_beam[size_t(b)] : beams - 1 - b;
     ExportReport report;
     report.mapping = mapping;
+    if (!tm.adjusted.empty()) report.notes.push_back(tm.adjusted);
     for (size_t k = 0; k < trajectory.size(); ++k) {
         const PolarImage frame = image(k);
         if (frame.beams != beams || frame.bins != s.sonar.range_bins)

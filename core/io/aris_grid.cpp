@@ -24,58 +24,80 @@ std::string us(double v) {
 
 } // namespace
 
-ArisTiming aris_timing(const SceneDesc& s, std::uint32_t max_cycle_us, const std::string& origin) {
+ArisTiming aris_timing(const SceneDesc& s, const ArisLimits& lim, const std::string& origin) {
     const SonarParams& sonar = s.sonar;
     ArisTiming t;
     t.sound_speed_m_s = float(sound_speed_m_s(s.water.temperature_c, s.water.depth_m));
     const double c = double(t.sound_speed_m_s), window = sonar.range_max_m - sonar.range_min_m;
     const double bin = window / sonar.range_bins, to_us = 2e6 / c; // metres of range to us of travel
+    const std::string sys = lim.system;
 
-    const double sp = std::round(bin * to_us);
-    if (sp < 4 || sp > 100)
+    const double sp = std::round(bin * to_us), sp_max = lim.sample_period_max_us;
+    if (sp < 4 || sp > sp_max)
         throw InputError(origin, "sonar.range_bins",
-                         "ARIS samples every 4-100 us (SamplePeriod); bins of " + num(bin * 1e3) +
-                             " mm are " + us(bin * to_us) + " at " + num(c, 5) +
+                         "an " + sys + " samples every 4-" + num(sp_max) + " us (SamplePeriod); bins of " +
+                             num(bin * 1e3) + " mm are " + us(bin * to_us) + " at " + num(c, 5) +
                              " m/s: this range window allows " +
-                             std::to_string(long(std::floor(window * to_us / 100.5)) + 1) + " to " +
+                             std::to_string(long(std::floor(window * to_us / (sp_max + 0.5))) + 1) + " to " +
                              std::to_string(long(std::floor(window * to_us / 3.5))) + " range bins");
     t.sample_period_us = std::uint32_t(sp);
 
     const double first = sonar.range_min_m + bin / 2; // the first bin's centre
     const double ssd = std::round(first * to_us);
-    if (ssd < 930 || ssd > 65535)
-        throw InputError(
-            origin, "sonar.range_min_m",
-            "ARIS starts sampling 930-65535 us after the ping (SampleStartDelay); the first bin's "
-            "centre at " +
-                num(first) + " m is " + us(first * to_us) + " at " + num(c, 5) +
-                " m/s: the smallest range_min_m allowed is " +
-                num(std::ceil((929.5 / to_us - bin / 2) * 1e3) / 1e3) + " m");
+    const double ssd_max =
+        std::min(double(lim.sample_start_delay_max_us), std::floor(lim.window_start_max_m * to_us));
+    if (ssd < 930 || ssd > ssd_max)
+        throw InputError(origin, "sonar.range_min_m",
+                         "an " + sys + " starts sampling 930-" + num(ssd_max, 6) +
+                             " us after the ping (SampleStartDelay, a window start of at most " +
+                             num(lim.window_start_max_m) + " m); the first bin's centre at " + num(first) +
+                             " m is " + us(first * to_us) + " at " + num(c, 5) + " m/s: range_min_m from " +
+                             num(std::ceil((929.5 / to_us - bin / 2) * 1e3) / 1e3) + " to " +
+                             num(std::floor((ssd_max / to_us - bin / 2) * 1e3) / 1e3) + " m");
     t.sample_start_delay_us = std::uint32_t(ssd);
 
     t.window_start_m = ssd / to_us;
     t.sample_m = sp / to_us;
     t.samples = std::uint32_t(std::max(1.0, std::round(window / t.sample_m)));
+    if (t.window_start_m + t.samples * t.sample_m > lim.window_end_max_m + 1e-9) {
+        // The last sample ends past the system's window: one fewer when that is enough (the nearest legal
+        // window), else the window is too long for the system.
+        if (t.window_start_m + (t.samples - 1.0) * t.sample_m > lim.window_end_max_m + 1e-9)
+            throw InputError(origin, "sonar.range_max_m",
+                             "an " + sys + "'s window ends at most " + num(lim.window_end_max_m) +
+                                 " m from the sonar; this one ends at " +
+                                 num(t.window_start_m + t.samples * t.sample_m) + " m");
+        --t.samples;
+        t.adjusted = "the window ends at " + num(t.window_start_m + t.samples * t.sample_m, 6) +
+                     " m, one sample (" + num(t.sample_m * 1e3) + " mm) short of range_max_m, within the " +
+                     sys + "'s " + num(lim.window_end_max_m) + " m";
+    }
+    if (t.samples < 128 || t.samples > kArisMaxSamples)
+        throw InputError(origin, "sonar.range_bins",
+                         "an ARIS frame holds 128-" + std::to_string(kArisMaxSamples) +
+                             " samples per beam; this window at SamplePeriod " + us(sp) + " needs " +
+                             std::to_string(t.samples));
     t.window_length_m = t.samples * t.sample_m;
 
-    const double res = s.sensor.range_resolution_m;
+    const double res = s.sensor.range_resolution_m, pw_max = lim.pulse_width_max_us;
     const double pw = res > 0 ? std::round(res * to_us) : sp;
-    if (pw < 4 || pw > 100)
+    if (pw < 4 || pw > pw_max)
         throw InputError(origin, "sensor.range_resolution_m",
-                         "an ARIS pulse is 4-100 us long (PulseWidth); 2 range_resolution_m / c is " +
-                             us(res * to_us) + ": allowed " + num(3.5 / to_us) + " to " + num(100.4 / to_us) +
-                             " m (or 0: one sample period)");
+                         "an " + sys + " pulse is 4-" + num(pw_max) +
+                             " us long (PulseWidth); 2 range_resolution_m / c is " +
+                             us(res > 0 ? res * to_us : sp) + ": allowed " + num(3.5 / to_us) + " to " +
+                             num((pw_max + 0.4) / to_us) + " m (or 0: one sample period)");
     t.pulse_width_us = std::uint32_t(pw);
 
     // The vendor SDK's sample recording: CyclePeriod 32953 = SSD 4593 + SP 14 x 2000 samples + 360 us.
-    const double cycle = ssd + sp * t.samples + 360;
-    if (cycle < 1802 || cycle > max_cycle_us)
+    const double cycle = ssd + sp * t.samples + 360, cycle_max = lim.cycle_period_max_us;
+    if (cycle < 1802 || cycle > cycle_max)
         throw InputError(origin, "sonar.range_max_m",
-                         "an ARIS ping cycle is 1802-" + std::to_string(max_cycle_us) +
-                             " us for this system (CyclePeriod = SampleStartDelay + SamplePeriod x samples "
-                             "+ 360 us); this window's is " +
+                         "an " + sys + "'s ping cycle is 1802-" + num(cycle_max, 6) +
+                             " us (CyclePeriod = SampleStartDelay + SamplePeriod x samples + 360 us); this "
+                             "window's is " +
                              us(cycle) + ": range_max_m from about " + num((1802 - 360) / to_us) + " to " +
-                             num((max_cycle_us - 360) / to_us) + " m");
+                             num((cycle_max - 360) / to_us) + " m");
     t.cycle_period_us = std::uint32_t(cycle);
     return t;
 }

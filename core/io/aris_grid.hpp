@@ -10,6 +10,16 @@
 
 namespace sonarsim {
 
+/// What one ARIS system allows of the acoustic settings (Sound Metrics' integration SDK, SonarConfig.fs: the
+/// engineering command list's ranges, each system's maxima). The minima are every system's: SamplePeriod 4
+/// us, SampleStartDelay 930 us, PulseWidth 4 us, CyclePeriod 1802 us, 128 samples per beam.
+struct ArisLimits {
+    const char* system; ///< "ARIS 3000"
+    std::uint32_t sample_period_max_us, sample_start_delay_max_us, pulse_width_max_us, cycle_period_max_us;
+    double window_start_max_m, window_end_max_m;
+};
+constexpr std::uint32_t kArisMaxSamples = 4096;
+
 /// Range geometry of an ARIS frame: sample j at range window_start_m + j * sample_m, where
 /// window_start_m = SampleStartDelay c / 2 and sample_m = SamplePeriod c / 2 (c = SoundSpeed, the
 /// water's, as the float the header holds).
@@ -18,14 +28,17 @@ struct ArisTiming {
     std::uint32_t pulse_width_us = 0, cycle_period_us = 0;
     float sound_speed_m_s = 0;
     double window_start_m = 0, sample_m = 0, window_length_m = 0; ///< window_length_m = samples x sample_m
+    /// What the grid chose that the scene did not ask for, as the nearest legal setting; empty when nothing.
+    std::string adjusted;
 };
 
-/// The grid of the scene's range window: SamplePeriod the whole us nearest 2 bin / c (4-100 us, else
-/// InputError naming sonar.range_bins); SampleStartDelay the whole us of the first bin's centre (930-65535
-/// us, else sonar.range_min_m); as many samples as cover the window; PulseWidth 2 sensor.range_resolution_m
-/// / c, or one sample period when that is 0 (4-100 us, else sensor.range_resolution_m); CyclePeriod
-/// SSD + SP samples + 360 us (1802 us up to `max_cycle_us`, else sonar.range_max_m).
-ArisTiming aris_timing(const SceneDesc& scene, std::uint32_t max_cycle_us, const std::string& origin);
+/// The grid of the scene's range window within `limits` (else an InputError naming the key and the limit):
+/// SamplePeriod the whole us nearest 2 bin / c (sonar.range_bins); SampleStartDelay the whole us of the first
+/// bin's centre, its window start within the system's (sonar.range_min_m); as many samples as cover the
+/// window, one fewer when the last would end past the system's window end (`adjusted` says so), 128-4096
+/// (sonar.range_bins); PulseWidth 2 sensor.range_resolution_m / c, or one sample period when that is 0
+/// (sensor.range_resolution_m); CyclePeriod SSD + SP samples + 360 us (sonar.range_max_m).
+ArisTiming aris_timing(const SceneDesc& scene, const ArisLimits& limits, const std::string& origin);
 
 /// The image on the device's samples: per beam, the intensity 10^(L/10) interpolated linearly between
 /// the centres of the bins either side of each sample's range (the nearest bin's level beyond the first

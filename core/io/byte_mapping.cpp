@@ -92,19 +92,22 @@ nlohmann::json ExportReport::to_json(const std::string& file) const {
         f["frame"] = k;
         frames_json.push_back(f);
     }
-    return {{"file", file},
-            {"byte_mapping",
-             {{"lo_db", mapping.lo_db},
-              {"hi_db", mapping.hi_db},
-              {"chosen_by", mapping.automatic ? "export.auto" : "export.lo_db, export.hi_db"},
-              {"rule", mapping.automatic
-                           ? "hi_db: the 99.5th percentile of all frames' finite levels, rounded up to 0.1 "
-                             "dB; lo_db = hi_db - 80 (a byte is 80/255 dB, as ARIS reads it)"
-                           : "as given"},
-              {"byte", "round(255 clamp((L - lo_db) / (hi_db - lo_db), 0, 1)); 0 where nothing echoes"},
-              {"level", "L: the frame's .npy, the image level dB"}}},
-            {"clipped", clip_json(total)},
-            {"frames", frames_json}};
+    nlohmann::json j = {
+        {"file", file},
+        {"byte_mapping",
+         {{"lo_db", mapping.lo_db},
+          {"hi_db", mapping.hi_db},
+          {"chosen_by", mapping.automatic ? "export.auto" : "export.lo_db, export.hi_db"},
+          {"rule", mapping.automatic
+                       ? "hi_db: the 99.5th percentile of all frames' finite levels, rounded up to 0.1 "
+                         "dB; lo_db = hi_db - 80 (a byte is 80/255 dB, as ARIS reads it)"
+                       : "as given"},
+          {"byte", "round(255 clamp((L - lo_db) / (hi_db - lo_db), 0, 1)); 0 where nothing echoes"},
+          {"level", "L: the frame's .npy, the image level dB"}}},
+        {"clipped", clip_json(total)},
+        {"frames", frames_json}};
+    if (!notes.empty()) j["notes"] = notes;
+    return j;
 }
 
 std::string ExportReport::warning(const std::string& file) const {

@@ -60,7 +60,10 @@ struct ExportReport {
     ByteMapping mapping;
     std::vector<ClipCount> frames;
     ClipCount total;
-    /// {"byte_mapping": {...}, "clipped": {...}, "frames": [...]}: the file's sidecar metadata.
+    /// What the writer chose that the scene did not ask for (the nearest setting the format allows).
+    std::vector<std::string> notes;
+    /// {"byte_mapping": {...}, "clipped": {...}, "frames": [...]} and "notes" when there are any: the file's
+    /// sidecar metadata.
     nlohmann::json to_json(const std::string& file) const;
     /// One line about what was clipped when it exceeds kClipWarningFraction, else "".
     std::string warning(const std::string& file) const;

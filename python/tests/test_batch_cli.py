@@ -10,8 +10,9 @@ from conftest import write_small_scene
 
 
 def write_scene(d, beams=48, rays=41):
-    # As an ARIS file holds it: 48 beams at 1200 kHz (ARIS 1200 HF), samples from 1 m (SampleStartDelay >= 930 us).
-    return write_small_scene(d, sonar={"beams": beams, "frequency_khz": 1200, "range_min_m": 1.0},
+    # As an ARIS file holds it: 48 beams at 1200 kHz (ARIS 1200 HF), samples from 1 m (SampleStartDelay >= 930 us),
+    # 256 bins (SamplePeriod 21 us, at least 128 samples per beam).
+    return write_small_scene(d, sonar={"beams": beams, "frequency_khz": 1200, "range_min_m": 1.0, "range_bins": 256},
                              sampling={"elevation_rays": rays})
 
 
@@ -91,13 +92,13 @@ def test_resume_after_a_kill_completes_the_set(sonarsim_exe, scratch):
     assert [int(row.split(",")[0]) for row in rows[1:]] == list(range(40))
     for k in range(40):
         level = np.load(out / "frames" / f"{k:06d}.npy")
-        assert level.shape == (96, 48)
+        assert level.shape == (256, 48)
         assert np.isfinite(level).sum() > 100
     # The ARIS file: 1024 + 40 frames of (1024 + 48 x SamplesPerBeam) bytes; the samples cover the 1-5 m
-    # window at SamplePeriod 56 us (2 x 41.7 mm bins / the water's 1490 m/s), 41.7 mm each: 96.
+    # window at SamplePeriod 21 us (2 x 15.6 mm bins / the water's 1490 m/s), 15.6 mm each: 256.
     data = (scratch / "o.aris").read_bytes()
     samples = int.from_bytes(data[1024 + 468:1024 + 472], "little")
-    assert int.from_bytes(data[1024 + 452:1024 + 456], "little") == 56
-    assert samples == 96
+    assert int.from_bytes(data[1024 + 452:1024 + 456], "little") == 21
+    assert samples == 256
     assert len(data) == 1024 + 40 * (1024 + 48 * samples)
     assert (scratch / "o.mcap").read_bytes()[:8] == b"\x89MCAP0\r\n"

@@ -47,10 +47,11 @@ inline SceneDesc small_scene() {
 }
 
 /// small_scene() as an ARIS file can hold it: 48 beams at 1200 kHz (the ARIS 1200 HF mode), from 1 m
-/// (ARIS samples from SampleStartDelay 930 us, about 0.7 m).
+/// (ARIS samples from SampleStartDelay 930 us, about 0.7 m), 256 bins of 15.6 mm (SamplePeriod 21 us, within
+/// every system's; an ARIS frame holds at least 128 samples per beam).
 inline SceneDesc small_aris_scene() {
     SceneDesc s = small_scene();
-    for (const char* set : {"sonar.frequency_khz=1200", "sonar.range_min_m=1"})
+    for (const char* set : {"sonar.frequency_khz=1200", "sonar.range_min_m=1", "sonar.range_bins=256"})
         apply_setting_text(s, set, "test");
     validate_scene(s, "test");
     return s;

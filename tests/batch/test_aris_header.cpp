@@ -61,18 +61,19 @@ TEST_CASE("ARIS files hold only the beam counts and frequencies ARIS modes have"
 namespace {
 
 /// What each ARIS preset's recordings must say: PingMode, FrequencyHiLow, TheSystemType, beams, and the
-/// longest CyclePeriod of the system (Sound Metrics' SystemConfiguration).
+/// system's maxima of CyclePeriod, SamplePeriod, SampleStartDelay and PulseWidth [us] (Sound Metrics'
+/// integration SDK, SonarConfig.fs).
 struct PresetMode {
     const char* preset;
     std::uint32_t ping_mode, high_frequency, system_type;
     int beams;
-    std::uint32_t max_cycle_us;
+    std::uint32_t max_cycle_us, max_sp_us, max_ssd_us, max_pw_us;
 };
-const PresetMode kPresets[] = {{"aris3000-hf", 9, 1, 1, 128, 40000},
-                               {"aris3000-lf", 6, 0, 1, 64, 40000},
-                               {"aris1800-hf", 3, 1, 0, 96, 80000},
-                               {"aris1800-lf", 1, 0, 0, 48, 80000},
-                               {"aris1200", 1, 1, 2, 48, 150000}};
+const PresetMode kPresets[] = {{"aris3000-hf", 9, 1, 1, 128, 40000, 26, 18000, 24},
+                               {"aris3000-lf", 6, 0, 1, 64, 40000, 26, 18000, 24},
+                               {"aris1800-hf", 3, 1, 0, 96, 80000, 32, 36000, 40},
+                               {"aris1800-lf", 1, 0, 0, 48, 80000, 32, 36000, 40},
+                               {"aris1200", 1, 1, 2, 48, 150000, 40, 60000, 80}};
 
 /// A synthetic level profile: smooth in range, a little different per beam, nothing echoing in every
 /// 17th bin.
@@ -113,8 +114,8 @@ TEST_CASE("every ARIS preset's recording has its mode, the water's sound speed a
         CHECK(header_field<std::uint32_t>(h, 484) == m.system_type); // TheSystemType
         const double c = sound_speed_m_s(s.water.temperature_c, s.water.depth_m);
         CHECK(header_field<float>(h, 464) == float(c));
-        // The documented ranges (FrameHeader.h): SamplePeriod 4-100 us, SampleStartDelay 930-65535 us,
-        // PulseWidth 4-100 us, CyclePeriod from 1802 us.
+        // The system's limits (SonarConfig.fs): SamplePeriod, SampleStartDelay, PulseWidth and CyclePeriod
+        // from 4, 930, 4 and 1802 us to the system's maxima; 128-4096 samples per beam.
         const std::uint32_t sp = header_field<std::uint32_t>(h, 452),
                             ssd = header_field<std::uint32_t>(h, 476);
         const std::uint32_t pw = header_field<std::uint32_t>(h, 444),
@@ -123,20 +124,23 @@ TEST_CASE("every ARIS preset's recording has its mode, the water's sound speed a
         const double bin = (s.sonar.range_max_m - s.sonar.range_min_m) / s.sonar.range_bins;
         CHECK(sp == std::uint32_t(std::round(2 * bin / c * 1e6)));
         CHECK(sp >= 4);
-        CHECK(sp <= 100);
+        CHECK(sp <= m.max_sp_us);
         CHECK(ssd >= 930);
-        CHECK(ssd <= 65535);
+        CHECK(ssd <= m.max_ssd_us);
         CHECK(ssd == std::uint32_t(std::round(2 * (s.sonar.range_min_m + bin / 2) / c * 1e6)));
         CHECK(pw == std::uint32_t(std::round(2 * s.sensor.range_resolution_m / c * 1e6)));
         CHECK(s.sensor.range_resolution_m > 0);
         CHECK(pw >= 4);
-        CHECK(pw <= 100);
+        CHECK(pw <= m.max_pw_us);
+        CHECK(n >= 128);
+        CHECK(n <= 4096);
         CHECK(cp == ssd + sp * n + 360);
         CHECK(cp >= 1802);
         CHECK(cp <= m.max_cycle_us);
         CHECK(header_field<float>(h, 420) == float(1e6 / sp)); // SampleRate
         const double sample_m = sp * 1e-6 * double(float(c)) / 2;
-        CHECK(std::abs(n * sample_m - (s.sonar.range_max_m - s.sonar.range_min_m)) <= sample_m / 2);
+        // The samples cover the window, one fewer where the last would end past the system's (next test).
+        CHECK(std::abs(n * sample_m - (s.sonar.range_max_m - s.sonar.range_min_m)) <= 1.5 * sample_m);
         CHECK(header_field<float>(h, 52) == Approx(ssd * 1e-6 * double(float(c)) / 2).epsilon(1e-6));
         CHECK(header_field<float>(h, 56) == Approx(n * sample_m).epsilon(1e-6));
         CHECK(header_field<std::uint32_t>(bytes, 24) == n);
@@ -161,32 +165,89 @@ TEST_CASE("every ARIS preset's recording has its mode, the water's sound speed a
     }
 }
 
-TEST_CASE("ARIS grids outside the documented ranges are one input error naming the key", "[aris]") {
-    const SceneDesc s = small_aris_scene(); // 1-5 m, 96 bins, 48 beams at 1200 kHz
+TEST_CASE("ARIS grids outside the system's limits are one input error naming the key and the limit",
+          "[aris]") {
+    // Sound Metrics' integration SDK (SonarConfig.fs): every system SamplePeriod from 4 us, SampleStartDelay
+    // from 930 us, PulseWidth from 4 us, CyclePeriod from 1802 us, 128-4096 samples per beam; the maxima per
+    // system (SP, SSD, PW, CP in us; window start and end in m): ARIS 1800 32, 36000, 40, 80000, 25, 50; ARIS
+    // 3000 26, 18000, 24, 40000, 12, 20; ARIS 1200 40, 60000, 80, 150000, 40, 100.
+    const SceneDesc s = small_aris_scene(); // 1-5 m, 256 bins, 48 beams at 1200 kHz: ARIS 1200 HF
     CHECK_NOTHROW(check_aris(s, "scene.json"));
+    const SceneDesc a3000 = with(s, {"sonar.device=aris3000-hf"}),
+                    a1800 = with(s, {"sonar.device=aris1800-hf"});
     // SampleStartDelay < 930 us: about 0.7 m of water before the first sample.
+    CHECK_THROWS_WITH(check_aris(with(s, {"sonar.range_min_m=0.3"}), "scene.json"),
+                      Catch::StartsWith("scene.json: sonar.range_min_m: an ARIS 1200 starts sampling 930-") &&
+                          Catch::Contains("range_min_m from 0.6"));
+    // Window start: an ARIS 3000's at most 12 m.
     CHECK_THROWS_WITH(
-        check_aris(with(s, {"sonar.range_min_m=0.3"}), "scene.json"),
-        Catch::StartsWith("scene.json: sonar.range_min_m: ARIS starts sampling 930-65535 us after "
-                          "the ping (SampleStartDelay)") &&
-            Catch::Contains("the smallest range_min_m allowed is 0.6"));
-    // SamplePeriod: 4096 bins over 4 m are 1.3 us, 20 bins 267 us.
+        check_aris(with(a3000, {"sonar.range_min_m=12.5", "sonar.range_max_m=14", "sonar.range_bins=256"}),
+                   "s"),
+        Catch::StartsWith("s: sonar.range_min_m: an ARIS 3000 starts sampling") &&
+            Catch::Contains("a window start of at most 12 m"));
+    // SamplePeriod: an ARIS 3000 samples every 26 us at most, an ARIS 1800 32, an ARIS 1200 40: 120 bins over
+    // 4 m are 33.3 mm, 44.7 us.
+    for (const auto& [scene, limit] : {std::pair{s, "4-40 us"}, {a1800, "4-32 us"}, {a3000, "4-26 us"}})
+        CHECK_THROWS_WITH(
+            check_aris(with(scene, {"sonar.range_min_m=1", "sonar.range_max_m=5", "sonar.range_bins=120"}),
+                       "s"),
+            Catch::StartsWith("s: sonar.range_bins: an ARIS ") &&
+                Catch::Contains(std::string("samples every ") + limit + " (SamplePeriod)"));
+    // 4096 bins over 4 m are 1.3 us, below every system's 4 us.
+    CHECK_THROWS_WITH(check_aris(with(s, {"sonar.range_bins=4096"}), "scene.json"),
+                      Catch::StartsWith("scene.json: sonar.range_bins: an ARIS 1200 samples every 4-40 us"));
+    // Samples per beam: 100 bins of 40 mm over 4 m (SamplePeriod 54 us: too long) ... 4 m at 26 us is 154
+    // samples; 0.9 m at 13 us (121 samples) is too few.
     CHECK_THROWS_WITH(
-        check_aris(with(s, {"sonar.range_bins=4096"}), "scene.json"),
-        Catch::StartsWith("scene.json: sonar.range_bins: ARIS samples every 4-100 us (SamplePeriod)"));
-    CHECK_THROWS_WITH(check_aris(with(s, {"sonar.range_bins=20"}), "s"), Catch::Contains("sonar.range_bins"));
-    // PulseWidth: 0.1 m of range resolution is a 133 us pulse.
+        check_aris(with(a3000, {"sonar.range_min_m=1", "sonar.range_max_m=1.9", "sonar.range_bins=121"}),
+                   "s"),
+        Catch::StartsWith("s: sonar.range_bins: an ARIS frame holds 128-4096 samples per beam"));
+    // PulseWidth: an ARIS 1200 pulse is at most 80 us, an ARIS 3000's 24 us: 0.02 m is 27 us.
     CHECK_THROWS_WITH(check_aris(with(s, {"sensor.range_resolution_m=0.1"}), "s"),
-                      Catch::StartsWith("s: sensor.range_resolution_m: an ARIS pulse is 4-100 us long"));
-    CHECK_NOTHROW(check_aris(with(s, {"sensor.range_resolution_m=0.01"}), "s"));
-    // CyclePeriod: an ARIS 3000 pings at most every 40000 us, so not out to 40 m; nor less than 1802 us.
-    CHECK_THROWS_WITH(check_aris(with(s, {"sonar.beams=64", "sonar.frequency_khz=1800",
-                                          "sonar.range_bins=2048", "sonar.range_max_m=40"}),
+                      Catch::StartsWith("s: sensor.range_resolution_m: an ARIS 1200 pulse is 4-80 us long"));
+    CHECK_NOTHROW(check_aris(with(s, {"sensor.range_resolution_m=0.02"}), "s"));
+    CHECK_THROWS_WITH(check_aris(with(a3000, {"sonar.range_min_m=1", "sonar.range_max_m=5",
+                                              "sonar.range_bins=256", "sensor.range_resolution_m=0.02"}),
                                  "s"),
-                      Catch::StartsWith("s: sonar.range_max_m: an ARIS ping cycle is 1802-40000 us"));
+                      Catch::StartsWith("s: sensor.range_resolution_m: an ARIS 3000 pulse is 4-24 us long"));
+    // Window end: an ARIS 3000's at most 20 m, so not out to 30 m.
     CHECK_THROWS_WITH(
-        check_aris(with(s, {"sonar.range_min_m=0.72", "sonar.range_max_m=0.9", "sonar.range_bins=20"}), "s"),
-        Catch::StartsWith("s: sonar.range_max_m: an ARIS ping cycle is 1802-150000 us"));
+        check_aris(with(a3000, {"sonar.range_min_m=5", "sonar.range_max_m=30", "sonar.range_bins=2048"}),
+                   "s"),
+        Catch::StartsWith("s: sonar.range_max_m: an ARIS 3000's window ends at most 20 m"));
+    // CyclePeriod's limits follow from the others: at least 930 + 128 x 4 + 360 = 1802 us, and a window
+    // ending within the system's is heard within its longest cycle (20 m: 27 ms of 40; 50 m: 67 of 80).
+}
+
+TEST_CASE("every ARIS preset's window ends within its system's, one sample short where it would not",
+          "[aris]") {
+    // aris3000-lf (5-20 m) and aris1800-lf (15-50 m) end at their systems' window ends: the samples that
+    // cover the window would end 12 and 16 mm past them, so the file holds one fewer and says so.
+    const struct {
+        const char* preset;
+        double window_end_max_m;
+        bool shortened;
+    } presets[] = {{"aris3000-hf", 20, false},
+                   {"aris3000-lf", 20, true},
+                   {"aris1800-hf", 50, false},
+                   {"aris1800-lf", 50, true},
+                   {"aris1200", 100, false}};
+    for (const auto& p : presets) {
+        INFO(p.preset);
+        const SceneDesc s = with(small_scene(), {("sonar.device=" + std::string(p.preset)).c_str()});
+        const std::string dir = batch_out(std::string("aris_window_end_") + p.preset);
+        std::filesystem::create_directories(dir);
+        const std::string path = dir + "/p.aris";
+        const Trajectory t = line_trajectory("0.3,2.4,0.9,0.4,2.3,0.9,1", {-1, 30, -39}, 1, "test");
+        const PolarImage img = profile(s.sonar);
+        const ExportReport r = write_aris(
+            path, s, t, [&](size_t) { return img; }, ByteMapping{0, 80, false}, "--aris");
+        const ArisFrame f = read_aris_frame(path, 0);
+        const double end_m = f.info.window_start_m + f.info.samples * f.info.sample_length_m;
+        CHECK(end_m <= p.window_end_max_m + 1e-6);
+        CHECK(end_m > s.sonar.range_max_m - f.info.sample_length_m - 1e-6);
+        CHECK(r.notes.size() == (p.shortened ? 1u : 0u));
+    }
 }
 
 TEST_CASE("ARIS FrameTime is the dataset's start plus t, the start kept when a run resumes", "[aris]") {
@@ -263,11 +324,13 @@ TEST_CASE("an ARIS file holds each beam of a table at the device's number of it"
 
 TEST_CASE("an ARIS recording is never faster than its mode images a frame", "[aris]") {
     // The frame times ARIS tools accept (issue 46, checked with the vendor's validation): CyclePeriod x
-    // pings per frame of each preset's own window.
+    // pings per frame of each preset's own window (aris3000-lf and aris1800-lf one sample shorter than
+    // there, 4 x 20 and 3 x 23 us less: their windows end within their systems').
     const struct {
         const char* preset;
         double frame_ms;
-    } modes[] = {{"aris3000-lf", 108.9}, {"aris1800-hf", 123.0}, {"aris1800-lf", 202.5}, {"aris1200", 101.8}};
+    } modes[] = {
+        {"aris3000-lf", 108.82}, {"aris1800-hf", 123.0}, {"aris1800-lf", 202.43}, {"aris1200", 101.8}};
     for (const auto& m : modes) {
         INFO(m.preset);
         const SceneDesc s = with(small_scene(), {("sonar.device=" + std::string(m.preset)).c_str()});
@@ -283,7 +346,7 @@ TEST_CASE("an ARIS recording is never faster than its mode images a frame", "[ar
             CHECK(what.rfind("--rate: frame 1 comes ", 0) == 0);
             REQUIRE(what.find(tag) != std::string::npos);
             const double fastest_hz = std::stod(what.substr(what.find(tag) + tag.size()));
-            CHECK(fastest_hz <= 1000 / m.frame_ms + 1e-9); // rounded down: a rate it names is allowed
+            CHECK(fastest_hz <= 1000 / (m.frame_ms - 0.02)); // rounded down: a rate it names is allowed
             CHECK(fastest_hz > 1000 / m.frame_ms - 0.015);
         }
     }

@@ -60,8 +60,8 @@ struct Wreck {
     std::vector<PolarImage> images;
     explicit Wreck(const std::string& name) : dir(batch_out(name)) {
         scene = load_scene(SONARSIM_ASSETS "/scenes/shipwreck.json");
-        apply_setting(scene, "sonar.beams", 48, "test"); // ARIS 1200 HF at the scene's 1200 kHz
-        apply_setting(scene, "sonar.range_bins", 500, "test");
+        apply_setting(scene, "sonar.beams", 48, "test");        // ARIS 1200 HF at the scene's 1200 kHz
+        apply_setting(scene, "sonar.range_bins", 1000, "test"); // SamplePeriod 32 us: ARIS 1200 allows 40
         validate_scene(scene, "test");
         prepare_dataset(dir, scene, circle_trajectory("0,0,0,17,6,2", 9, "test")); // ARIS 1200: 9.82 fps
         run_batch(dir, {});
@@ -167,16 +167,16 @@ TEST_CASE("an explicit byte mapping is honoured exactly in ARIS and MCAP", "[exp
     for (size_t k = 0; k < 2; ++k)
         images.push_back(decode_npy(file_bytes(frame_prefix(dir, k) + ".npy"), "npy"));
     ExportParams p;
-    p.auto_range = false, p.lo_db = 115, p.hi_db = 135;
+    p.auto_range = false, p.lo_db = 110, p.hi_db = 130;
     // The test's own reading of the mapping: 255 (L - lo) / (hi - lo), clamped, rounded; 0 without echo.
     auto expected = [&](float l) -> int {
         if (!std::isfinite(l)) return 0;
-        const double t = std::min(1.0, std::max(0.0, (double(l) - 115) / 20));
+        const double t = std::min(1.0, std::max(0.0, (double(l) - 110) / 20));
         return int(std::floor(255 * t + 0.5));
     };
     const ExportReport a = export_dataset(dir, dir + "/x.aris", ExportFormat::Aris, p, "--aris");
-    CHECK(a.mapping.lo_db == 115);
-    CHECK(a.mapping.hi_db == 135);
+    CHECK(a.mapping.lo_db == 110);
+    CHECK(a.mapping.hi_db == 130);
     const auto frames = read_aris(dir + "/x.aris", 48);
     size_t mismatches = 0, middle = 0, at_255 = 0;
     for (size_t k = 0; k < 2; ++k)
@@ -205,8 +205,8 @@ TEST_CASE("an explicit byte mapping is honoured exactly in ARIS and MCAP", "[exp
     CHECK(text.find("byte_lo_db") != std::string::npos);
     const size_t hi = text.find("byte_hi_db");
     REQUIRE(hi != std::string::npos);
-    CHECK(text.compare(hi + 10 + 4, 3, "135") == 0); // the map's value follows its uint32 length
+    CHECK(text.compare(hi + 10 + 4, 3, "130") == 0); // the map's value follows its uint32 length
     const auto sidecar = nlohmann::json::parse(file_bytes(dir + "/x.mcap.json"));
     CHECK(sidecar["byte_mapping"]["chosen_by"] == "export.lo_db, export.hi_db");
-    CHECK(sidecar["byte_mapping"]["lo_db"].get<double>() == 115);
+    CHECK(sidecar["byte_mapping"]["lo_db"].get<double>() == 110);
 }

@@ -33,7 +33,7 @@ SceneDesc with_gain(SceneDesc s, double gain_db) {
 /// The mapping these tests read the files with: bytes 0 ... 255 = image levels 0 ... 80 dB.
 const ByteMapping kZeroTo80{0, 80, false};
 
-/// A dataset of 3 frames of the small scene (48 beams, 96 bins) along a line.
+/// A dataset of 3 frames of the small ARIS scene (48 beams, 256 bins) along a line.
 struct Dataset {
     std::string dir;
     SceneDesc scene = with_gain(small_aris_scene(), -80); // L_EN 80 ... 130 dB into the bytes' 0 ... 80 dB
@@ -95,7 +95,7 @@ TEST_CASE("an ARIS file read from its specification gives back the frames", "[ar
     // The water's sound speed; SamplePeriod the whole us nearest 2 bin / c; as many samples as cover the
     // window; the first at the first bin's centre, to the whole us of SampleStartDelay.
     const double c_water = sound_speed_m_s(d.scene.water.temperature_c, d.scene.water.depth_m);
-    const double bin = (d.scene.sonar.range_max_m - d.scene.sonar.range_min_m) / 96;
+    const double bin = (d.scene.sonar.range_max_m - d.scene.sonar.range_min_m) / d.scene.sonar.range_bins;
     const double sp = std::round(2 * bin / c_water * 1e6);
     const size_t samples = at<std::uint32_t>(b, 1024 + 468);
     CHECK(samples ==
