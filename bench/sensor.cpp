@@ -1,6 +1,7 @@
 // `sonarsim_bench sensor`: the sensor stage alone, timed on the two sizes the targets name (128 beams x 512
-// bins: the ARIS 3000 on the Fig. 9 scene; 512 x 1500: an Oculus-class wide sonar over a floor), with every
-// effect of the generic device sensor on. Only sensor.seed changes between repeats, so each render runs the
+// bins: the ARIS 3000 on the Fig. 9 scene; 512 x 1500: an Oculus-class wide sonar over a floor, and the
+// oculus-m750d-lf preset with its own wide pattern over the same floor), with every effect of the device
+// sensor on. Only sensor.seed changes between repeats, so each render runs the
 // sensor stage and the display, nothing before them.
 #include "bench.hpp"
 
@@ -49,6 +50,15 @@ int run_sensor_bench(int repeats) {
     apply_setting(wide, "sensor.beamformer", "array", "bench");
     apply_setting(wide, "sensor.range_resolution_m", 0.2, "bench");
     cases.push_back({"Oculus-class, 512 x 1500, floor", wide});
+    // A wide preset with its own pattern (Taylor -30 dB, 1 deg at broadside widening off it, two fine columns
+    // per beam), its own range window and speckle, over the same floor; only the bins set to 1500.
+    SceneDesc preset = default_scene();
+    preset.objects.clear();
+    apply_setting(preset, "sonar.device", "oculus-m750d-lf", "bench");
+    apply_setting(preset, "sensor.model", "device", "bench");
+    apply_setting(preset, "sonar.range_bins", 1500, "bench");
+    preset.sonar.pose.position_m = {0, 0, 10}, preset.sonar.pose.orientation_deg = {0, 10, 0};
+    cases.push_back({"oculus-m750d-lf, 512 x 1500, floor", preset});
     for (int variant = 0; variant < 2; ++variant)
         for (auto& c : cases) {
             SceneDesc s = c.scene;
