@@ -11,7 +11,9 @@
 
 #include <algorithm>
 #include <sys/resource.h>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 
 namespace sonarsim::bench {
@@ -29,7 +31,7 @@ double cpu_ms() {
 
 } // namespace
 
-int run_sensor_bench(int repeats) {
+int run_sensor_bench(int repeats, const std::string& only) {
     struct Case {
         std::string name;
         SceneDesc scene;
@@ -61,11 +63,14 @@ int run_sensor_bench(int repeats) {
     cases.push_back({"oculus-m750d-lf, 512 x 1500, floor", preset});
     for (int variant = 0; variant < 2; ++variant)
         for (auto& c : cases) {
+            if (c.name.find(only) == std::string::npos) continue;
             SceneDesc s = c.scene;
             if (variant == 1) apply_setting(s, "sensor.speckle", "k", "bench");
             Simulator sim(s);
             sim.render();
             std::vector<double> ms, cpu;
+            std::uint64_t hash =
+                0xcbf29ce484222325ULL; // FNV-1a of the last image's levels: same bits, same hash
             for (int i = 0; i < repeats; ++i) {
                 s.sensor.seed = i + 2;
                 sim.set_scene(s);
@@ -73,13 +78,19 @@ int run_sensor_bench(int repeats) {
                 const auto f = sim.render();
                 cpu.push_back(cpu_ms() - c0);
                 ms.push_back(f->sensor_ms);
+                if (i + 1 == repeats)
+                    for (const float v : f->polar().level_db) {
+                        unsigned char b[sizeof v];
+                        std::memcpy(b, &v, sizeof v);
+                        for (const unsigned char c : b) hash = (hash ^ c) * 0x100000001b3ULL;
+                    }
             }
             std::sort(ms.begin(), ms.end());
             std::sort(cpu.begin(), cpu.end());
             std::printf("%-36s speckle %-8s sensor stage: median %.2f ms wall (min %.2f, max %.2f); sensor + "
-                        "display %.1f ms CPU (all threads); %d repeats\n",
+                        "display %.1f ms CPU (all threads); %d repeats; image %016llx\n",
                         c.name.c_str(), variant ? "k" : "rayleigh", ms[ms.size() / 2], ms.front(), ms.back(),
-                        cpu[cpu.size() / 2], repeats);
+                        cpu[cpu.size() / 2], repeats, (unsigned long long)hash);
         }
     return 0;
 }

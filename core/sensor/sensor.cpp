@@ -82,7 +82,8 @@ void to_linear(const PolarImage& src, double peak_db, std::vector<double>& out) 
 
 /// The receive pattern: each beam sums the fine columns weighted by its pattern (peak gain 1).
 std::vector<double> form_beams(const std::vector<double>& in, int K, int J, const SceneDesc& s) {
-    const AzimuthBeamforming bf = make_azimuth_beamforming(s);
+    const std::shared_ptr<const AzimuthBeamforming> shared = shared_azimuth_beamforming(s, false);
+    const AzimuthBeamforming& bf = *shared;
     const int N = bf.beams;
     std::vector<double> out(size_t(K) * N, 0.0);
     tbb::parallel_for(0, K, [&](int k) {

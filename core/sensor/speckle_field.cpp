@@ -8,17 +8,23 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 namespace sonarsim {
 namespace {
 
-/// Range bins formed together: the field of a block is stored column by column, kBlockRows values (one per
-/// bin) a column, so that forming a beam is a sum of whole columns, kBlockRows lanes wide.
+/// Range bins whose field is carried relative to one amplitude: the strongest sample of the block's bins.
 constexpr int kBlockRows = 8;
+/// Blocks formed together: the field of a group is stored column by column, kGroupRows values (one per bin) a
+/// column, so that forming a beam is a sum of whole columns, kGroupRows lanes wide: independent sums enough
+/// to keep the adders busy (each lane's sum in the same order whatever the group).
+constexpr int kGroupBlocks = 2, kGroupRows = kGroupBlocks * kBlockRows;
 
 /// The receive pattern's amplitude by beam: beam b sums the fine columns column[start[b] ... start[b + 1])
 /// with the weights beside them (ascending columns), in single precision like the field it forms.
@@ -27,7 +33,8 @@ struct BeamSums {
     std::vector<float> weight;
 };
 
-BeamSums by_beam(const AzimuthBeamforming& bf, int J) {
+BeamSums by_beam(const AzimuthBeamforming& bf) {
+    const int J = int(bf.first.size());
     BeamSums s;
     s.start.assign(size_t(bf.beams) + 1, 0);
     for (int j = 0; j < J; ++j)
@@ -78,49 +85,104 @@ SONARSIM_AVX2_CLONES void relative_field_row(int J, const float* level_db, float
     }
 }
 
-/// The beams of a block from its field (re, im of column j, row t at j * kBlockRows + t): (re, im) of beam b
-/// for the block's row t into out[t * 2 N + b] and out[t * 2 N + N + b], t < rows. The block's rows in
-/// vectors of W floats (GCC's vector extension): W = 8 fills an AVX register, W = 4 an SSE one.
-template <int W>
-inline __attribute__((always_inline)) void form_block_lanes(const BeamSums& sums, int N, const float* re,
-                                                            const float* im, int rows, float* out) {
-    typedef float Lanes __attribute__((vector_size(W * sizeof(float))));
-    constexpr int kParts = kBlockRows / W;
-    for (int b = 0; b < N; ++b) {
-        Lanes sum_re[kParts] = {}, sum_im[kParts] = {};
-        for (int p = sums.start[size_t(b)]; p < sums.start[size_t(b) + 1]; ++p) {
-            const float w = sums.weight[size_t(p)];
-            const float* x_re = re + size_t(sums.column[size_t(p)]) * kBlockRows;
-            const float* x_im = im + size_t(sums.column[size_t(p)]) * kBlockRows;
-            for (int h = 0; h < kParts; ++h) {
-                Lanes a, c;
-                std::memcpy(&a, x_re + h * W, sizeof a);
-                std::memcpy(&c, x_im + h * W, sizeof c);
-                sum_re[h] += w * a, sum_im[h] += w * c;
+/// by_beam of the scene's receive pattern amplitudes, made once per geometry and pattern and kept (the
+/// sensor stage reruns on the same geometry frame after frame).
+std::shared_ptr<const BeamSums> shared_beam_sums(const SceneDesc& s) {
+    const std::shared_ptr<const AzimuthBeamforming> bf = shared_azimuth_beamforming(s, true);
+    constexpr std::size_t kKept = 4; // the most recently used
+    static std::mutex m;
+    static std::vector<std::pair<std::shared_ptr<const AzimuthBeamforming>, std::shared_ptr<const BeamSums>>>
+        kept; // most recently used first; the pattern held, so that its pointer stays its own
+    {
+        std::lock_guard<std::mutex> lock(m);
+        for (auto it = kept.begin(); it != kept.end(); ++it)
+            if (it->first == bf) {
+                std::rotate(kept.begin(), it, it + 1);
+                return kept.front().second;
             }
+    }
+    auto sums = std::make_shared<const BeamSums>(by_beam(*bf));
+    std::lock_guard<std::mutex> lock(m);
+    kept.emplace(kept.begin(), bf, sums);
+    if (kept.size() > kKept) kept.pop_back();
+    return sums;
+}
+
+/// The beams of a group from its field (re of column j, row t at j * 2 kGroupRows + t, im kGroupRows further
+/// on; 64-byte aligned, so that a column is whole cache lines): (re, im) of beam b
+/// for the group's row t into out[t * 2 N + b] and out[t * 2 N + N + b], t < rows. The group's rows in
+/// vectors of W floats (GCC's vector extension): W = 16 fills an AVX-512 register, 8 an AVX one, 4 an SSE
+/// one. Two beams are summed side by side (each over its own columns in ascending order, as one at a time
+/// would), so that the adds of one do not wait for the other's.
+template <int W>
+inline __attribute__((always_inline)) void form_group_lanes(const BeamSums& sums, int N, const float* field,
+                                                            int rows, float* out) {
+    typedef float Lanes __attribute__((vector_size(W * sizeof(float))));
+    constexpr int kParts = kGroupRows / W;
+    struct Sum {
+        Lanes re[kParts], im[kParts];
+    };
+    const int* start = sums.start.data();
+    const int* column = sums.column.data();
+    const float* weight = sums.weight.data();
+    auto add_column = [&](Sum & sum, int p) __attribute__((always_inline)) {
+        const float w = weight[p];
+        const float* x_re = static_cast<const float*>(
+            __builtin_assume_aligned(field + size_t(column[p]) * 2 * kGroupRows, 64));
+        const float* x_im = x_re + kGroupRows;
+        for (int h = 0; h < kParts; ++h) {
+            Lanes a, c;
+            std::memcpy(&a, x_re + h * W, sizeof a);
+            std::memcpy(&c, x_im + h * W, sizeof c);
+            a *= w, c *= w;
+            // The products rounded before the sums, as without FMA (which AVX-512 would otherwise fuse in).
+            asm("" : "+v"(a), "+v"(c));
+            sum.re[h] += a, sum.im[h] += c;
         }
-        float beam_re[kBlockRows], beam_im[kBlockRows]; // the sums out of their registers
-        std::memcpy(beam_re, sum_re, sizeof beam_re), std::memcpy(beam_im, sum_im, sizeof beam_im);
+    };
+    auto store = [&](const Sum& sum, int b) __attribute__((always_inline)) {
+        float beam_re[kGroupRows], beam_im[kGroupRows]; // the sums out of their registers
+        std::memcpy(beam_re, sum.re, sizeof beam_re), std::memcpy(beam_im, sum.im, sizeof beam_im);
         for (int t = 0; t < rows; ++t)
             out[size_t(t) * 2 * N + size_t(b)] = beam_re[t],
                                     out[size_t(t) * 2 * N + size_t(N + b)] = beam_im[t];
+    };
+    int b = 0;
+    for (; b + 2 <= N; b += 2) {
+        Sum s0 = {}, s1 = {};
+        int p0 = start[b], p1 = start[b + 1];
+        const int e0 = start[b + 1], e1 = start[b + 2];
+        for (; p0 < e0 && p1 < e1; ++p0, ++p1) add_column(s0, p0), add_column(s1, p1);
+        for (; p0 < e0; ++p0) add_column(s0, p0);
+        for (; p1 < e1; ++p1) add_column(s1, p1);
+        store(s0, b), store(s1, b + 1);
+    }
+    for (; b < N; ++b) {
+        Sum s0 = {};
+        for (int p = start[b]; p < start[b + 1]; ++p) add_column(s0, p);
+        store(s0, b);
     }
 }
 
 #ifdef SONARSIM_AVX2_DISPATCH
-__attribute__((target("avx2"))) void form_block_avx2(const BeamSums& sums, int N, const float* re,
-                                                     const float* im, int rows, float* out) {
-    form_block_lanes<8>(sums, N, re, im, rows, out);
+__attribute__((target("avx2"))) void form_group_avx2(const BeamSums& sums, int N, const float* field,
+                                                     int rows, float* out) {
+    form_group_lanes<8>(sums, N, field, rows, out);
+}
+__attribute__((target("avx512f"))) void form_group_avx512(const BeamSums& sums, int N, const float* field,
+                                                          int rows, float* out) {
+    form_group_lanes<16>(sums, N, field, rows, out);
 }
 #endif
 
-/// form_block_lanes with the widest vectors the CPU has (the same sums either way).
-void form_block(const BeamSums& sums, int N, const float* re, const float* im, int rows, float* out) {
+/// form_group_lanes with the widest vectors the CPU has (the same sums either way).
+void form_group(const BeamSums& sums, int N, const float* field, int rows, float* out) {
 #ifdef SONARSIM_AVX2_DISPATCH
-    static const bool avx2 = __builtin_cpu_supports("avx2");
-    if (avx2) return form_block_avx2(sums, N, re, im, rows, out);
+    static const bool avx512 = __builtin_cpu_supports("avx512f"), avx2 = __builtin_cpu_supports("avx2");
+    if (avx512) return form_group_avx512(sums, N, field, rows, out);
+    if (avx2) return form_group_avx2(sums, N, field, rows, out);
 #endif
-    form_block_lanes<4>(sums, N, re, im, rows, out);
+    form_group_lanes<4>(sums, N, field, rows, out);
 }
 
 /// 4 beams of one row in double precision (an AVX register, two SSE ones) and the same in single.
@@ -231,63 +293,82 @@ std::vector<double> form_speckle(const PolarImage& src, double peak_db, const Se
         ahead_x[size_t(j)] = a.x, ahead_y[size_t(j)] = a.y, ahead_z[size_t(j)] = a.z;
     }
     const bool formed = s.sensor.azimuth_window != AzimuthWindow::None;
-    const BeamSums sums = formed ? by_beam(make_azimuth_beamforming(s, true), J) : BeamSums{};
+    const std::shared_ptr<const BeamSums> shared_sums = formed ? shared_beam_sums(s) : nullptr;
     const std::uint64_t seed = mix64(std::uint64_t(s.sensor.seed) ^ 0x677261696eULL); // "grain"
 
-    // Per block of range bins: the field on the source columns, then (formed) the beams' complex amplitudes,
-    // into A: per bin, re of the N beams, then im.
-    const int blocks = (K + kBlockRows - 1) / kBlockRows;
+    // Per group of blocks of range bins: the field on the source columns, then (formed) the beams' complex
+    // amplitudes, into A: per bin, re of the N beams, then im.
+    const int blocks = (K + kBlockRows - 1) / kBlockRows, groups = (blocks + kGroupBlocks - 1) / kGroupBlocks;
     std::vector<float> A = scratch::take<float>(size_t(K) * N * 2); // every value written below
     std::vector<double> unit(static_cast<size_t>(blocks));          // per block: A's unit amplitude
-    tbb::parallel_for(0, blocks, [&](int block) {
+    tbb::parallel_for(0, groups, [&](int group) {
         struct Scratch {
             std::vector<double> rise, reach;
             std::vector<std::uint32_t> key;
-            std::vector<float> power, cos_phase, sin_phase, re, im, block_re, block_im;
+            std::vector<float> power, cos_phase, sin_phase, re, im, group;
         };
         thread_local Scratch w; // a leaf task's: nothing else runs on this thread while it is in use
         w.rise.resize(size_t(J)), w.reach.resize(size_t(J));
         for (auto* v : {&w.power, &w.cos_phase, &w.sin_phase, &w.re, &w.im}) v->resize(size_t(J));
         w.key.resize(size_t(J));
-        w.block_re.resize(formed ? size_t(J) * kBlockRows : 0), w.block_im.resize(w.block_re.size());
-        const int k0 = block * kBlockRows, rows = std::min(kBlockRows, K - k0);
-        // In single precision relative to the block's strongest sample.
-        const float top_db = max_level(size_t(rows) * J, src.level_db.data() + size_t(k0) * J);
-        constexpr double kLog2Of10Over20 = 0.16609640474436812;
-        unit[size_t(block)] = top_db == -std::numeric_limits<float>::infinity()
-                                  ? 0.0
-                                  : fast::exp2_nonpositive((double(top_db) - peak_db) * kLog2Of10Over20);
-        if (unit[size_t(block)] == 0) { // nothing echoes in these bins: no field to draw
-            std::fill(A.begin() + std::ptrdiff_t(size_t(k0) * N * 2),
-                      A.begin() + std::ptrdiff_t(size_t(k0 + rows) * N * 2), 0.0f);
-            return;
-        }
-        for (int t = 0; t < rows; ++t) {
-            const int k = k0 + t;
-            const double r = r_min + (k + 0.5) * dr;
-            frame.raise(r, J, S, in.elevation_rad.data() + size_t(k) * N, w.rise.data(), w.reach.data());
-            WorldKeyGrid(seed, std::min(dr, r * column))
-                .keys(J,
-                      frame.points(w.rise.data(), w.reach.data(), ahead_x.data(), ahead_y.data(),
-                                   ahead_z.data()),
-                      w.key.data());
-            keyed::exp_phasors(J, w.key.data(), w.power.data(), w.cos_phase.data(), w.sin_phase.data());
-            const float* level = src.level_db.data() + size_t(k) * J;
-            if (!formed) {
-                float* row = A.data() + size_t(k) * N * 2;
-                relative_field_row(J, level, top_db, w.power.data(), w.cos_phase.data(), w.sin_phase.data(),
-                                   row, row + N);
+        w.group.resize(formed ? size_t(J) * 2 * kGroupRows + 16 : 0); // 16: room to align
+        float* const field =
+            formed ? w.group.data() + (16 - (reinterpret_cast<std::uintptr_t>(w.group.data()) / 4) % 16) % 16
+                   : nullptr;
+        const int g0 = group * kGroupRows, group_rows = std::min(kGroupRows, K - g0);
+        bool echoes = false; // whether any block of the group has a field
+        for (int block = group * kGroupBlocks; block < std::min(blocks, (group + 1) * kGroupBlocks);
+             ++block) {
+            const int k0 = block * kBlockRows, rows = std::min(kBlockRows, K - k0);
+            // In single precision relative to the block's strongest sample.
+            const float top_db = max_level(size_t(rows) * J, src.level_db.data() + size_t(k0) * J);
+            constexpr double kLog2Of10Over20 = 0.16609640474436812;
+            unit[size_t(block)] = top_db == -std::numeric_limits<float>::infinity()
+                                      ? 0.0
+                                      : fast::exp2_nonpositive((double(top_db) - peak_db) * kLog2Of10Over20);
+            if (unit[size_t(block)] == 0) { // nothing echoes in these bins: no field to draw
+                std::fill(A.begin() + std::ptrdiff_t(size_t(k0) * N * 2),
+                          A.begin() + std::ptrdiff_t(size_t(k0 + rows) * N * 2), 0.0f);
+                for (size_t j = 0; formed && j < size_t(J); ++j) // its lanes form zeros (+0, as filled)
+                    for (int t = k0 - g0; t < k0 - g0 + rows; ++t)
+                        field[j * 2 * kGroupRows + size_t(t)] =
+                            field[j * 2 * kGroupRows + kGroupRows + size_t(t)] = 0;
                 continue;
             }
-            relative_field_row(J, level, top_db, w.power.data(), w.cos_phase.data(), w.sin_phase.data(),
-                               w.re.data(), w.im.data());
-            for (int j = 0; j < J; ++j) {
-                w.block_re[size_t(j) * kBlockRows + size_t(t)] = w.re[size_t(j)];
-                w.block_im[size_t(j) * kBlockRows + size_t(t)] = w.im[size_t(j)];
+            echoes = true;
+            for (int t = 0; t < rows; ++t) {
+                const int k = k0 + t;
+                const double r = r_min + (k + 0.5) * dr;
+                frame.raise(r, J, S, in.elevation_rad.data() + size_t(k) * N, w.rise.data(), w.reach.data());
+                WorldKeyGrid(seed, std::min(dr, r * column))
+                    .keys(J,
+                          frame.points(w.rise.data(), w.reach.data(), ahead_x.data(), ahead_y.data(),
+                                       ahead_z.data()),
+                          w.key.data());
+                keyed::exp_phasors(J, w.key.data(), w.power.data(), w.cos_phase.data(), w.sin_phase.data());
+                const float* level = src.level_db.data() + size_t(k) * J;
+                if (!formed) {
+                    float* row = A.data() + size_t(k) * N * 2;
+                    relative_field_row(J, level, top_db, w.power.data(), w.cos_phase.data(),
+                                       w.sin_phase.data(), row, row + N);
+                    continue;
+                }
+                relative_field_row(J, level, top_db, w.power.data(), w.cos_phase.data(), w.sin_phase.data(),
+                                   w.re.data(), w.im.data());
+                const size_t lane = size_t(k - g0);
+                for (int j = 0; j < J; ++j) {
+                    field[size_t(j) * 2 * kGroupRows + lane] = w.re[size_t(j)];
+                    field[size_t(j) * 2 * kGroupRows + kGroupRows + lane] = w.im[size_t(j)];
+                }
             }
         }
-        if (formed)
-            form_block(sums, N, w.block_re.data(), w.block_im.data(), rows, A.data() + size_t(k0) * N * 2);
+        if (formed && echoes) {
+            for (size_t j = 0; group_rows < kGroupRows && j < size_t(J); ++j) // lanes past the image: zeros
+                for (int t = group_rows; t < kGroupRows; ++t)
+                    field[j * 2 * kGroupRows + size_t(t)] =
+                        field[j * 2 * kGroupRows + kGroupRows + size_t(t)] = 0;
+            form_group(*shared_sums, N, field, group_rows, A.data() + size_t(g0) * N * 2);
+        }
     });
 
     // The matched filter along range on the amplitudes, then |.|^2.
