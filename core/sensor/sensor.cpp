@@ -34,7 +34,7 @@ std::uint64_t pose_key(const SceneDesc& s) {
 }
 
 /// 10^((level - peak) / 10) of each level.
-SONARSIM_AVX2_CLONES void linear_of(std::size_t n, const float* level_db, double peak_db, double* out) {
+SONARSIM_SIMD_CLONES void linear_of(std::size_t n, const float* level_db, double peak_db, double* out) {
     constexpr double kLog2Of10Over10 = 0.33219280948873623;
     for (std::size_t i = 0; i < n; ++i)
         out[i] = fast::exp2_nonpositive((double(level_db[i]) - peak_db) * kLog2Of10Over10);
@@ -42,7 +42,7 @@ SONARSIM_AVX2_CLONES void linear_of(std::size_t n, const float* level_db, double
 
 /// |sqrt(v) + n|^2 for a row of intensities v, n = sigma sqrt(E) e^(i phi) circular complex Gaussian of power
 /// sigma^2 keyed by the row's key and the beam (key, power, cos_phase, sin_phase: scratch of n values).
-SONARSIM_AVX2_CLONES void add_noise(int n, std::uint32_t row_key, double noise_power, std::uint32_t* key,
+SONARSIM_SIMD_CLONES void add_noise(int n, std::uint32_t row_key, double noise_power, std::uint32_t* key,
                                     float* power, float* cos_phase, float* sin_phase, double* v) {
     for (int b = 0; b < n; ++b) key[b] = keyed::mix32(row_key + std::uint32_t(b));
     keyed::exp_phasors(n, key, power, cos_phase, sin_phase); // the sine unused
@@ -54,7 +54,7 @@ SONARSIM_AVX2_CLONES void add_noise(int n, std::uint32_t row_key, double noise_p
 }
 
 /// The output levels of a row: 10 log10(v) + gain [dB], -inf where v is 0.
-SONARSIM_AVX2_CLONES void levels_db(int n, const double* v, double gain_db, float* out) {
+SONARSIM_SIMD_CLONES void levels_db(int n, const double* v, double gain_db, float* out) {
     for (int i = 0; i < n; ++i) {
         const float level = float(fast::db_level(v[i]) + gain_db);
         out[i] = v[i] > 0 ? level : -std::numeric_limits<float>::infinity();

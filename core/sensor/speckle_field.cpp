@@ -53,7 +53,7 @@ BeamSums by_beam(const AzimuthBeamforming& bf) {
 
 /// The largest of n levels [dB] (-inf when there is none; NaN is passed over). On the bits, where
 /// i ^ ((i >> 31) & 0x7fffffff) orders as the floats do and an integer maximum vectorises.
-SONARSIM_AVX2_CLONES float max_level_clones(std::size_t n, const float* level_db) {
+SONARSIM_SIMD_CLONES float max_level_clones(std::size_t n, const float* level_db) {
     auto order = [](std::int32_t i) { return i ^ ((i >> 31) & 0x7fffffff); }; // its own inverse
     const std::int32_t lowest = order(fast::bits_of(-std::numeric_limits<float>::infinity()));
     std::int32_t top = lowest;
@@ -74,7 +74,7 @@ namespace {
 
 /// The field of one row relative to the amplitude 10^(top_db / 20), in single precision: 0 for levels more
 /// than 759 dB below top_db (2^-126 in amplitude).
-SONARSIM_AVX2_CLONES void relative_field_row(int J, const float* level_db, float top_db, const float* power,
+SONARSIM_SIMD_CLONES void relative_field_row(int J, const float* level_db, float top_db, const float* power,
                                              const float* cos_phase, const float* sin_phase, float* re,
                                              float* im) {
     constexpr float kLog2Of10Over20 = 0.166096405f;
@@ -134,10 +134,7 @@ inline __attribute__((always_inline)) void form_group_lanes(const BeamSums& sums
             Lanes a, c;
             std::memcpy(&a, x_re + h * W, sizeof a);
             std::memcpy(&c, x_im + h * W, sizeof c);
-            a *= w, c *= w;
-            // The products rounded before the sums, as without FMA (which AVX-512 would otherwise fuse in).
-            asm("" : "+v"(a), "+v"(c));
-            sum.re[h] += a, sum.im[h] += c;
+            sum.re[h] += w * a, sum.im[h] += w * c;
         }
     };
     auto store = [&](const Sum& sum, int b) __attribute__((always_inline)) {
@@ -164,20 +161,20 @@ inline __attribute__((always_inline)) void form_group_lanes(const BeamSums& sums
     }
 }
 
-#ifdef SONARSIM_AVX2_DISPATCH
-__attribute__((target("avx2"))) void form_group_avx2(const BeamSums& sums, int N, const float* field,
-                                                     int rows, float* out) {
+#ifdef SONARSIM_SIMD_DISPATCH
+SONARSIM_AVX2_TARGET void form_group_avx2(const BeamSums& sums, int N, const float* field, int rows,
+                                          float* out) {
     form_group_lanes<8>(sums, N, field, rows, out);
 }
-__attribute__((target("avx512f"))) void form_group_avx512(const BeamSums& sums, int N, const float* field,
-                                                          int rows, float* out) {
+SONARSIM_AVX512_TARGET void form_group_avx512(const BeamSums& sums, int N, const float* field, int rows,
+                                              float* out) {
     form_group_lanes<16>(sums, N, field, rows, out);
 }
 #endif
 
 /// form_group_lanes with the widest vectors the CPU has (the same sums either way).
 void form_group(const BeamSums& sums, int N, const float* field, int rows, float* out) {
-#ifdef SONARSIM_AVX2_DISPATCH
+#ifdef SONARSIM_SIMD_DISPATCH
     static const bool avx512 = __builtin_cpu_supports("avx512f"), avx2 = __builtin_cpu_supports("avx2");
     if (avx512) return form_group_avx512(sums, N, field, rows, out);
     if (avx2) return form_group_avx2(sums, N, field, rows, out);
@@ -191,7 +188,7 @@ typedef float FourFloats __attribute__((vector_size(4 * sizeof(float))));
 
 /// One output row: |sum_t g[t + half] unit(k - t) A_(k - t)|^2 over the rows of A (re N values, then im N
 /// values; row k relative to the amplitude unit[k / kBlockRows]), 4 beams at a time summed over the taps.
-SONARSIM_AVX2_CLONES void intensity_row(const float* A, const double* unit, int K, int N, int k,
+SONARSIM_SIMD_CLONES void intensity_row(const float* A, const double* unit, int K, int N, int k,
                                         const std::vector<double>& g, double* out) {
     thread_local std::vector<double> w; // the taps within the image: weights and rows (only within this call)
     thread_local std::vector<const float*> x;
@@ -225,7 +222,7 @@ SONARSIM_AVX2_CLONES void intensity_row(const float* A, const double* unit, int 
 }
 
 /// Per beam, the rise r sin(e) along `up` and the reach r cos(e) along `ahead` (e NaN: 0).
-SONARSIM_AVX2_CLONES void rise_and_reach(int n, double r_m, const float* elevation_rad, double* rise_m,
+SONARSIM_SIMD_CLONES void rise_and_reach(int n, double r_m, const float* elevation_rad, double* rise_m,
                                          double* reach_m) {
     for (int b = 0; b < n; ++b) {
         const double e = elevation_rad[b] == elevation_rad[b] ? elevation_rad[b] : 0.0; // NaN: nothing echoes
