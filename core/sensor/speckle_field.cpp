@@ -109,12 +109,12 @@ std::shared_ptr<const BeamSums> shared_beam_sums(const SceneDesc& s) {
 }
 
 /// The beams of a group from its field (re of column j, row t at j * 2 kGroupRows + t, im kGroupRows further
-/// on; 64-byte aligned, so that a column is whole cache lines): (re, im) of beam b
-/// for the group's row t into out[t * 2 N + b] and out[t * 2 N + N + b], t < rows. The group's rows in
-/// vectors of W floats (GCC's vector extension): W = 16 fills an AVX-512 register, 8 an AVX one, 4 an SSE
-/// one. Two beams are summed side by side (each over its own columns in ascending order, as one at a time
-/// would), so that the adds of one do not wait for the other's.
-template <int W>
+/// on; 64-byte aligned, so that a column is whole cache lines): (re, im) of beam b for the group's row t into
+/// out[t * 2 N + b] and out[t * 2 N + N + b], t < rows. The group's rows in vectors of W floats (GCC's vector
+/// extension): W = 16 fills an AVX-512 register, 8 an AVX one, 4 an SSE one. kBeams beams are summed side by
+/// side (each over its own columns in ascending order, as one at a time would), so that the adds of one do
+/// not wait for another's; as many as the registers hold.
+template <int W, int kBeams>
 inline __attribute__((always_inline)) void form_group_lanes(const BeamSums& sums, int N, const float* field,
                                                             int rows, float* out) {
     typedef float Lanes __attribute__((vector_size(W * sizeof(float))));
@@ -145,14 +145,17 @@ inline __attribute__((always_inline)) void form_group_lanes(const BeamSums& sums
                                     out[size_t(t) * 2 * N + size_t(N + b)] = beam_im[t];
     };
     int b = 0;
-    for (; b + 2 <= N; b += 2) {
-        Sum s0 = {}, s1 = {};
-        int p0 = start[b], p1 = start[b + 1];
-        const int e0 = start[b + 1], e1 = start[b + 2];
-        for (; p0 < e0 && p1 < e1; ++p0, ++p1) add_column(s0, p0), add_column(s1, p1);
-        for (; p0 < e0; ++p0) add_column(s0, p0);
-        for (; p1 < e1; ++p1) add_column(s1, p1);
-        store(s0, b), store(s1, b + 1);
+    for (; b + kBeams <= N; b += kBeams) {
+        Sum sum[kBeams] = {};
+        int p[kBeams], end[kBeams], common = std::numeric_limits<int>::max();
+        for (int i = 0; i < kBeams; ++i)
+            p[i] = start[b + i], end[i] = start[b + i + 1], common = std::min(common, end[i] - p[i]);
+        for (int q = 0; q < common; ++q)
+            for (int i = 0; i < kBeams; ++i) add_column(sum[i], p[i] + q);
+        for (int i = 0; i < kBeams; ++i) {
+            for (int q = p[i] + common; q < end[i]; ++q) add_column(sum[i], q);
+            store(sum[i], b + i);
+        }
     }
     for (; b < N; ++b) {
         Sum s0 = {};
@@ -164,11 +167,11 @@ inline __attribute__((always_inline)) void form_group_lanes(const BeamSums& sums
 #ifdef SONARSIM_SIMD_DISPATCH
 SONARSIM_AVX2_TARGET void form_group_avx2(const BeamSums& sums, int N, const float* field, int rows,
                                           float* out) {
-    form_group_lanes<8>(sums, N, field, rows, out);
+    form_group_lanes<8, 2>(sums, N, field, rows, out);
 }
 SONARSIM_AVX512_TARGET void form_group_avx512(const BeamSums& sums, int N, const float* field, int rows,
                                               float* out) {
-    form_group_lanes<16>(sums, N, field, rows, out);
+    form_group_lanes<16, 4>(sums, N, field, rows, out);
 }
 #endif
 
@@ -179,7 +182,26 @@ void form_group(const BeamSums& sums, int N, const float* field, int rows, float
     if (avx512) return form_group_avx512(sums, N, field, rows, out);
     if (avx2) return form_group_avx2(sums, N, field, rows, out);
 #endif
-    form_group_lanes<4>(sums, N, field, rows, out);
+    form_group_lanes<4, 1>(sums, N, field, rows, out);
+}
+
+/// The field of a group by column (field[j * 2 kGroupRows + t] re, kGroupRows further on im) from its rows
+/// (rows[t * 2 J + j] re, J further on im), a tile of 16 columns at a time.
+SONARSIM_SIMD_CLONES void to_columns(int J, const float* rows, float* field) {
+    constexpr int kTile = 16;
+    int j0 = 0;
+    for (; j0 + kTile <= J; j0 += kTile)
+        for (int part = 0; part < 2; ++part)
+            for (int t = 0; t < kGroupRows; ++t) {
+                const float* from = rows + size_t(t) * 2 * J + size_t(part) * J + size_t(j0);
+                float* to = field + size_t(j0) * 2 * kGroupRows + size_t(part) * kGroupRows + size_t(t);
+                for (int j = 0; j < kTile; ++j) to[size_t(j) * 2 * kGroupRows] = from[j];
+            }
+    for (; j0 < J; ++j0)
+        for (int part = 0; part < 2; ++part)
+            for (int t = 0; t < kGroupRows; ++t)
+                field[size_t(j0) * 2 * kGroupRows + size_t(part) * kGroupRows + size_t(t)] =
+                    rows[size_t(t) * 2 * J + size_t(part) * J + size_t(j0)];
 }
 
 /// 4 beams of one row in double precision (an AVX register, two SSE ones) and the same in single.
@@ -230,6 +252,16 @@ SONARSIM_SIMD_CLONES void rise_and_reach(int n, double r_m, const float* elevati
     }
 }
 
+/// Each of n values `per_beam` times in a row.
+SONARSIM_SIMD_CLONES void spread(int n, int per_beam, const double* in, double* out) {
+    if (per_beam == 2) { // the common case, in a loop that vectorises
+        for (int b = 0; b < n; ++b) out[2 * b] = out[2 * b + 1] = in[b];
+        return;
+    }
+    for (int b = 0, j = 0; b < n; ++b)
+        for (int s = 0; s < per_beam; ++s, ++j) out[j] = in[b];
+}
+
 } // namespace
 
 void SonarFrame::raise(double r_m, int cells, int per_beam, const float* elevation_rad, double* rise,
@@ -239,10 +271,7 @@ void SonarFrame::raise(double r_m, int cells, int per_beam, const float* elevati
     const int beams = cells / per_beam;
     beam_rise.resize(size_t(beams)), beam_reach.resize(size_t(beams));
     rise_and_reach(beams, r_m, elevation_rad, beam_rise.data(), beam_reach.data());
-    for (int b = 0, j = 0; b < beams; ++b) {
-        const double beam_rise_m = beam_rise[size_t(b)], beam_reach_m = beam_reach[size_t(b)];
-        for (int s = 0; s < per_beam; ++s, ++j) rise[j] = beam_rise_m, reach[j] = beam_reach_m;
-    }
+    spread(beams, per_beam, beam_rise.data(), rise), spread(beams, per_beam, beam_reach.data(), reach);
 }
 
 WorldKeyGrid::WorldKeyGrid(std::uint64_t seed, double cell_m) {
@@ -297,16 +326,21 @@ std::vector<double> form_speckle(const PolarImage& src, double peak_db, const Se
     // amplitudes, into A: per bin, re of the N beams, then im.
     const int blocks = (K + kBlockRows - 1) / kBlockRows, groups = (blocks + kGroupBlocks - 1) / kGroupBlocks;
     std::vector<float> A = scratch::take<float>(size_t(K) * N * 2); // every value written below
+    const std::vector<double> g =
+        range_amplitude_kernel(s.sensor.pulse, s.sensor.range_resolution_m, dr); // the matched filter
+    const bool single_tap = g.size() == 1;
+    std::vector<double> out = scratch::take<double>(size_t(K) * N); // every value written below
     std::vector<double> unit(static_cast<size_t>(blocks));          // per block: A's unit amplitude
     tbb::parallel_for(0, groups, [&](int group) {
         struct Scratch {
             std::vector<double> rise, reach;
             std::vector<std::uint32_t> key;
-            std::vector<float> power, cos_phase, sin_phase, re, im, group;
+            std::vector<float> power, cos_phase, sin_phase, rows, group;
         };
         thread_local Scratch w; // a leaf task's: nothing else runs on this thread while it is in use
         w.rise.resize(size_t(J)), w.reach.resize(size_t(J));
-        for (auto* v : {&w.power, &w.cos_phase, &w.sin_phase, &w.re, &w.im}) v->resize(size_t(J));
+        for (auto* v : {&w.power, &w.cos_phase, &w.sin_phase}) v->resize(size_t(J));
+        w.rows.resize(formed ? size_t(J) * 2 * kGroupRows : 0);
         w.key.resize(size_t(J));
         w.group.resize(formed ? size_t(J) * 2 * kGroupRows + 16 : 0); // 16: room to align
         float* const field =
@@ -326,10 +360,9 @@ std::vector<double> form_speckle(const PolarImage& src, double peak_db, const Se
             if (unit[size_t(block)] == 0) { // nothing echoes in these bins: no field to draw
                 std::fill(A.begin() + std::ptrdiff_t(size_t(k0) * N * 2),
                           A.begin() + std::ptrdiff_t(size_t(k0 + rows) * N * 2), 0.0f);
-                for (size_t j = 0; formed && j < size_t(J); ++j) // its lanes form zeros (+0, as filled)
-                    for (int t = k0 - g0; t < k0 - g0 + rows; ++t)
-                        field[j * 2 * kGroupRows + size_t(t)] =
-                            field[j * 2 * kGroupRows + kGroupRows + size_t(t)] = 0;
+                if (formed) // its rows form zeros (+0, as filled)
+                    std::fill(w.rows.begin() + std::ptrdiff_t(size_t(k0 - g0) * 2 * J),
+                              w.rows.begin() + std::ptrdiff_t(size_t(k0 - g0 + rows) * 2 * J), 0.0f);
                 continue;
             }
             echoes = true;
@@ -350,32 +383,29 @@ std::vector<double> form_speckle(const PolarImage& src, double peak_db, const Se
                                        w.sin_phase.data(), row, row + N);
                     continue;
                 }
+                float* row = w.rows.data() + size_t(k - g0) * 2 * J;
                 relative_field_row(J, level, top_db, w.power.data(), w.cos_phase.data(), w.sin_phase.data(),
-                                   w.re.data(), w.im.data());
-                const size_t lane = size_t(k - g0);
-                for (int j = 0; j < J; ++j) {
-                    field[size_t(j) * 2 * kGroupRows + lane] = w.re[size_t(j)];
-                    field[size_t(j) * 2 * kGroupRows + kGroupRows + lane] = w.im[size_t(j)];
-                }
+                                   row, row + J);
             }
         }
         if (formed && echoes) {
-            for (size_t j = 0; group_rows < kGroupRows && j < size_t(J); ++j) // lanes past the image: zeros
-                for (int t = group_rows; t < kGroupRows; ++t)
-                    field[j * 2 * kGroupRows + size_t(t)] =
-                        field[j * 2 * kGroupRows + kGroupRows + size_t(t)] = 0;
+            std::fill(w.rows.begin() + std::ptrdiff_t(size_t(group_rows) * 2 * J), w.rows.end(),
+                      0.0f); // rows past the image: zeros
+            to_columns(J, w.rows.data(), field);
             form_group(*shared_sums, N, field, group_rows, A.data() + size_t(g0) * N * 2);
         }
+        if (single_tap)
+            for (int k = g0; k < g0 + group_rows; ++k)
+                intensity_row(A.data(), unit.data(), K, N, k, g, out.data() + size_t(k) * N);
     });
 
-    // The matched filter along range on the amplitudes, then |.|^2.
-    const SensorParams& p = s.sensor;
-    const std::vector<double> g = range_amplitude_kernel(p.pulse, p.range_resolution_m, dr);
-    std::vector<double> out = scratch::take<double>(size_t(K) * N); // every value written below
-    tbb::parallel_for(tbb::blocked_range<int>(0, K, 16), [&](const tbb::blocked_range<int>& ks) {
-        for (int k = ks.begin(); k < ks.end(); ++k)
-            intensity_row(A.data(), unit.data(), K, N, k, g, out.data() + size_t(k) * N);
-    });
+    // The matched filter along range on the amplitudes, then |.|^2 (in the group's task already when the
+    // filter is a single tap: A's rows are still in cache there).
+    if (!single_tap)
+        tbb::parallel_for(tbb::blocked_range<int>(0, K, 16), [&](const tbb::blocked_range<int>& ks) {
+            for (int k = ks.begin(); k < ks.end(); ++k)
+                intensity_row(A.data(), unit.data(), K, N, k, g, out.data() + size_t(k) * N);
+        });
     scratch::give(std::move(A));
     return out;
 }
