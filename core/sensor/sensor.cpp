@@ -130,9 +130,14 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
     const PolarImage& src = fine ? inputs->fine : ideal;
     std::vector<double> I;
     const bool speckle = p.speckle != Speckle::Off && inputs && !inputs->elevation_rad.empty();
-    const double peak = peak_level(src);
+    // With speckle, the image's peak from the blocks' that the field is carried relative to (one pass).
+    const std::vector<float> block_peaks = speckle ? speckle_block_peaks(src) : std::vector<float>{};
+    const float block_peak = max_level(block_peaks.size(), block_peaks.data());
+    const double peak = !speckle                                                ? peak_level(src)
+                        : block_peak == -std::numeric_limits<float>::infinity() ? 0.0
+                                                                                : double(block_peak);
     if (speckle) {
-        I = form_speckle(src, peak, *inputs, s);
+        I = form_speckle(src, peak, *inputs, s, &block_peaks);
     } else {
         to_linear(src, peak, I);
         if (p.azimuth_window != AzimuthWindow::None) {

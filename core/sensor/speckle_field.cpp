@@ -305,8 +305,18 @@ void convolve_range(std::vector<double>& rows, int K, int width, const std::vect
     rows.swap(out);
 }
 
+std::vector<float> speckle_block_peaks(const PolarImage& src) {
+    const int K = src.bins, J = src.beams, blocks = (K + kBlockRows - 1) / kBlockRows;
+    std::vector<float> top(static_cast<size_t>(blocks));
+    tbb::parallel_for(0, blocks, [&](int block) {
+        const int k0 = block * kBlockRows, rows = std::min(kBlockRows, K - k0);
+        top[size_t(block)] = max_level(size_t(rows) * J, src.level_db.data() + size_t(k0) * J);
+    });
+    return top;
+}
+
 std::vector<double> form_speckle(const PolarImage& src, double peak_db, const SensorInputs& in,
-                                 const SceneDesc& s) {
+                                 const SceneDesc& s, const std::vector<float>* block_peaks) {
     const int K = src.bins, J = src.beams;
     const std::shared_ptr<const SonarGrid> sg = sonar_grid(s.sonar);
     const int N = sg->beams, S = J / N;
@@ -352,7 +362,9 @@ std::vector<double> form_speckle(const PolarImage& src, double peak_db, const Se
              ++block) {
             const int k0 = block * kBlockRows, rows = std::min(kBlockRows, K - k0);
             // In single precision relative to the block's strongest sample.
-            const float top_db = max_level(size_t(rows) * J, src.level_db.data() + size_t(k0) * J);
+            const float top_db = block_peaks
+                                     ? (*block_peaks)[size_t(block)]
+                                     : max_level(size_t(rows) * J, src.level_db.data() + size_t(k0) * J);
             constexpr double kLog2Of10Over20 = 0.16609640474436812;
             unit[size_t(block)] = top_db == -std::numeric_limits<float>::infinity()
                                       ? 0.0
