@@ -113,10 +113,13 @@ std::shared_ptr<const BeamSums> shared_beam_sums(const SceneDesc& s) {
 /// out[t * 2 N + b] and out[t * 2 N + N + b], t < rows. The group's rows in vectors of W floats (GCC's vector
 /// extension): W = 16 fills an AVX-512 register, 8 an AVX one, 4 an SSE one. kBeams beams are summed side by
 /// side (each over its own columns in ascending order, as one at a time would), so that the adds of one do
-/// not wait for another's; as many as the registers hold.
+/// not wait for another's; as many as the registers hold. With `intensity`, instead: |scale[t] (re, im)|^2
+/// into intensity[t * N + b] (the output of a single-tap range filter, scale its weight times the row's
+/// unit).
 template <int W, int kBeams>
 inline __attribute__((always_inline)) void form_group_lanes(const BeamSums& sums, int N, const float* field,
-                                                            int rows, float* out) {
+                                                            int rows, float* out, const double* scale,
+                                                            double* intensity) {
     typedef float Lanes __attribute__((vector_size(W * sizeof(float))));
     constexpr int kParts = kGroupRows / W;
     struct Sum {
@@ -140,9 +143,18 @@ inline __attribute__((always_inline)) void form_group_lanes(const BeamSums& sums
     auto store = [&](const Sum& sum, int b) __attribute__((always_inline)) {
         float beam_re[kGroupRows], beam_im[kGroupRows]; // the sums out of their registers
         std::memcpy(beam_re, sum.re, sizeof beam_re), std::memcpy(beam_im, sum.im, sizeof beam_im);
-        for (int t = 0; t < rows; ++t)
-            out[size_t(t) * 2 * N + size_t(b)] = beam_re[t],
-                                    out[size_t(t) * 2 * N + size_t(N + b)] = beam_im[t];
+        if (!intensity) {
+            for (int t = 0; t < rows; ++t)
+                out[size_t(t) * 2 * N + size_t(b)] = beam_re[t],
+                                        out[size_t(t) * 2 * N + size_t(N + b)] = beam_im[t];
+            return;
+        }
+        double level[kGroupRows]; // |scale A|^2 as intensity_row has it with a single tap
+        for (int t = 0; t < kGroupRows; ++t) {
+            const double re = scale[t] * double(beam_re[t]), im = scale[t] * double(beam_im[t]);
+            level[t] = re * re + im * im;
+        }
+        for (int t = 0; t < rows; ++t) intensity[size_t(t) * N + size_t(b)] = level[t];
     };
     int b = 0;
     for (; b + kBeams <= N; b += kBeams) {
@@ -166,23 +178,24 @@ inline __attribute__((always_inline)) void form_group_lanes(const BeamSums& sums
 
 #ifdef SONARSIM_SIMD_DISPATCH
 SONARSIM_AVX2_TARGET void form_group_avx2(const BeamSums& sums, int N, const float* field, int rows,
-                                          float* out) {
-    form_group_lanes<8, 2>(sums, N, field, rows, out);
+                                          float* out, const double* scale, double* intensity) {
+    form_group_lanes<8, 2>(sums, N, field, rows, out, scale, intensity);
 }
 SONARSIM_AVX512_TARGET void form_group_avx512(const BeamSums& sums, int N, const float* field, int rows,
-                                              float* out) {
-    form_group_lanes<16, 4>(sums, N, field, rows, out);
+                                              float* out, const double* scale, double* intensity) {
+    form_group_lanes<16, 4>(sums, N, field, rows, out, scale, intensity);
 }
 #endif
 
 /// form_group_lanes with the widest vectors the CPU has (the same sums either way).
-void form_group(const BeamSums& sums, int N, const float* field, int rows, float* out) {
+void form_group(const BeamSums& sums, int N, const float* field, int rows, float* out, const double* scale,
+                double* intensity) {
 #ifdef SONARSIM_SIMD_DISPATCH
     static const bool avx512 = __builtin_cpu_supports("avx512f"), avx2 = __builtin_cpu_supports("avx2");
-    if (avx512) return form_group_avx512(sums, N, field, rows, out);
-    if (avx2) return form_group_avx2(sums, N, field, rows, out);
+    if (avx512) return form_group_avx512(sums, N, field, rows, out, scale, intensity);
+    if (avx2) return form_group_avx2(sums, N, field, rows, out, scale, intensity);
 #endif
-    form_group_lanes<4, 1>(sums, N, field, rows, out);
+    form_group_lanes<4, 1>(sums, N, field, rows, out, scale, intensity);
 }
 
 /// The field of a group by column (field[j * 2 kGroupRows + t] re, kGroupRows further on im) from its rows
@@ -333,12 +346,15 @@ std::vector<double> form_speckle(const PolarImage& src, double peak_db, const Se
     const std::uint64_t seed = mix64(std::uint64_t(s.sensor.seed) ^ 0x677261696eULL); // "grain"
 
     // Per group of blocks of range bins: the field on the source columns, then (formed) the beams' complex
-    // amplitudes, into A: per bin, re of the N beams, then im.
+    // amplitudes into A (per bin, re of the N beams, then im), or, formed with a single-tap range filter,
+    // straight their intensities.
     const int blocks = (K + kBlockRows - 1) / kBlockRows, groups = (blocks + kGroupBlocks - 1) / kGroupBlocks;
     std::vector<float> A = scratch::take<float>(size_t(K) * N * 2); // every value written below
     const std::vector<double> g =
         range_amplitude_kernel(s.sensor.pulse, s.sensor.range_resolution_m, dr); // the matched filter
     const bool single_tap = g.size() == 1;
+    // Formed with a single-tap filter: each beam's |.|^2 straight from its sums (A not written).
+    const bool fused = formed && single_tap;
     std::vector<double> out = scratch::take<double>(size_t(K) * N); // every value written below
     std::vector<double> unit(static_cast<size_t>(blocks));          // per block: A's unit amplitude
     tbb::parallel_for(0, groups, [&](int group) {
@@ -370,8 +386,12 @@ std::vector<double> form_speckle(const PolarImage& src, double peak_db, const Se
                                       ? 0.0
                                       : fast::exp2_nonpositive((double(top_db) - peak_db) * kLog2Of10Over20);
             if (unit[size_t(block)] == 0) { // nothing echoes in these bins: no field to draw
-                std::fill(A.begin() + std::ptrdiff_t(size_t(k0) * N * 2),
-                          A.begin() + std::ptrdiff_t(size_t(k0 + rows) * N * 2), 0.0f);
+                if (fused)
+                    std::fill(out.begin() + std::ptrdiff_t(size_t(k0) * N),
+                              out.begin() + std::ptrdiff_t(size_t(k0 + rows) * N), 0.0);
+                else
+                    std::fill(A.begin() + std::ptrdiff_t(size_t(k0) * N * 2),
+                              A.begin() + std::ptrdiff_t(size_t(k0 + rows) * N * 2), 0.0f);
                 if (formed) // its rows form zeros (+0, as filled)
                     std::fill(w.rows.begin() + std::ptrdiff_t(size_t(k0 - g0) * 2 * J),
                               w.rows.begin() + std::ptrdiff_t(size_t(k0 - g0 + rows) * 2 * J), 0.0f);
@@ -404,9 +424,12 @@ std::vector<double> form_speckle(const PolarImage& src, double peak_db, const Se
             std::fill(w.rows.begin() + std::ptrdiff_t(size_t(group_rows) * 2 * J), w.rows.end(),
                       0.0f); // rows past the image: zeros
             to_columns(J, w.rows.data(), field);
-            form_group(*shared_sums, N, field, group_rows, A.data() + size_t(g0) * N * 2);
+            double scale[kGroupRows] = {}; // the filter's weight times each row's unit
+            for (int t = 0; t < group_rows; ++t) scale[t] = g[0] * unit[size_t(g0 + t) / kBlockRows];
+            form_group(*shared_sums, N, field, group_rows, A.data() + size_t(g0) * N * 2, scale,
+                       fused ? out.data() + size_t(g0) * N : nullptr);
         }
-        if (single_tap)
+        if (single_tap && !fused)
             for (int k = g0; k < g0 + group_rows; ++k)
                 intensity_row(A.data(), unit.data(), K, N, k, g, out.data() + size_t(k) * N);
     });
