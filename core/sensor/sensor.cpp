@@ -166,7 +166,7 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
     const std::uint64_t noise_seed = pose_key(s);
     PolarImage out;
     out.bins = K, out.beams = N;
-    out.level_db.resize(cells);
+    out.level_db = scratch::take<float>(cells); // every value written below
     tbb::parallel_for(0, K, [&](int k) {
         struct Scratch {
             std::vector<double> rise, reach, texture;

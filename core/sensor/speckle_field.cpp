@@ -349,14 +349,15 @@ std::vector<double> form_speckle(const PolarImage& src, double peak_db, const Se
     // amplitudes into A (per bin, re of the N beams, then im), or, formed with a single-tap range filter,
     // straight their intensities.
     const int blocks = (K + kBlockRows - 1) / kBlockRows, groups = (blocks + kGroupBlocks - 1) / kGroupBlocks;
-    std::vector<float> A = scratch::take<float>(size_t(K) * N * 2); // every value written below
     const std::vector<double> g =
         range_amplitude_kernel(s.sensor.pulse, s.sensor.range_resolution_m, dr); // the matched filter
     const bool single_tap = g.size() == 1;
-    // Formed with a single-tap filter: each beam's |.|^2 straight from its sums (A not written).
+    // Formed with a single-tap filter: each beam's |.|^2 straight from its sums (no A).
     const bool fused = formed && single_tap;
-    std::vector<double> out = scratch::take<double>(size_t(K) * N); // every value written below
-    std::vector<double> unit(static_cast<size_t>(blocks));          // per block: A's unit amplitude
+    std::vector<float> A =
+        fused ? std::vector<float>{} : scratch::take<float>(size_t(K) * N * 2); // every value written below
+    std::vector<double> out = scratch::take<double>(size_t(K) * N);             // every value written below
+    std::vector<double> unit(static_cast<size_t>(blocks)); // per block: A's unit amplitude
     tbb::parallel_for(0, groups, [&](int group) {
         struct Scratch {
             std::vector<double> rise, reach;
@@ -441,7 +442,7 @@ std::vector<double> form_speckle(const PolarImage& src, double peak_db, const Se
             for (int k = ks.begin(); k < ks.end(); ++k)
                 intensity_row(A.data(), unit.data(), K, N, k, g, out.data() + size_t(k) * N);
         });
-    scratch::give(std::move(A));
+    if (!fused) scratch::give(std::move(A));
     return out;
 }
 
