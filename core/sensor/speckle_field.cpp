@@ -10,6 +10,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#ifdef __x86_64__
+#include <immintrin.h>
+#endif
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -200,7 +203,7 @@ void form_group(const BeamSums& sums, int N, const float* field, int rows, float
 
 /// The field of a group by column (field[j * 2 kGroupRows + t] re, kGroupRows further on im) from its rows
 /// (rows[t * 2 J + j] re, J further on im), a tile of 16 columns at a time.
-SONARSIM_SIMD_CLONES void to_columns(int J, const float* rows, float* field) {
+SONARSIM_SIMD_CLONES void to_columns_plain(int J, const float* rows, float* field) {
     constexpr int kTile = 16;
     int j0 = 0;
     for (; j0 + kTile <= J; j0 += kTile)
@@ -215,6 +218,50 @@ SONARSIM_SIMD_CLONES void to_columns(int J, const float* rows, float* field) {
             for (int t = 0; t < kGroupRows; ++t)
                 field[size_t(j0) * 2 * kGroupRows + size_t(part) * kGroupRows + size_t(t)] =
                     rows[size_t(t) * 2 * J + size_t(part) * J + size_t(j0)];
+}
+
+#ifdef SONARSIM_SIMD_DISPATCH
+/// to_columns_plain by 8 x 8 tiles transposed in AVX registers (whole vectors loaded and stored).
+SONARSIM_AVX2_TARGET void to_columns_avx2(int J, const float* rows, float* field) {
+    static_assert(kGroupRows % 8 == 0, "whole tiles of rows");
+    int j0 = 0;
+    for (; j0 + 8 <= J; j0 += 8)
+        for (int part = 0; part < 2; ++part)
+            for (int t0 = 0; t0 < kGroupRows; t0 += 8) {
+                __m256 r[8], u[8], v[8];
+                for (int i = 0; i < 8; ++i)
+                    r[i] = _mm256_loadu_ps(rows + size_t(t0 + i) * 2 * J + size_t(part) * J + size_t(j0));
+                for (int i = 0; i < 8; i += 2)
+                    u[i] = _mm256_unpacklo_ps(r[i], r[i + 1]), u[i + 1] = _mm256_unpackhi_ps(r[i], r[i + 1]);
+                for (int i = 0; i < 8; i += 4) {
+                    v[i] = _mm256_shuffle_ps(u[i], u[i + 2], _MM_SHUFFLE(1, 0, 1, 0));
+                    v[i + 1] = _mm256_shuffle_ps(u[i], u[i + 2], _MM_SHUFFLE(3, 2, 3, 2));
+                    v[i + 2] = _mm256_shuffle_ps(u[i + 1], u[i + 3], _MM_SHUFFLE(1, 0, 1, 0));
+                    v[i + 3] = _mm256_shuffle_ps(u[i + 1], u[i + 3], _MM_SHUFFLE(3, 2, 3, 2));
+                }
+                float* to = field + size_t(j0) * 2 * kGroupRows + size_t(part) * kGroupRows + size_t(t0);
+                for (int c = 0; c < 4; ++c) { // column c from the low halves, column c + 4 from the high ones
+                    _mm256_storeu_ps(to + size_t(c) * 2 * kGroupRows,
+                                     _mm256_permute2f128_ps(v[c], v[c + 4], 0x20));
+                    _mm256_storeu_ps(to + size_t(c + 4) * 2 * kGroupRows,
+                                     _mm256_permute2f128_ps(v[c], v[c + 4], 0x31));
+                }
+            }
+    for (; j0 < J; ++j0) // the last columns one at a time
+        for (int part = 0; part < 2; ++part)
+            for (int t = 0; t < kGroupRows; ++t)
+                field[size_t(j0) * 2 * kGroupRows + size_t(part) * kGroupRows + size_t(t)] =
+                    rows[size_t(t) * 2 * J + size_t(part) * J + size_t(j0)];
+}
+#endif
+
+/// to_columns_plain, with AVX where the CPU has it (the same values moved).
+void to_columns(int J, const float* rows, float* field) {
+#ifdef SONARSIM_SIMD_DISPATCH
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    if (avx2) return to_columns_avx2(J, rows, field);
+#endif
+    to_columns_plain(J, rows, field);
 }
 
 /// 4 beams of one row in double precision (an AVX register, two SSE ones) and the same in single.
