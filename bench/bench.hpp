@@ -79,8 +79,9 @@ int run_worker(const WorkerOptions& options);
 /// Writes RESULTS.md, results.csv and results.json into `out_dir`; returns the Markdown text.
 std::string write_reports(const json& results, const std::string& out_dir);
 
-/// `sonarsim_bench sensor`: the sensor stage alone (median of `repeats`), printed as a table.
-int run_sensor_bench(int repeats);
+/// `sonarsim_bench sensor`: the sensor stage alone (median of `repeats`), printed as a table; `only`: just
+/// the cases whose name contains it.
+int run_sensor_bench(int repeats, const std::string& only = "");
 
 /// `sonarsim_bench multipath`: trace + shade with sampling.bounces 0, 1, 2 on the tank and the wreck.
 /// `settings`: "key=value" overrides applied to every case (as `sonarsim render --set`).

@@ -400,6 +400,8 @@ int main(int argc, char** argv) {
         "Override a parameter of every case, e.g. --set sampling.estimate=strict (repeatable)");
     CLI::App* sensor = app.add_subcommand("sensor", "Time the sensor stage alone (median of repeats)");
     sensor->add_option("--repeats", sensor_repeats, "Repeats")->capture_default_str();
+    std::string sensor_case;
+    sensor->add_option("--case", sensor_case, "Only the cases whose name contains this text");
     int devices_repeats = 5;
     CLI::App* devices = app.add_subcommand(
         "devices",
@@ -451,7 +453,7 @@ int main(int argc, char** argv) {
             std::cout << "wrote " << report_out << "/RESULTS.md, results.csv, results.json\n";
             return 0;
         }
-        if (*sensor) return run_sensor_bench(sensor_repeats);
+        if (*sensor) return run_sensor_bench(sensor_repeats, sensor_case);
         if (*multipath) return run_multipath_bench(o.paths.repo, multipath_repeats, multipath_settings);
         if (*warm) return run_warm_bench(warm_scenes, warm_repeats, warm_settings);
         if (*slider) return run_slider_bench(slider_scenes, slider_repeats);

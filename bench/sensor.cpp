@@ -1,6 +1,7 @@
 // `sonarsim_bench sensor`: the sensor stage alone, timed on the two sizes the targets name (128 beams x 512
-// bins: the ARIS 3000 on the Fig. 9 scene; 512 x 1500: an Oculus-class wide sonar over a floor), with every
-// effect of the generic device sensor on. Only sensor.seed changes between repeats, so each render runs the
+// bins: the ARIS 3000 on the Fig. 9 scene; 512 x 1500: an Oculus-class wide sonar over a floor, and the
+// oculus-m750d-lf preset with its own wide pattern over the same floor), with every effect of the device
+// sensor on. Only sensor.seed changes between repeats, so each render runs the
 // sensor stage and the display, nothing before them.
 #include "bench.hpp"
 
@@ -10,7 +11,9 @@
 
 #include <algorithm>
 #include <sys/resource.h>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 
 namespace sonarsim::bench {
@@ -28,7 +31,7 @@ double cpu_ms() {
 
 } // namespace
 
-int run_sensor_bench(int repeats) {
+int run_sensor_bench(int repeats, const std::string& only) {
     struct Case {
         std::string name;
         SceneDesc scene;
@@ -49,13 +52,25 @@ int run_sensor_bench(int repeats) {
     apply_setting(wide, "sensor.beamformer", "array", "bench");
     apply_setting(wide, "sensor.range_resolution_m", 0.2, "bench");
     cases.push_back({"Oculus-class, 512 x 1500, floor", wide});
+    // A wide preset with its own pattern (Taylor -30 dB, 1 deg at broadside widening off it, two fine columns
+    // per beam), its own range window and speckle, over the same floor; only the bins set to 1500.
+    SceneDesc preset = default_scene();
+    preset.objects.clear();
+    apply_setting(preset, "sonar.device", "oculus-m750d-lf", "bench");
+    apply_setting(preset, "sensor.model", "device", "bench");
+    apply_setting(preset, "sonar.range_bins", 1500, "bench");
+    preset.sonar.pose.position_m = {0, 0, 10}, preset.sonar.pose.orientation_deg = {0, 10, 0};
+    cases.push_back({"oculus-m750d-lf, 512 x 1500, floor", preset});
     for (int variant = 0; variant < 2; ++variant)
         for (auto& c : cases) {
+            if (c.name.find(only) == std::string::npos) continue;
             SceneDesc s = c.scene;
             if (variant == 1) apply_setting(s, "sensor.speckle", "k", "bench");
             Simulator sim(s);
             sim.render();
             std::vector<double> ms, cpu;
+            std::uint64_t hash =
+                0xcbf29ce484222325ULL; // FNV-1a of the last image's levels: same bits, same hash
             for (int i = 0; i < repeats; ++i) {
                 s.sensor.seed = i + 2;
                 sim.set_scene(s);
@@ -63,13 +78,19 @@ int run_sensor_bench(int repeats) {
                 const auto f = sim.render();
                 cpu.push_back(cpu_ms() - c0);
                 ms.push_back(f->sensor_ms);
+                if (i + 1 == repeats)
+                    for (const float v : f->polar().level_db) {
+                        unsigned char b[sizeof v];
+                        std::memcpy(b, &v, sizeof v);
+                        for (const unsigned char c : b) hash = (hash ^ c) * 0x100000001b3ULL;
+                    }
             }
             std::sort(ms.begin(), ms.end());
             std::sort(cpu.begin(), cpu.end());
             std::printf("%-36s speckle %-8s sensor stage: median %.2f ms wall (min %.2f, max %.2f); sensor + "
-                        "display %.1f ms CPU (all threads); %d repeats\n",
+                        "display %.1f ms CPU (all threads); %d repeats; image %016llx\n",
                         c.name.c_str(), variant ? "k" : "rayleigh", ms[ms.size() / 2], ms.front(), ms.back(),
-                        cpu[cpu.size() / 2], repeats);
+                        cpu[cpu.size() / 2], repeats, (unsigned long long)hash);
         }
     return 0;
 }

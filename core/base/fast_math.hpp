@@ -7,15 +7,20 @@
 #include <cstdint>
 #include <cstring>
 
-// On x86-64 (GCC), functions marked so get an AVX2 clone besides the baseline one, picked when the program
-// loads; neither uses FMA, so both give the same bits. Not under the sanitizers (their runtimes start after
-// the clones are resolved).
+// On x86-64 (GCC), functions marked so get AVX-512 and AVX2 clones besides the baseline one, picked when the
+// program loads. None fuses a product into a sum (no FMA: AVX-512 has it, and GCC would contract a * b + c
+// there unless told not to), so all give the same bits. SONARSIM_AVX512_TARGET and SONARSIM_AVX2_TARGET: the
+// same for functions dispatched by hand (__builtin_cpu_supports). Not under the sanitizers (their runtimes
+// start after the clones are resolved).
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__) &&     \
     !defined(__SANITIZE_THREAD__)
-#define SONARSIM_AVX2_CLONES __attribute__((target_clones("avx2", "default")))
-#define SONARSIM_AVX2_DISPATCH 1 // the same, by hand: a target("avx2") function and __builtin_cpu_supports
+#define SONARSIM_SIMD_CLONES                                                                                 \
+    __attribute__((target_clones("avx512f", "avx2", "default"), optimize("fp-contract=off")))
+#define SONARSIM_SIMD_DISPATCH 1
+#define SONARSIM_AVX512_TARGET __attribute__((target("avx512f"), optimize("fp-contract=off")))
+#define SONARSIM_AVX2_TARGET __attribute__((target("avx2")))
 #else
-#define SONARSIM_AVX2_CLONES
+#define SONARSIM_SIMD_CLONES
 #endif
 
 namespace sonarsim::fast {

@@ -61,6 +61,15 @@ std::shared_ptr<const Image8> recycled_fan(const SectorResampler& resampler, con
     });
 }
 
+/// The sensor's image, its levels given back to the scratch pool when the last frame holding it goes (they
+/// came from there: apply_sensor), so that the next image writes into pages already mapped.
+std::shared_ptr<const PolarImage> recycled_polar(PolarImage&& image) {
+    return std::shared_ptr<const PolarImage>(new PolarImage(std::move(image)), [](const PolarImage* p) {
+        std::unique_ptr<PolarImage> own(const_cast<PolarImage*>(p)); // made non-const above
+        scratch::give(std::move(own->level_db));
+    });
+}
+
 } // namespace
 
 std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
@@ -111,8 +120,8 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
         const auto t0 = std::chrono::steady_clock::now();
         next.polar_ptr = sensor_is_ideal(scene_)
                              ? next.ideal_ptr
-                             : std::make_shared<const PolarImage>(apply_sensor(
-                                   *next.ideal_ptr, next.inputs_ptr.get(), scene_, next.alpha_db_per_m));
+                             : recycled_polar(apply_sensor(*next.ideal_ptr, next.inputs_ptr.get(), scene_,
+                                                           next.alpha_db_per_m));
         next.sensor_ms = ms_since(t0);
     }
     if (from <= Stage::Display) {

@@ -50,7 +50,7 @@ inline float gamma_attempt(std::uint32_t key, std::uint32_t attempt, float d, fl
 }
 
 /// Every key's first draw.
-SONARSIM_AVX2_CLONES void first_gamma_attempts(int n, const std::uint32_t* key, float d, float c, double* out,
+SONARSIM_SIMD_CLONES void first_gamma_attempts(int n, const std::uint32_t* key, float d, float c, double* out,
                                                std::uint8_t* accepted) {
     for (int i = 0; i < n; ++i) {
         bool ok;
@@ -75,9 +75,13 @@ inline __attribute__((always_inline)) void cell_keys(int n, const RaisedPoints& 
     }
 }
 
-#ifdef SONARSIM_AVX2_DISPATCH
-__attribute__((target("avx2"))) void cell_keys_avx2(int n, const RaisedPoints& p, double inv_cell,
-                                                    std::uint32_t seed, std::uint32_t* key) {
+#ifdef SONARSIM_SIMD_DISPATCH
+SONARSIM_AVX2_TARGET void cell_keys_avx2(int n, const RaisedPoints& p, double inv_cell, std::uint32_t seed,
+                                         std::uint32_t* key) {
+    cell_keys<true>(n, p, inv_cell, seed, key);
+}
+SONARSIM_AVX512_TARGET void cell_keys_avx512(int n, const RaisedPoints& p, double inv_cell,
+                                             std::uint32_t seed, std::uint32_t* key) {
     cell_keys<true>(n, p, inv_cell, seed, key);
 }
 #endif
@@ -85,14 +89,15 @@ __attribute__((target("avx2"))) void cell_keys_avx2(int n, const RaisedPoints& p
 } // namespace
 
 void world_cell_keys(int n, const RaisedPoints& p, double inv_cell, std::uint32_t seed, std::uint32_t* key) {
-#ifdef SONARSIM_AVX2_DISPATCH
-    static const bool avx2 = __builtin_cpu_supports("avx2");
+#ifdef SONARSIM_SIMD_DISPATCH
+    static const bool avx512 = __builtin_cpu_supports("avx512f"), avx2 = __builtin_cpu_supports("avx2");
+    if (avx512) return cell_keys_avx512(n, p, inv_cell, seed, key);
     if (avx2) return cell_keys_avx2(n, p, inv_cell, seed, key);
 #endif
     cell_keys<false>(n, p, inv_cell, seed, key);
 }
 
-SONARSIM_AVX2_CLONES void exp_phasors(int n, const std::uint32_t* key, float* power, float* cos_phase,
+SONARSIM_SIMD_CLONES void exp_phasors(int n, const std::uint32_t* key, float* power, float* cos_phase,
                                       float* sin_phase) {
     for (int i = 0; i < n; ++i) {
         power[i] = -fast::ln_f(unit24(mix32(key[i] ^ 0x5bd1e995U)));

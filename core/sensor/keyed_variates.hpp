@@ -1,7 +1,8 @@
 // Counter-based random variates for the sensor stage, a row of cells at a time: each variate is a pure
 // function of a 32-bit key (a hash of the seed and what it belongs to: a scatterer's world cell, a pixel), so
 // the same key gives the same number in any order, on any thread. The loops are plain and branch-free so the
-// compiler vectorises them (SSE2, or AVX2 where the CPU has it: both give the same bits, no FMA being used).
+// compiler vectorises them (SSE2, or AVX2 or AVX-512 where the CPU has it: all give the same bits, no FMA
+// being used).
 #pragma once
 #include <cstdint>
 

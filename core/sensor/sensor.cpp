@@ -34,7 +34,7 @@ std::uint64_t pose_key(const SceneDesc& s) {
 }
 
 /// 10^((level - peak) / 10) of each level.
-SONARSIM_AVX2_CLONES void linear_of(std::size_t n, const float* level_db, double peak_db, double* out) {
+SONARSIM_SIMD_CLONES void linear_of(std::size_t n, const float* level_db, double peak_db, double* out) {
     constexpr double kLog2Of10Over10 = 0.33219280948873623;
     for (std::size_t i = 0; i < n; ++i)
         out[i] = fast::exp2_nonpositive((double(level_db[i]) - peak_db) * kLog2Of10Over10);
@@ -42,7 +42,7 @@ SONARSIM_AVX2_CLONES void linear_of(std::size_t n, const float* level_db, double
 
 /// |sqrt(v) + n|^2 for a row of intensities v, n = sigma sqrt(E) e^(i phi) circular complex Gaussian of power
 /// sigma^2 keyed by the row's key and the beam (key, power, cos_phase, sin_phase: scratch of n values).
-SONARSIM_AVX2_CLONES void add_noise(int n, std::uint32_t row_key, double noise_power, std::uint32_t* key,
+SONARSIM_SIMD_CLONES void add_noise(int n, std::uint32_t row_key, double noise_power, std::uint32_t* key,
                                     float* power, float* cos_phase, float* sin_phase, double* v) {
     for (int b = 0; b < n; ++b) key[b] = keyed::mix32(row_key + std::uint32_t(b));
     keyed::exp_phasors(n, key, power, cos_phase, sin_phase); // the sine unused
@@ -54,7 +54,7 @@ SONARSIM_AVX2_CLONES void add_noise(int n, std::uint32_t row_key, double noise_p
 }
 
 /// The output levels of a row: 10 log10(v) + gain [dB], -inf where v is 0.
-SONARSIM_AVX2_CLONES void levels_db(int n, const double* v, double gain_db, float* out) {
+SONARSIM_SIMD_CLONES void levels_db(int n, const double* v, double gain_db, float* out) {
     for (int i = 0; i < n; ++i) {
         const float level = float(fast::db_level(v[i]) + gain_db);
         out[i] = v[i] > 0 ? level : -std::numeric_limits<float>::infinity();
@@ -82,7 +82,8 @@ void to_linear(const PolarImage& src, double peak_db, std::vector<double>& out) 
 
 /// The receive pattern: each beam sums the fine columns weighted by its pattern (peak gain 1).
 std::vector<double> form_beams(const std::vector<double>& in, int K, int J, const SceneDesc& s) {
-    const AzimuthBeamforming bf = make_azimuth_beamforming(s);
+    const std::shared_ptr<const AzimuthBeamforming> shared = shared_azimuth_beamforming(s, false);
+    const AzimuthBeamforming& bf = *shared;
     const int N = bf.beams;
     std::vector<double> out(size_t(K) * N, 0.0);
     tbb::parallel_for(0, K, [&](int k) {
@@ -129,9 +130,14 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
     const PolarImage& src = fine ? inputs->fine : ideal;
     std::vector<double> I;
     const bool speckle = p.speckle != Speckle::Off && inputs && !inputs->elevation_rad.empty();
-    const double peak = peak_level(src);
+    // With speckle, the image's peak from the blocks' that the field is carried relative to (one pass).
+    const std::vector<float> block_peaks = speckle ? speckle_block_peaks(src) : std::vector<float>{};
+    const float block_peak = max_level(block_peaks.size(), block_peaks.data());
+    const double peak = !speckle                                                ? peak_level(src)
+                        : block_peak == -std::numeric_limits<float>::infinity() ? 0.0
+                                                                                : double(block_peak);
     if (speckle) {
-        I = form_speckle(src, peak, *inputs, s);
+        I = form_speckle(src, peak, *inputs, s, &block_peaks);
     } else {
         to_linear(src, peak, I);
         if (p.azimuth_window != AzimuthWindow::None) {
@@ -160,7 +166,7 @@ PolarImage apply_sensor(const PolarImage& ideal, const SensorInputs* inputs, con
     const std::uint64_t noise_seed = pose_key(s);
     PolarImage out;
     out.bins = K, out.beams = N;
-    out.level_db.resize(cells);
+    out.level_db = scratch::take<float>(cells); // every value written below
     tbb::parallel_for(0, K, [&](int k) {
         struct Scratch {
             std::vector<double> rise, reach, texture;

@@ -4,6 +4,7 @@
 #pragma once
 #include "core/scene/scene.hpp"
 
+#include <memory>
 #include <vector>
 
 namespace sonarsim {
@@ -76,6 +77,11 @@ struct AzimuthBeamforming {
         amplitude; ///< with `amplitudes`: the signed sqrt of each weight (ArrayPattern::amplitude)
 };
 AzimuthBeamforming make_azimuth_beamforming(const SceneDesc& scene, bool amplitudes = false);
+
+/// make_azimuth_beamforming's result for the scene, shared: made once per geometry and pattern (the sonar
+/// grid, the window and its level, the -3 dB width, the beamformer) and kept for the next frames, which run
+/// the sensor stage on the same geometry.
+std::shared_ptr<const AzimuthBeamforming> shared_azimuth_beamforming(const SceneDesc& scene, bool amplitudes);
 
 /// The matched filter's intensity response sampled on range bins of width dr_m: weights of bins -h..h
 /// (h = (size - 1) / 2), each the kernel's integral over the bin, summing to 1. cw: (1 - |x| / dr)^2 for

@@ -8,17 +8,26 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#ifdef __x86_64__
+#include <immintrin.h>
+#endif
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 namespace sonarsim {
 namespace {
 
-/// Range bins formed together: the field of a block is stored column by column, kBlockRows values (one per
-/// bin) a column, so that forming a beam is a sum of whole columns, kBlockRows lanes wide.
+/// Range bins whose field is carried relative to one amplitude: the strongest sample of the block's bins.
 constexpr int kBlockRows = 8;
+/// Blocks formed together: the field of a group is stored column by column, kGroupRows values (one per bin) a
+/// column, so that forming a beam is a sum of whole columns, kGroupRows lanes wide: independent sums enough
+/// to keep the adders busy (each lane's sum in the same order whatever the group).
+constexpr int kGroupBlocks = 2, kGroupRows = kGroupBlocks * kBlockRows;
 
 /// The receive pattern's amplitude by beam: beam b sums the fine columns column[start[b] ... start[b + 1])
 /// with the weights beside them (ascending columns), in single precision like the field it forms.
@@ -27,7 +36,8 @@ struct BeamSums {
     std::vector<float> weight;
 };
 
-BeamSums by_beam(const AzimuthBeamforming& bf, int J) {
+BeamSums by_beam(const AzimuthBeamforming& bf) {
+    const int J = int(bf.first.size());
     BeamSums s;
     s.start.assign(size_t(bf.beams) + 1, 0);
     for (int j = 0; j < J; ++j)
@@ -46,7 +56,7 @@ BeamSums by_beam(const AzimuthBeamforming& bf, int J) {
 
 /// The largest of n levels [dB] (-inf when there is none; NaN is passed over). On the bits, where
 /// i ^ ((i >> 31) & 0x7fffffff) orders as the floats do and an integer maximum vectorises.
-SONARSIM_AVX2_CLONES float max_level_clones(std::size_t n, const float* level_db) {
+SONARSIM_SIMD_CLONES float max_level_clones(std::size_t n, const float* level_db) {
     auto order = [](std::int32_t i) { return i ^ ((i >> 31) & 0x7fffffff); }; // its own inverse
     const std::int32_t lowest = order(fast::bits_of(-std::numeric_limits<float>::infinity()));
     std::int32_t top = lowest;
@@ -67,7 +77,7 @@ namespace {
 
 /// The field of one row relative to the amplitude 10^(top_db / 20), in single precision: 0 for levels more
 /// than 759 dB below top_db (2^-126 in amplitude).
-SONARSIM_AVX2_CLONES void relative_field_row(int J, const float* level_db, float top_db, const float* power,
+SONARSIM_SIMD_CLONES void relative_field_row(int J, const float* level_db, float top_db, const float* power,
                                              const float* cos_phase, const float* sin_phase, float* re,
                                              float* im) {
     constexpr float kLog2Of10Over20 = 0.166096405f;
@@ -78,49 +88,180 @@ SONARSIM_AVX2_CLONES void relative_field_row(int J, const float* level_db, float
     }
 }
 
-/// The beams of a block from its field (re, im of column j, row t at j * kBlockRows + t): (re, im) of beam b
-/// for the block's row t into out[t * 2 N + b] and out[t * 2 N + N + b], t < rows. The block's rows in
-/// vectors of W floats (GCC's vector extension): W = 8 fills an AVX register, W = 4 an SSE one.
-template <int W>
-inline __attribute__((always_inline)) void form_block_lanes(const BeamSums& sums, int N, const float* re,
-                                                            const float* im, int rows, float* out) {
-    typedef float Lanes __attribute__((vector_size(W * sizeof(float))));
-    constexpr int kParts = kBlockRows / W;
-    for (int b = 0; b < N; ++b) {
-        Lanes sum_re[kParts] = {}, sum_im[kParts] = {};
-        for (int p = sums.start[size_t(b)]; p < sums.start[size_t(b) + 1]; ++p) {
-            const float w = sums.weight[size_t(p)];
-            const float* x_re = re + size_t(sums.column[size_t(p)]) * kBlockRows;
-            const float* x_im = im + size_t(sums.column[size_t(p)]) * kBlockRows;
-            for (int h = 0; h < kParts; ++h) {
-                Lanes a, c;
-                std::memcpy(&a, x_re + h * W, sizeof a);
-                std::memcpy(&c, x_im + h * W, sizeof c);
-                sum_re[h] += w * a, sum_im[h] += w * c;
+/// by_beam of the scene's receive pattern amplitudes, made once per geometry and pattern and kept (the
+/// sensor stage reruns on the same geometry frame after frame).
+std::shared_ptr<const BeamSums> shared_beam_sums(const SceneDesc& s) {
+    const std::shared_ptr<const AzimuthBeamforming> bf = shared_azimuth_beamforming(s, true);
+    constexpr std::size_t kKept = 4; // the most recently used
+    static std::mutex m;
+    static std::vector<std::pair<std::shared_ptr<const AzimuthBeamforming>, std::shared_ptr<const BeamSums>>>
+        kept; // most recently used first; the pattern held, so that its pointer stays its own
+    {
+        std::lock_guard<std::mutex> lock(m);
+        for (auto it = kept.begin(); it != kept.end(); ++it)
+            if (it->first == bf) {
+                std::rotate(kept.begin(), it, it + 1);
+                return kept.front().second;
             }
+    }
+    auto sums = std::make_shared<const BeamSums>(by_beam(*bf));
+    std::lock_guard<std::mutex> lock(m);
+    kept.emplace(kept.begin(), bf, sums);
+    if (kept.size() > kKept) kept.pop_back();
+    return sums;
+}
+
+/// The beams of a group from its field (re of column j, row t at j * 2 kGroupRows + t, im kGroupRows further
+/// on; 64-byte aligned, so that a column is whole cache lines): (re, im) of beam b for the group's row t into
+/// out[t * 2 N + b] and out[t * 2 N + N + b], t < rows. The group's rows in vectors of W floats (GCC's vector
+/// extension): W = 16 fills an AVX-512 register, 8 an AVX one, 4 an SSE one. kBeams beams are summed side by
+/// side (each over its own columns in ascending order, as one at a time would), so that the adds of one do
+/// not wait for another's; as many as the registers hold. With `intensity`, instead: |scale[t] (re, im)|^2
+/// into intensity[t * N + b] (the output of a single-tap range filter, scale its weight times the row's
+/// unit).
+template <int W, int kBeams>
+inline __attribute__((always_inline)) void form_group_lanes(const BeamSums& sums, int N, const float* field,
+                                                            int rows, float* out, const double* scale,
+                                                            double* intensity) {
+    typedef float Lanes __attribute__((vector_size(W * sizeof(float))));
+    constexpr int kParts = kGroupRows / W;
+    struct Sum {
+        Lanes re[kParts], im[kParts];
+    };
+    const int* start = sums.start.data();
+    const int* column = sums.column.data();
+    const float* weight = sums.weight.data();
+    auto add_column = [&](Sum & sum, int p) __attribute__((always_inline)) {
+        const float w = weight[p];
+        const float* x_re = static_cast<const float*>(
+            __builtin_assume_aligned(field + size_t(column[p]) * 2 * kGroupRows, 64));
+        const float* x_im = x_re + kGroupRows;
+        for (int h = 0; h < kParts; ++h) {
+            Lanes a, c;
+            std::memcpy(&a, x_re + h * W, sizeof a);
+            std::memcpy(&c, x_im + h * W, sizeof c);
+            sum.re[h] += w * a, sum.im[h] += w * c;
         }
-        float beam_re[kBlockRows], beam_im[kBlockRows]; // the sums out of their registers
-        std::memcpy(beam_re, sum_re, sizeof beam_re), std::memcpy(beam_im, sum_im, sizeof beam_im);
-        for (int t = 0; t < rows; ++t)
-            out[size_t(t) * 2 * N + size_t(b)] = beam_re[t],
-                                    out[size_t(t) * 2 * N + size_t(N + b)] = beam_im[t];
+    };
+    auto store = [&](const Sum& sum, int b) __attribute__((always_inline)) {
+        float beam_re[kGroupRows], beam_im[kGroupRows]; // the sums out of their registers
+        std::memcpy(beam_re, sum.re, sizeof beam_re), std::memcpy(beam_im, sum.im, sizeof beam_im);
+        if (!intensity) {
+            for (int t = 0; t < rows; ++t)
+                out[size_t(t) * 2 * N + size_t(b)] = beam_re[t],
+                                        out[size_t(t) * 2 * N + size_t(N + b)] = beam_im[t];
+            return;
+        }
+        double level[kGroupRows]; // |scale A|^2 as intensity_row has it with a single tap
+        for (int t = 0; t < kGroupRows; ++t) {
+            const double re = scale[t] * double(beam_re[t]), im = scale[t] * double(beam_im[t]);
+            level[t] = re * re + im * im;
+        }
+        for (int t = 0; t < rows; ++t) intensity[size_t(t) * N + size_t(b)] = level[t];
+    };
+    int b = 0;
+    for (; b + kBeams <= N; b += kBeams) {
+        Sum sum[kBeams] = {};
+        int p[kBeams], end[kBeams], common = std::numeric_limits<int>::max();
+        for (int i = 0; i < kBeams; ++i)
+            p[i] = start[b + i], end[i] = start[b + i + 1], common = std::min(common, end[i] - p[i]);
+        for (int q = 0; q < common; ++q)
+            for (int i = 0; i < kBeams; ++i) add_column(sum[i], p[i] + q);
+        for (int i = 0; i < kBeams; ++i) {
+            for (int q = p[i] + common; q < end[i]; ++q) add_column(sum[i], q);
+            store(sum[i], b + i);
+        }
+    }
+    for (; b < N; ++b) {
+        Sum s0 = {};
+        for (int p = start[b]; p < start[b + 1]; ++p) add_column(s0, p);
+        store(s0, b);
     }
 }
 
-#ifdef SONARSIM_AVX2_DISPATCH
-__attribute__((target("avx2"))) void form_block_avx2(const BeamSums& sums, int N, const float* re,
-                                                     const float* im, int rows, float* out) {
-    form_block_lanes<8>(sums, N, re, im, rows, out);
+#ifdef SONARSIM_SIMD_DISPATCH
+SONARSIM_AVX2_TARGET void form_group_avx2(const BeamSums& sums, int N, const float* field, int rows,
+                                          float* out, const double* scale, double* intensity) {
+    form_group_lanes<8, 2>(sums, N, field, rows, out, scale, intensity);
+}
+SONARSIM_AVX512_TARGET void form_group_avx512(const BeamSums& sums, int N, const float* field, int rows,
+                                              float* out, const double* scale, double* intensity) {
+    form_group_lanes<16, 4>(sums, N, field, rows, out, scale, intensity);
 }
 #endif
 
-/// form_block_lanes with the widest vectors the CPU has (the same sums either way).
-void form_block(const BeamSums& sums, int N, const float* re, const float* im, int rows, float* out) {
-#ifdef SONARSIM_AVX2_DISPATCH
-    static const bool avx2 = __builtin_cpu_supports("avx2");
-    if (avx2) return form_block_avx2(sums, N, re, im, rows, out);
+/// form_group_lanes with the widest vectors the CPU has (the same sums either way).
+void form_group(const BeamSums& sums, int N, const float* field, int rows, float* out, const double* scale,
+                double* intensity) {
+#ifdef SONARSIM_SIMD_DISPATCH
+    static const bool avx512 = __builtin_cpu_supports("avx512f"), avx2 = __builtin_cpu_supports("avx2");
+    if (avx512) return form_group_avx512(sums, N, field, rows, out, scale, intensity);
+    if (avx2) return form_group_avx2(sums, N, field, rows, out, scale, intensity);
 #endif
-    form_block_lanes<4>(sums, N, re, im, rows, out);
+    form_group_lanes<4, 1>(sums, N, field, rows, out, scale, intensity);
+}
+
+/// The field of a group by column (field[j * 2 kGroupRows + t] re, kGroupRows further on im) from its rows
+/// (rows[t * 2 J + j] re, J further on im), a tile of 16 columns at a time.
+SONARSIM_SIMD_CLONES void to_columns_plain(int J, const float* rows, float* field) {
+    constexpr int kTile = 16;
+    int j0 = 0;
+    for (; j0 + kTile <= J; j0 += kTile)
+        for (int part = 0; part < 2; ++part)
+            for (int t = 0; t < kGroupRows; ++t) {
+                const float* from = rows + size_t(t) * 2 * J + size_t(part) * J + size_t(j0);
+                float* to = field + size_t(j0) * 2 * kGroupRows + size_t(part) * kGroupRows + size_t(t);
+                for (int j = 0; j < kTile; ++j) to[size_t(j) * 2 * kGroupRows] = from[j];
+            }
+    for (; j0 < J; ++j0)
+        for (int part = 0; part < 2; ++part)
+            for (int t = 0; t < kGroupRows; ++t)
+                field[size_t(j0) * 2 * kGroupRows + size_t(part) * kGroupRows + size_t(t)] =
+                    rows[size_t(t) * 2 * J + size_t(part) * J + size_t(j0)];
+}
+
+#ifdef SONARSIM_SIMD_DISPATCH
+/// to_columns_plain by 8 x 8 tiles transposed in AVX registers (whole vectors loaded and stored).
+SONARSIM_AVX2_TARGET void to_columns_avx2(int J, const float* rows, float* field) {
+    static_assert(kGroupRows % 8 == 0, "whole tiles of rows");
+    int j0 = 0;
+    for (; j0 + 8 <= J; j0 += 8)
+        for (int part = 0; part < 2; ++part)
+            for (int t0 = 0; t0 < kGroupRows; t0 += 8) {
+                __m256 r[8], u[8], v[8];
+                for (int i = 0; i < 8; ++i)
+                    r[i] = _mm256_loadu_ps(rows + size_t(t0 + i) * 2 * J + size_t(part) * J + size_t(j0));
+                for (int i = 0; i < 8; i += 2)
+                    u[i] = _mm256_unpacklo_ps(r[i], r[i + 1]), u[i + 1] = _mm256_unpackhi_ps(r[i], r[i + 1]);
+                for (int i = 0; i < 8; i += 4) {
+                    v[i] = _mm256_shuffle_ps(u[i], u[i + 2], _MM_SHUFFLE(1, 0, 1, 0));
+                    v[i + 1] = _mm256_shuffle_ps(u[i], u[i + 2], _MM_SHUFFLE(3, 2, 3, 2));
+                    v[i + 2] = _mm256_shuffle_ps(u[i + 1], u[i + 3], _MM_SHUFFLE(1, 0, 1, 0));
+                    v[i + 3] = _mm256_shuffle_ps(u[i + 1], u[i + 3], _MM_SHUFFLE(3, 2, 3, 2));
+                }
+                float* to = field + size_t(j0) * 2 * kGroupRows + size_t(part) * kGroupRows + size_t(t0);
+                for (int c = 0; c < 4; ++c) { // column c from the low halves, column c + 4 from the high ones
+                    _mm256_storeu_ps(to + size_t(c) * 2 * kGroupRows,
+                                     _mm256_permute2f128_ps(v[c], v[c + 4], 0x20));
+                    _mm256_storeu_ps(to + size_t(c + 4) * 2 * kGroupRows,
+                                     _mm256_permute2f128_ps(v[c], v[c + 4], 0x31));
+                }
+            }
+    for (; j0 < J; ++j0) // the last columns one at a time
+        for (int part = 0; part < 2; ++part)
+            for (int t = 0; t < kGroupRows; ++t)
+                field[size_t(j0) * 2 * kGroupRows + size_t(part) * kGroupRows + size_t(t)] =
+                    rows[size_t(t) * 2 * J + size_t(part) * J + size_t(j0)];
+}
+#endif
+
+/// to_columns_plain, with AVX where the CPU has it (the same values moved).
+void to_columns(int J, const float* rows, float* field) {
+#ifdef SONARSIM_SIMD_DISPATCH
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    if (avx2) return to_columns_avx2(J, rows, field);
+#endif
+    to_columns_plain(J, rows, field);
 }
 
 /// 4 beams of one row in double precision (an AVX register, two SSE ones) and the same in single.
@@ -129,7 +270,7 @@ typedef float FourFloats __attribute__((vector_size(4 * sizeof(float))));
 
 /// One output row: |sum_t g[t + half] unit(k - t) A_(k - t)|^2 over the rows of A (re N values, then im N
 /// values; row k relative to the amplitude unit[k / kBlockRows]), 4 beams at a time summed over the taps.
-SONARSIM_AVX2_CLONES void intensity_row(const float* A, const double* unit, int K, int N, int k,
+SONARSIM_SIMD_CLONES void intensity_row(const float* A, const double* unit, int K, int N, int k,
                                         const std::vector<double>& g, double* out) {
     thread_local std::vector<double> w; // the taps within the image: weights and rows (only within this call)
     thread_local std::vector<const float*> x;
@@ -163,12 +304,22 @@ SONARSIM_AVX2_CLONES void intensity_row(const float* A, const double* unit, int 
 }
 
 /// Per beam, the rise r sin(e) along `up` and the reach r cos(e) along `ahead` (e NaN: 0).
-SONARSIM_AVX2_CLONES void rise_and_reach(int n, double r_m, const float* elevation_rad, double* rise_m,
+SONARSIM_SIMD_CLONES void rise_and_reach(int n, double r_m, const float* elevation_rad, double* rise_m,
                                          double* reach_m) {
     for (int b = 0; b < n; ++b) {
         const double e = elevation_rad[b] == elevation_rad[b] ? elevation_rad[b] : 0.0; // NaN: nothing echoes
         rise_m[b] = r_m * SonarFrame::key_sin(e), reach_m[b] = r_m * SonarFrame::key_cos(e);
     }
+}
+
+/// Each of n values `per_beam` times in a row.
+SONARSIM_SIMD_CLONES void spread(int n, int per_beam, const double* in, double* out) {
+    if (per_beam == 2) { // the common case, in a loop that vectorises
+        for (int b = 0; b < n; ++b) out[2 * b] = out[2 * b + 1] = in[b];
+        return;
+    }
+    for (int b = 0, j = 0; b < n; ++b)
+        for (int s = 0; s < per_beam; ++s, ++j) out[j] = in[b];
 }
 
 } // namespace
@@ -180,10 +331,7 @@ void SonarFrame::raise(double r_m, int cells, int per_beam, const float* elevati
     const int beams = cells / per_beam;
     beam_rise.resize(size_t(beams)), beam_reach.resize(size_t(beams));
     rise_and_reach(beams, r_m, elevation_rad, beam_rise.data(), beam_reach.data());
-    for (int b = 0, j = 0; b < beams; ++b) {
-        const double beam_rise_m = beam_rise[size_t(b)], beam_reach_m = beam_reach[size_t(b)];
-        for (int s = 0; s < per_beam; ++s, ++j) rise[j] = beam_rise_m, reach[j] = beam_reach_m;
-    }
+    spread(beams, per_beam, beam_rise.data(), rise), spread(beams, per_beam, beam_reach.data(), reach);
 }
 
 WorldKeyGrid::WorldKeyGrid(std::uint64_t seed, double cell_m) {
@@ -217,8 +365,18 @@ void convolve_range(std::vector<double>& rows, int K, int width, const std::vect
     rows.swap(out);
 }
 
+std::vector<float> speckle_block_peaks(const PolarImage& src) {
+    const int K = src.bins, J = src.beams, blocks = (K + kBlockRows - 1) / kBlockRows;
+    std::vector<float> top(static_cast<size_t>(blocks));
+    tbb::parallel_for(0, blocks, [&](int block) {
+        const int k0 = block * kBlockRows, rows = std::min(kBlockRows, K - k0);
+        top[size_t(block)] = max_level(size_t(rows) * J, src.level_db.data() + size_t(k0) * J);
+    });
+    return top;
+}
+
 std::vector<double> form_speckle(const PolarImage& src, double peak_db, const SensorInputs& in,
-                                 const SceneDesc& s) {
+                                 const SceneDesc& s, const std::vector<float>* block_peaks) {
     const int K = src.bins, J = src.beams;
     const std::shared_ptr<const SonarGrid> sg = sonar_grid(s.sonar);
     const int N = sg->beams, S = J / N;
@@ -231,74 +389,107 @@ std::vector<double> form_speckle(const PolarImage& src, double peak_db, const Se
         ahead_x[size_t(j)] = a.x, ahead_y[size_t(j)] = a.y, ahead_z[size_t(j)] = a.z;
     }
     const bool formed = s.sensor.azimuth_window != AzimuthWindow::None;
-    const BeamSums sums = formed ? by_beam(make_azimuth_beamforming(s, true), J) : BeamSums{};
+    const std::shared_ptr<const BeamSums> shared_sums = formed ? shared_beam_sums(s) : nullptr;
     const std::uint64_t seed = mix64(std::uint64_t(s.sensor.seed) ^ 0x677261696eULL); // "grain"
 
-    // Per block of range bins: the field on the source columns, then (formed) the beams' complex amplitudes,
-    // into A: per bin, re of the N beams, then im.
-    const int blocks = (K + kBlockRows - 1) / kBlockRows;
-    std::vector<float> A = scratch::take<float>(size_t(K) * N * 2); // every value written below
-    std::vector<double> unit(static_cast<size_t>(blocks));          // per block: A's unit amplitude
-    tbb::parallel_for(0, blocks, [&](int block) {
+    // Per group of blocks of range bins: the field on the source columns, then (formed) the beams' complex
+    // amplitudes into A (per bin, re of the N beams, then im), or, formed with a single-tap range filter,
+    // straight their intensities.
+    const int blocks = (K + kBlockRows - 1) / kBlockRows, groups = (blocks + kGroupBlocks - 1) / kGroupBlocks;
+    const std::vector<double> g =
+        range_amplitude_kernel(s.sensor.pulse, s.sensor.range_resolution_m, dr); // the matched filter
+    const bool single_tap = g.size() == 1;
+    // Formed with a single-tap filter: each beam's |.|^2 straight from its sums (no A).
+    const bool fused = formed && single_tap;
+    std::vector<float> A =
+        fused ? std::vector<float>{} : scratch::take<float>(size_t(K) * N * 2); // every value written below
+    std::vector<double> out = scratch::take<double>(size_t(K) * N);             // every value written below
+    std::vector<double> unit(static_cast<size_t>(blocks)); // per block: A's unit amplitude
+    tbb::parallel_for(0, groups, [&](int group) {
         struct Scratch {
             std::vector<double> rise, reach;
             std::vector<std::uint32_t> key;
-            std::vector<float> power, cos_phase, sin_phase, re, im, block_re, block_im;
+            std::vector<float> power, cos_phase, sin_phase, rows, group;
         };
         thread_local Scratch w; // a leaf task's: nothing else runs on this thread while it is in use
         w.rise.resize(size_t(J)), w.reach.resize(size_t(J));
-        for (auto* v : {&w.power, &w.cos_phase, &w.sin_phase, &w.re, &w.im}) v->resize(size_t(J));
+        for (auto* v : {&w.power, &w.cos_phase, &w.sin_phase}) v->resize(size_t(J));
+        w.rows.resize(formed ? size_t(J) * 2 * kGroupRows : 0);
         w.key.resize(size_t(J));
-        w.block_re.resize(formed ? size_t(J) * kBlockRows : 0), w.block_im.resize(w.block_re.size());
-        const int k0 = block * kBlockRows, rows = std::min(kBlockRows, K - k0);
-        // In single precision relative to the block's strongest sample.
-        const float top_db = max_level(size_t(rows) * J, src.level_db.data() + size_t(k0) * J);
-        constexpr double kLog2Of10Over20 = 0.16609640474436812;
-        unit[size_t(block)] = top_db == -std::numeric_limits<float>::infinity()
-                                  ? 0.0
-                                  : fast::exp2_nonpositive((double(top_db) - peak_db) * kLog2Of10Over20);
-        if (unit[size_t(block)] == 0) { // nothing echoes in these bins: no field to draw
-            std::fill(A.begin() + std::ptrdiff_t(size_t(k0) * N * 2),
-                      A.begin() + std::ptrdiff_t(size_t(k0 + rows) * N * 2), 0.0f);
-            return;
-        }
-        for (int t = 0; t < rows; ++t) {
-            const int k = k0 + t;
-            const double r = r_min + (k + 0.5) * dr;
-            frame.raise(r, J, S, in.elevation_rad.data() + size_t(k) * N, w.rise.data(), w.reach.data());
-            WorldKeyGrid(seed, std::min(dr, r * column))
-                .keys(J,
-                      frame.points(w.rise.data(), w.reach.data(), ahead_x.data(), ahead_y.data(),
-                                   ahead_z.data()),
-                      w.key.data());
-            keyed::exp_phasors(J, w.key.data(), w.power.data(), w.cos_phase.data(), w.sin_phase.data());
-            const float* level = src.level_db.data() + size_t(k) * J;
-            if (!formed) {
-                float* row = A.data() + size_t(k) * N * 2;
-                relative_field_row(J, level, top_db, w.power.data(), w.cos_phase.data(), w.sin_phase.data(),
-                                   row, row + N);
+        w.group.resize(formed ? size_t(J) * 2 * kGroupRows + 16 : 0); // 16: room to align
+        float* const field =
+            formed ? w.group.data() + (16 - (reinterpret_cast<std::uintptr_t>(w.group.data()) / 4) % 16) % 16
+                   : nullptr;
+        const int g0 = group * kGroupRows, group_rows = std::min(kGroupRows, K - g0);
+        bool echoes = false; // whether any block of the group has a field
+        for (int block = group * kGroupBlocks; block < std::min(blocks, (group + 1) * kGroupBlocks);
+             ++block) {
+            const int k0 = block * kBlockRows, rows = std::min(kBlockRows, K - k0);
+            // In single precision relative to the block's strongest sample.
+            const float top_db = block_peaks
+                                     ? (*block_peaks)[size_t(block)]
+                                     : max_level(size_t(rows) * J, src.level_db.data() + size_t(k0) * J);
+            constexpr double kLog2Of10Over20 = 0.16609640474436812;
+            unit[size_t(block)] = top_db == -std::numeric_limits<float>::infinity()
+                                      ? 0.0
+                                      : fast::exp2_nonpositive((double(top_db) - peak_db) * kLog2Of10Over20);
+            if (unit[size_t(block)] == 0) { // nothing echoes in these bins: no field to draw
+                if (fused)
+                    std::fill(out.begin() + std::ptrdiff_t(size_t(k0) * N),
+                              out.begin() + std::ptrdiff_t(size_t(k0 + rows) * N), 0.0);
+                else
+                    std::fill(A.begin() + std::ptrdiff_t(size_t(k0) * N * 2),
+                              A.begin() + std::ptrdiff_t(size_t(k0 + rows) * N * 2), 0.0f);
+                if (formed) // its rows form zeros (+0, as filled)
+                    std::fill(w.rows.begin() + std::ptrdiff_t(size_t(k0 - g0) * 2 * J),
+                              w.rows.begin() + std::ptrdiff_t(size_t(k0 - g0 + rows) * 2 * J), 0.0f);
                 continue;
             }
-            relative_field_row(J, level, top_db, w.power.data(), w.cos_phase.data(), w.sin_phase.data(),
-                               w.re.data(), w.im.data());
-            for (int j = 0; j < J; ++j) {
-                w.block_re[size_t(j) * kBlockRows + size_t(t)] = w.re[size_t(j)];
-                w.block_im[size_t(j) * kBlockRows + size_t(t)] = w.im[size_t(j)];
+            echoes = true;
+            for (int t = 0; t < rows; ++t) {
+                const int k = k0 + t;
+                const double r = r_min + (k + 0.5) * dr;
+                frame.raise(r, J, S, in.elevation_rad.data() + size_t(k) * N, w.rise.data(), w.reach.data());
+                WorldKeyGrid(seed, std::min(dr, r * column))
+                    .keys(J,
+                          frame.points(w.rise.data(), w.reach.data(), ahead_x.data(), ahead_y.data(),
+                                       ahead_z.data()),
+                          w.key.data());
+                keyed::exp_phasors(J, w.key.data(), w.power.data(), w.cos_phase.data(), w.sin_phase.data());
+                const float* level = src.level_db.data() + size_t(k) * J;
+                if (!formed) {
+                    float* row = A.data() + size_t(k) * N * 2;
+                    relative_field_row(J, level, top_db, w.power.data(), w.cos_phase.data(),
+                                       w.sin_phase.data(), row, row + N);
+                    continue;
+                }
+                float* row = w.rows.data() + size_t(k - g0) * 2 * J;
+                relative_field_row(J, level, top_db, w.power.data(), w.cos_phase.data(), w.sin_phase.data(),
+                                   row, row + J);
             }
         }
-        if (formed)
-            form_block(sums, N, w.block_re.data(), w.block_im.data(), rows, A.data() + size_t(k0) * N * 2);
+        if (formed && echoes) {
+            std::fill(w.rows.begin() + std::ptrdiff_t(size_t(group_rows) * 2 * J), w.rows.end(),
+                      0.0f); // rows past the image: zeros
+            to_columns(J, w.rows.data(), field);
+            double scale[kGroupRows] = {}; // the filter's weight times each row's unit
+            for (int t = 0; t < group_rows; ++t) scale[t] = g[0] * unit[size_t(g0 + t) / kBlockRows];
+            form_group(*shared_sums, N, field, group_rows, A.data() + size_t(g0) * N * 2, scale,
+                       fused ? out.data() + size_t(g0) * N : nullptr);
+        }
+        if (single_tap && !fused)
+            for (int k = g0; k < g0 + group_rows; ++k)
+                intensity_row(A.data(), unit.data(), K, N, k, g, out.data() + size_t(k) * N);
     });
 
-    // The matched filter along range on the amplitudes, then |.|^2.
-    const SensorParams& p = s.sensor;
-    const std::vector<double> g = range_amplitude_kernel(p.pulse, p.range_resolution_m, dr);
-    std::vector<double> out = scratch::take<double>(size_t(K) * N); // every value written below
-    tbb::parallel_for(tbb::blocked_range<int>(0, K, 16), [&](const tbb::blocked_range<int>& ks) {
-        for (int k = ks.begin(); k < ks.end(); ++k)
-            intensity_row(A.data(), unit.data(), K, N, k, g, out.data() + size_t(k) * N);
-    });
-    scratch::give(std::move(A));
+    // The matched filter along range on the amplitudes, then |.|^2 (in the group's task already when the
+    // filter is a single tap: A's rows are still in cache there).
+    if (!single_tap)
+        tbb::parallel_for(tbb::blocked_range<int>(0, K, 16), [&](const tbb::blocked_range<int>& ks) {
+            for (int k = ks.begin(); k < ks.end(); ++k)
+                intensity_row(A.data(), unit.data(), K, N, k, g, out.data() + size_t(k) * N);
+        });
+    if (!fused) scratch::give(std::move(A));
     return out;
 }
 

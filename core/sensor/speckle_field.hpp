@@ -75,8 +75,13 @@ struct SonarFrame {
 /// amplitude (when the window is on), convolved along range with the matched filter's amplitude response,
 /// then |.|^2. The field and the beams are carried in single precision relative to the strongest sample of
 /// each 8 range bins (a sample more than 759 dB below that one counts as 0).
+/// `block_peaks`: speckle_block_peaks(src) when the caller has it already (none: form_speckle finds them).
 std::vector<double> form_speckle(const PolarImage& src, double peak_db, const SensorInputs& inputs,
-                                 const SceneDesc& scene);
+                                 const SceneDesc& scene, const std::vector<float>* block_peaks = nullptr);
+
+/// The largest level [dB] of each block of range bins whose field form_speckle carries relative to one
+/// amplitude (-inf where nothing echoes), found in parallel; their largest is the image's.
+std::vector<float> speckle_block_peaks(const PolarImage& src);
 
 /// The largest of n levels [dB] (-inf when there is none; NaN is passed over).
 float max_level(std::size_t n, const float* level_db);

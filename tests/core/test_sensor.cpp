@@ -115,6 +115,35 @@ TEST_CASE("an array beamformer widens its beams as 1 over cos of the steering an
     CHECK(half_power_width(across, edge) * spacing == Approx(2.0 / std::cos(deg2rad(a_edge))).epsilon(0.05));
 }
 
+TEST_CASE("the shared receive pattern is made once per geometry and pattern and equals a fresh one",
+          "[sensor]") {
+    SceneDesc s = bare_scene(256, 8);
+    s.sensor.azimuth_window = AzimuthWindow::Taylor;
+    s.sensor.azimuth_beamwidth_deg = 1.0;
+    s.sensor.beamformer = Beamformer::Array;
+    const auto shared = shared_azimuth_beamforming(s, true);
+    CHECK(shared_azimuth_beamforming(s, true) == shared); // kept for the next frame
+    const AzimuthBeamforming fresh = make_azimuth_beamforming(s, true);
+    CHECK(shared->first == fresh.first);
+    CHECK(shared->count == fresh.count);
+    CHECK(shared->offset == fresh.offset);
+    CHECK(shared->weight == fresh.weight);
+    CHECK(shared->amplitude == fresh.amplitude);
+    CHECK(shared_azimuth_beamforming(s, false)->amplitude.empty()); // without amplitudes: its own entry
+    // Any key changed: another pattern.
+    for (int change = 0; change < 5; ++change) {
+        SceneDesc t = s;
+        if (change == 0) t.sensor.azimuth_window = AzimuthWindow::Hann;
+        if (change == 1) t.sensor.taylor_sidelobe_db = -40;
+        if (change == 2) t.sensor.azimuth_beamwidth_deg = 1.5;
+        if (change == 3) t.sensor.beamformer = Beamformer::Lens;
+        if (change == 4) t.sonar.azimuth_fov_deg = s.sonar.azimuth_fov_deg / 2;
+        const auto other = shared_azimuth_beamforming(t, true);
+        CHECK(other != shared);
+        CHECK(other->weight == make_azimuth_beamforming(t, true).weight);
+    }
+}
+
 TEST_CASE("the elevation patterns have their -3 dB width and the traced span they promise", "[sensor]") {
     SceneDesc s = default_scene();
     s.sensor.elevation_beamwidth_deg = 10;
