@@ -281,7 +281,7 @@ TEST_CASE("an MCAP bag read from its specification gives back the frames", "[mca
                 CHECK(std::atan2(-y, z) * 180 / kPi == Approx(az[i])); // positive to port
             }
             const auto n_ranges = c.get<std::uint32_t>(true);
-            REQUIRE(n_ranges == 96);
+            REQUIRE(int(n_ranges) == d.scene.sonar.range_bins);
             for (size_t i = 0; i < n_ranges; ++i)
                 CHECK(c.get<float>(true) == Approx(0.5 * (edges[i] + edges[i + 1])));
             CHECK(c.get<std::uint8_t>() == 0); // is_bigendian
@@ -291,14 +291,14 @@ TEST_CASE("an MCAP bag read from its specification gives back the frames", "[mca
             const PolarImage& img = d.images[k];
             if (type == SonarDataType::Uint8) {
                 CHECK(dtype == 0);
-                REQUIRE(n == 96 * 48);
-                for (size_t r = 0; r < 96; ++r) // range-major: all beams of bin 0, then of bin 1, ...
+                REQUIRE(n == n_ranges * 48);
+                for (size_t r = 0; r < n_ranges; ++r) // range-major: all beams of bin 0, then of bin 1, ...
                     for (size_t beam = 0; beam < 48; ++beam)
                         check_byte(msg[c.p + r * 48 + beam], img.at(int(r), int(beam)), 0.0);
             } else {
                 CHECK(dtype == 8);
-                REQUIRE(n == 96 * 48 * 4);
-                for (size_t i = 0; i < 96 * 48; i += 97) {
+                REQUIRE(n == n_ranges * 48 * 4);
+                for (size_t i = 0; i < n_ranges * 48; i += 97) {
                     const float v = at<float>(msg, c.p + 4 * i);
                     CHECK((v == img.level_db[i] || (std::isinf(v) && std::isinf(img.level_db[i]))));
                 }
