@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages sonarsim needs (only those missing), then builds Release into build/.
-# Usage: .ci/setup.sh            (as root, or a user with sudo)
+# Usage: .ci/setup.sh [TARGET...] (as root, or a user with sudo): every target (the tests, the benchmark, the
+#        Python module), or only those named (`.ci/setup.sh sonarsim`: the viewer and the command line).
 # Env:   SONARSIM_BUILD_DIR=build  SONARSIM_CMAKE_ARGS="..."
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -25,5 +26,10 @@ fi
 build_dir="${SONARSIM_BUILD_DIR:-build}"
 # shellcheck disable=SC2086
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release ${SONARSIM_CMAKE_ARGS:-} >/dev/null
-cmake --build "$build_dir" -j "$(nproc)"
-echo "setup: built $build_dir/sonarsim"
+if [ $# -gt 0 ]; then
+  cmake --build "$build_dir" -j "$(nproc)" --target "$@"
+  echo "setup: built $* in $build_dir"
+else
+  cmake --build "$build_dir" -j "$(nproc)"
+  echo "setup: built $build_dir/sonarsim, the tests, the benchmark and the Python module"
+fi

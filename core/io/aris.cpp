@@ -91,6 +91,8 @@ le::Bytes file_header(const ArisMode& mode, const ArisTiming& timing, size_t fra
     le::Bytes h(kHeaderBytes, 0);
     le::put<std::uint32_t>(h, 0, kArisVersion);
     le::put<std::uint32_t>(h, 4, std::uint32_t(frames));
+    const std::uint64_t frame_bytes = kHeaderBytes + std::uint64_t(mode.beams) * timing.samples;
+    le::put<std::uint64_t>(h, 424, kHeaderBytes + frames * frame_bytes); // FileSize
     le::put<std::uint32_t>(h, 16, std::uint32_t(mode.beams));
     le::put<std::uint32_t>(h, 24, timing.samples);
     const std::time_t start = std::time_t(start_time_s); // the recording's date: the dataset's start
@@ -131,8 +133,11 @@ le::Bytes frame_header(const SceneDesc& s, const ArisMode& mode, const ArisTimin
     le::put<std::uint32_t>(h, 448, tm.cycle_period_us);
     le::put<std::uint32_t>(h, 452, tm.sample_period_us);
     le::put<std::uint32_t>(h, 456, 1); // TransmitEnable
-    const double dt = k > 0 ? p.t_s - trajectory[k - 1].t_s : 0;
-    le::put<float>(h, 460, dt > 0 ? float(1 / dt) : 0.0f); // frames per second, as recordings hold it
+    // Frames per second, as recordings hold it: from the frame before (frame 0: to the next one).
+    const double dt = k > 0                   ? p.t_s - trajectory[k - 1].t_s
+                      : trajectory.size() > 1 ? trajectory[1].t_s - p.t_s
+                                              : 0;
+    le::put<float>(h, 460, dt > 0 ? float(1 / dt) : 0.0f);
     le::put<float>(h, 464, tm.sound_speed_m_s);
     le::put<std::uint32_t>(h, 468, tm.samples);
     le::put<std::uint32_t>(h, 472, 1); // Enable150V
@@ -153,16 +158,23 @@ void check_aris_frame_times(const SceneDesc& s, const Trajectory& frames, const 
                             const std::string& times_origin) {
     const ArisMode& mode = aris_mode(s.sonar, origin);
     const ArisTiming tm = aris_timing(s, limits_of(mode), origin);
-    const double frame_s = mode.pings * tm.cycle_period_us * 1e-6;
+    // The vendor's validation: a frame period longer than CyclePeriod x pings per frame, at most 15 frames/s
+    // (SonarConfig.fs FrameRateRange).
+    const double pings_us = double(tm.cycle_period_us) * mode.pings;
+    const bool by_pings = pings_us * 1e-6 > 1.0 / 15;
     for (size_t k = 1; k < frames.size(); ++k) {
         const double dt = frames[k].t_s - frames[k - 1].t_s;
-        if (dt >= frame_s * (1 - 1e-9)) continue;
+        if (std::ceil(dt * 1e6 - 1e-6) > pings_us && dt >= 1.0 / 15 - 1e-9) continue;
         std::ostringstream m;
         m << "frame " << k << " comes " << dt * 1e3 << " ms after the one before, sooner than the "
-          << mode.name << " mode images a frame (" << mode.pings << " pings of CyclePeriod "
-          << tm.cycle_period_us << " us = " << frame_s * 1e3
-          << " ms), which ARIS tools reject; the fastest it allows is " << std::floor(100 / frame_s) / 100
-          << " frames/s";
+          << mode.name << " mode images a frame (";
+        if (by_pings)
+            m << mode.pings << " pings of CyclePeriod " << tm.cycle_period_us << " us = " << pings_us * 1e-3
+              << " ms";
+        else
+            m << "at most 15 frames/s";
+        m << "), which ARIS tools reject; the fastest it allows is "
+          << (by_pings ? std::floor(1e8 / pings_us - 1e-9) / 100 : 15.0) << " frames/s";
         throw InputError(times_origin, "", m.str());
     }
 }

@@ -21,8 +21,8 @@ void check_aris(const SceneDesc& scene, const std::string& origin);
 
 /// Throws an InputError naming `times_origin` (where the frame times came from: "--rate", a trajectory file)
 /// when a frame of `frames` follows the one before sooner than the scene's ARIS mode images one (its pings
-/// per frame, 3, 4, 6 or 8 of 16 beams, times the CyclePeriod of its range grid): a recording faster than
-/// the device. Throws what check_aris throws (naming `origin`) first.
+/// per frame, 3, 4, 6 or 8 of 16 beams, times the CyclePeriod of its range grid, and at most 15 frames/s): a
+/// recording faster than the device. Throws what check_aris throws (naming `origin`) first.
 void check_aris_frame_times(const SceneDesc& scene, const Trajectory& frames, const std::string& origin,
                             const std::string& times_origin);
 

@@ -1,5 +1,7 @@
 #include "core/io/ros2_sonar.hpp"
 
+#include "core/sensor/sensor_patterns.hpp"
+
 #include "core/base/le_bytes.hpp"
 #include "core/io/mcap.hpp"
 #include "core/base/pose.hpp"
@@ -65,13 +67,23 @@ const std::string& projected_sonar_image_schema() {
     return text;
 }
 
+UnixTime unix_time(double start_s, double t_s) {
+    // Whole seconds of the start apart from its fraction, so that nanoseconds survive at 1.7e9 s.
+    const double whole = std::floor(std::max(0.0, start_s)), rel = std::max(0.0, start_s) - whole + t_s;
+    const double rel_whole = std::floor(rel);
+    auto ns = std::llround((rel - rel_whole) * 1e9);
+    auto sec = (long long)(whole) + (long long)(rel_whole);
+    if (ns >= 1000000000LL) ++sec, ns -= 1000000000LL;
+    return {sec, std::uint32_t(ns)};
+}
+
 Bytes encode_projected_sonar_image(const SceneDesc& s, const PolarImage& img, double t_s,
                                    const std::string& frame_id, SonarDataType type,
                                    const ByteMapping& mapping, ClipCount& count) {
     Cdr c;
-    const long long ns = std::llround(t_s * 1e9);
-    c.put<std::int32_t>(std::int32_t(ns / 1000000000)); // header.stamp (t >= 0)
-    c.put<std::uint32_t>(std::uint32_t(ns % 1000000000));
+    const UnixTime stamp = unix_time(s.exports.start_time_s, t_s);
+    c.put<std::int32_t>(std::int32_t(stamp.s)); // header.stamp: the dataset's start plus t
+    c.put<std::uint32_t>(stamp.ns);
     c.put_string(frame_id);
 
     const auto beams = size_t(img.beams);
@@ -79,8 +91,8 @@ Bytes encode_projected_sonar_image(const SceneDesc& s, const PolarImage& img, do
     c.put<float>(float(sound_speed_m_s(s.water.temperature_c, s.water.depth_m)));
     c.put_sequence(std::vector<float>(beams, float(s.sonar.elevation_fov_deg * kPi / 180)));
     const auto grid = sonar_grid(s.sonar);
-    std::vector<float> widths(beams);
-    for (size_t i = 0; i < beams; ++i) widths[i] = float(grid->beam_width_deg(int(i)) * kPi / 180);
+    std::vector<float> widths(beams); // rx_beamwidths: each beam's -3 dB width, as the message defines it
+    for (size_t i = 0; i < beams; ++i) widths[i] = float(receive_beamwidth_rad(s, *grid, int(i)));
     c.put_sequence(widths);
 
     c.put<std::uint32_t>(std::uint32_t(beams)); // beam_directions
@@ -125,8 +137,9 @@ ExportReport write_sonar_mcap(const std::string& path, const SceneDesc& s, const
     report.mapping = mapping;
     for (size_t k = 0; k < trajectory.size(); ++k) {
         const double t = std::max(0.0, trajectory[k].t_s);
+        const UnixTime at = unix_time(s.exports.start_time_s, t); // log time on the ARIS file's clock
         ClipCount count;
-        w.add_message(channel, std::uint32_t(k), std::uint64_t(std::llround(t * 1e9)),
+        w.add_message(channel, std::uint32_t(k), std::uint64_t(at.s) * 1000000000ULL + at.ns,
                       encode_projected_sonar_image(s, image(k), t, "sonar", type, mapping, count));
         report.frames.push_back(count);
         report.total += count;

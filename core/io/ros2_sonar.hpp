@@ -5,6 +5,7 @@
 #include "core/io/aris.hpp"
 #include "core/io/output.hpp"
 
+#include <cstdint>
 #include <string>
 
 namespace sonarsim {
@@ -14,17 +15,26 @@ enum class SonarDataType { Uint8, Float32 };
 /// The message's .msg definition with its dependencies (MCAP schema encoding `ros2msg`).
 const std::string& projected_sonar_image_schema();
 
+/// A time since 1970 in whole seconds and nanoseconds.
+struct UnixTime {
+    long long s = 0;
+    std::uint32_t ns = 0;
+};
+/// start_s + t_s (start_s: UNIX seconds, at 0 or later; t_s >= 0), to the nanosecond.
+UnixTime unix_time(double start_s, double t_s);
+
 /// One ProjectedSonarImage of `image` (the image level dB, as the frame's .npy) in CDR (little-endian, with
-/// its encapsulation header). Uint8 data holds level_byte(L, mapping), counted into `count`; Float32 data
-/// holds L [dB] (-inf where nothing echoes).
+/// its encapsulation header): header.stamp scene.exports.start_time_s + t_s, as the ARIS file's FrameTime;
+/// rx_beamwidths each beam's -3 dB width (receive_beamwidth_rad). Uint8 data holds level_byte(L, mapping),
+/// counted into `count`; Float32 data holds L [dB] (-inf where nothing echoes).
 Bytes encode_projected_sonar_image(const SceneDesc& scene, const PolarImage& image, double t_s,
                                    const std::string& frame_id, SonarDataType type,
                                    const ByteMapping& mapping, ClipCount& count);
 
 /// Writes every frame of `trajectory` as a ROS 2 bag in MCAP (profile ros2, topic /sonarsim/image, frame
-/// id "sonar", log time = t), atomically. Uint8 data under `mapping`, whose levels of bytes 0 and 255 the
-/// channel's metadata holds (byte_lo_db, byte_hi_db). Returns what the mapping clipped (nothing for
-/// Float32).
+/// id "sonar", log time = header.stamp = scene.exports.start_time_s + t, in ns), atomically. Uint8 data under
+/// `mapping`, whose levels of bytes 0 and 255 the channel's metadata holds (byte_lo_db, byte_hi_db). Returns
+/// what the mapping clipped (nothing for Float32).
 ExportReport write_sonar_mcap(const std::string& path, const SceneDesc& scene, const Trajectory& trajectory,
                               const FrameImageSource& image, SonarDataType type, const ByteMapping& mapping);
 

@@ -91,6 +91,16 @@ double azimuth_beamwidth_deg(const SceneDesc& s) {
                                               : s.sonar.azimuth_fov_deg / s.sonar.beams;
 }
 
+double receive_beamwidth_rad(const SceneDesc& s, const SonarGrid& grid, int b) {
+    if (s.sensor.azimuth_window == AzimuthWindow::None) return grid.beam_width_rad(b);
+    const double bw = deg2rad(azimuth_beamwidth_deg(s));
+    // A flat array steered to theta_b: the beam widens as 1 / cos theta_b (held below 10x, at 84 deg).
+    // A lens beam from a table: its -3 dB width scales with its own width (the preset gives the mean).
+    return s.sensor.beamformer == Beamformer::Array ? bw / std::max(0.1, std::cos(grid.beam_azimuth_rad(b)))
+           : grid.table()                           ? bw * grid.beam_width_rad(b) / grid.spacing_rad
+                                                    : bw;
+}
+
 ArrayPattern::ArrayPattern(AzimuthWindow window, double taylor_sidelobe_db) {
     const std::vector<double> w = window_weights(window, taylor_sidelobe_db);
     // psi3: where |AF|^2 first falls to 1/2 (stepping, then bisection).
@@ -164,17 +174,11 @@ AzimuthBeamforming make_azimuth_beamforming(const SceneDesc& s, bool amplitudes)
     const int N = grid.beams, S = azimuth_subcolumns(s);
     f.beams = N, f.sub = S;
     const ArrayPattern& pattern = array_pattern(s.sensor.azimuth_window, s.sensor.taylor_sidelobe_db);
-    const double bw = deg2rad(azimuth_beamwidth_deg(s));
-    const bool array = s.sensor.beamformer == Beamformer::Array;
     std::vector<double> centre(static_cast<size_t>(N)), width(static_cast<size_t>(N));
     double widest = 0;
     for (int b = 0; b < N; ++b) {
         centre[size_t(b)] = grid.beam_azimuth_rad(b);
-        // A flat array steered to theta_b: the beam widens as 1 / cos theta_b (held below 10x, at 84 deg).
-        // A lens beam from a table: its -3 dB width scales with its own width (the preset gives the mean).
-        width[size_t(b)] = array          ? bw / std::max(0.1, std::cos(centre[size_t(b)]))
-                           : grid.table() ? bw * grid.beam_width_rad(b) / grid.spacing_rad
-                                          : bw;
+        width[size_t(b)] = receive_beamwidth_rad(s, grid, b);
         widest = std::max(widest, width[size_t(b)]);
     }
     const double extent = pattern.extent(kAzimuthPatternFloorDb);

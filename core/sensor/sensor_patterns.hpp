@@ -3,6 +3,7 @@
 // matched filter's intensity response along range. All are intensity patterns with peak 1.
 #pragma once
 #include "core/scene/scene.hpp"
+#include "core/scene/sonar_grid.hpp"
 
 #include <memory>
 #include <vector>
@@ -32,6 +33,11 @@ class ElevationWeight {
 double elevation_beamwidth_deg(const SceneDesc& scene);
 /// -3 dB width of the receive beam at broadside [deg] (sensor.azimuth_beamwidth_deg, 0: the beam spacing).
 double azimuth_beamwidth_deg(const SceneDesc& scene);
+
+/// -3 dB width of beam b's receive response [rad]: with a receive pattern (sensor.azimuth_window not none)
+/// the broadside width, widened as 1 / cos of the beam's azimuth for an array (held below 10x), scaled with
+/// a table beam's own width for a lens; without one, the beam's own hard-edged cell.
+double receive_beamwidth_rad(const SceneDesc& scene, const SonarGrid& grid, int b);
 
 /// Intensity pattern of a line array (64 elements, half-wavelength) with the window, |AF|^2 normalised to 1
 /// at the peak, as a function of x = (angle off the beam axis) / (-3 dB full width): 1/2 at x = +-1/2.

@@ -144,6 +144,11 @@ TEST_CASE("every ARIS preset's recording has its mode, the water's sound speed a
         CHECK(header_field<float>(h, 52) == Approx(ssd * 1e-6 * double(float(c)) / 2).epsilon(1e-6));
         CHECK(header_field<float>(h, 56) == Approx(n * sample_m).epsilon(1e-6));
         CHECK(header_field<std::uint32_t>(bytes, 24) == n);
+        CHECK(header_field<std::uint64_t>(bytes, 424) == bytes.size()); // FileSize
+        // FrameRate [frames/s]: 5 Hz in every frame, frame 0 (from the interval to the next) too.
+        const std::vector<std::uint8_t> h0(bytes.begin() + 1024, bytes.begin() + 2048);
+        CHECK(header_field<float>(h0, 460) == Approx(5));
+        CHECK(header_field<float>(h, 460) == Approx(5));
 
         // The samples sit at the ranges the header implies: the profile, resampled there, read back.
         size_t off = 0, finite = 0;
@@ -350,6 +355,16 @@ TEST_CASE("an ARIS recording is never faster than its mode images a frame", "[ar
             CHECK(fastest_hz > 1000 / m.frame_ms - 0.015);
         }
     }
+    // At most 15 frames/s whatever the window: the ARIS 3000 HF's 1-5 m frame is 8 x 7.1 ms = 57 ms.
+    const SceneDesc hf = with(small_aris_scene(), {"sonar.device=aris3000-hf", "sonar.range_min_m=1",
+                                                   "sonar.range_max_m=5", "sonar.range_bins=512"});
+    auto line_at = [](double hz) {
+        return line_trajectory("0.3,2.4,0.9,0.4,2.3,0.9,3", {-1, 30, -39}, hz, "t");
+    };
+    CHECK_NOTHROW(check_aris_frame_times(hf, line_at(15), "s", "--rate"));
+    CHECK_THROWS_WITH(check_aris_frame_times(hf, line_at(16), "s", "--rate"),
+                      Catch::Contains("(at most 15 frames/s)") &&
+                          Catch::EndsWith("the fastest it allows is 15 frames/s"));
     // A trajectory file's own times are judged the same way, naming the file.
     Trajectory t = line_trajectory("0.3,2.4,0.9,0.4,2.3,0.9,3", {-1, 30, -39}, 5, "test");
     t[2].t_s = t[1].t_s + 0.05;

@@ -197,9 +197,15 @@ struct Reader {
 
 TEST_CASE("an MCAP bag read from its specification gives back the frames", "[mcap]") {
     const Dataset& d = dataset("formats_mcap");
+    // On the ARIS file's clock: the dataset's start plus t, to the nanosecond.
+    SceneDesc scene = d.scene;
+    scene.exports.start_time_s = 1700000000.25;
+    auto stamp_ns = [&](size_t k) {
+        return 1700000000250000000ULL + std::uint64_t(std::llround(d.trajectory[k].t_s * 1e9));
+    };
     for (const auto type : {SonarDataType::Uint8, SonarDataType::Float32}) {
         const std::string path = d.dir + "/out.mcap";
-        write_sonar_mcap(path, d.scene, d.trajectory, dataset_images(d.dir, 3, "--mcap"), type, kZeroTo80);
+        write_sonar_mcap(path, scene, d.trajectory, dataset_images(d.dir, 3, "--mcap"), type, kZeroTo80);
         const auto b = file_bytes(path);
         const auto recs = mcap_records(b);
         REQUIRE(recs.front().op == 0x01);
@@ -247,7 +253,7 @@ TEST_CASE("an MCAP bag read from its specification gives back the frames", "[mca
                 Reader m{r.content, in.p + 9};
                 CHECK(m.get<std::uint16_t>() == 0);
                 const auto seq = m.get<std::uint32_t>();
-                CHECK(m.get<std::uint64_t>() == std::uint64_t(std::llround(d.trajectory[seq].t_s * 1e9)));
+                CHECK(m.get<std::uint64_t>() == stamp_ns(seq)); // log time
                 m.get<std::uint64_t>();
                 messages.emplace_back(r.content.begin() + long(m.p), r.content.end());
             }
@@ -264,13 +270,14 @@ TEST_CASE("an MCAP bag read from its specification gives back the frames", "[mca
             Reader c{msg, 4, 4};
             const auto sec = c.get<std::int32_t>(true);
             const auto nsec = c.get<std::uint32_t>(true);
-            CHECK(sec + nsec * 1e-9 == Approx(d.trajectory[k].t_s));
+            CHECK(std::uint64_t(sec) * 1000000000ULL + nsec == stamp_ns(k));
             CHECK(c.str(true) == "sonar");
             CHECK(c.get<float>(true) == Approx(1.2e6));           // frequency [Hz]
             CHECK(c.get<float>(true) == Approx(1490).margin(20)); // sound speed
             const auto tx = c.get<std::uint32_t>(true);
             for (size_t i = 0; i < tx; ++i) CHECK(c.get<float>(true) == Approx(14 * kPi / 180));
             const auto rx = c.get<std::uint32_t>(true);
+            // The ideal sensor's beams are hard-edged cells: their -3 dB width is their own width.
             for (size_t i = 0; i < rx; ++i) CHECK(c.get<float>(true) == Approx(32.0 / 48 * kPi / 180));
             const auto beams = c.get<std::uint32_t>(true);
             REQUIRE(beams == 48);
@@ -417,4 +424,39 @@ TEST_CASE("a PNG of an empty or malformed image is refused with what is wrong", 
                       Catch::Contains("allowed: 1, 3 or 4"));
     CHECK_THROWS_WITH(encode_png(Image8{2, 2, 3, std::vector<std::uint8_t>(11)}),
                       Catch::Contains("11 bytes for 2 x 2 x 3"));
+}
+
+TEST_CASE("a ProjectedSonarImage's rx_beamwidths are the receive beams' -3 dB widths", "[mcap]") {
+    // The oculus-m750d-lf preset forms its beams with an array: the broadside -3 dB width of its
+    // sensor.azimuth_beamwidth_deg, widened as 1 / cos of each beam's azimuth (held below 10x).
+    SceneDesc s = small_scene();
+    apply_setting(s, "sonar.device", "oculus-m750d-lf", "test");
+    apply_setting(s, "sensor.model", "device", "test");
+    REQUIRE(s.sensor.beamformer == Beamformer::Array);
+    REQUIRE(s.sensor.azimuth_window != AzimuthWindow::None);
+    const double bw_deg = s.sensor.azimuth_beamwidth_deg;
+    REQUIRE(bw_deg > 0);
+    PolarImage img;
+    img.beams = s.sonar.beams, img.bins = s.sonar.range_bins;
+    img.level_db.assign(size_t(img.beams) * size_t(img.bins), 50.0f);
+    ClipCount count;
+    const auto msg = encode_projected_sonar_image(s, img, 0.5, "sonar", SonarDataType::Uint8, kZeroTo80, count);
+    Reader c{msg, 4, 4};
+    c.get<std::int32_t>(true), c.get<std::uint32_t>(true), c.str(true);
+    c.get<float>(true), c.get<float>(true);
+    const auto tx = c.get<std::uint32_t>(true);
+    for (size_t i = 0; i < tx; ++i) c.get<float>(true);
+    const auto rx = c.get<std::uint32_t>(true);
+    REQUIRE(int(rx) == s.sonar.beams);
+    const std::vector<double> az = beam_azimuths_deg(s.sonar);
+    double widest = 0, narrowest = 1e9;
+    for (size_t i = 0; i < rx; ++i) {
+        const double w_deg = c.get<float>(true) * 180 / kPi;
+        const double want = bw_deg / std::max(0.1, std::cos(az[i] * kPi / 180));
+        CHECK(w_deg == Approx(want).epsilon(1e-5));
+        widest = std::max(widest, w_deg), narrowest = std::min(narrowest, w_deg);
+    }
+    // Wider than the beam spacing (what the field held before), and widest at the edges of the fan.
+    CHECK(narrowest > s.sonar.azimuth_fov_deg / s.sonar.beams);
+    CHECK(widest > 1.5 * narrowest);
 }
