@@ -132,6 +132,9 @@ TEST_CASE("clicking the prism inside the frustum selects it and dragging moves i
 TEST_CASE("Alt-dragging an object up scales it, Ctrl-dragging turns it", "[ui][controller]") {
     Rig r;
     const glm::dvec2 p = r.pixel_of({1.5, 1.5, 0.22});
+    r.feed(T::Press, p); // a click selects it
+    r.feed(T::Release, p);
+    REQUIRE(r.c.selected == 0);
     r.feed(T::Press, p, button::Left, mods::Alt);
     r.feed(T::Move, p + glm::dvec2(0, -50));
     r.feed(T::Release, p + glm::dvec2(0, -50));
@@ -191,6 +194,25 @@ TEST_CASE("the housing and the handle are grabbable and the field of view shell 
     // Inside the field of view, in open water, away from both handles: not the sonar.
     r.c.hover(r.pixel_of(sonar_point(r.scene.sonar, 1.2, 8, 3)), r.ctx());
     CHECK_FALSE(r.c.sonar_hot());
+}
+
+TEST_CASE("nothing is selected at start: a drag from an object orbits and moves nothing",
+          "[ui][controller]") {
+    Rig r;
+    REQUIRE(r.c.selected == kNothingSelected);
+    const glm::dvec2 p = r.pixel_of({1.5, 1.5, 0.22}); // the prism's top face
+    const OrbitCamera before = r.c.camera;
+    r.feed(T::Press, p);
+    r.feed(T::Move, p + glm::dvec2(25, 0));
+    r.feed(T::Move, p + glm::dvec2(50, 0));
+    CHECK(r.c.grab() == ViewController::Grab::Orbit);
+    r.feed(T::Release, p + glm::dvec2(50, 0));
+    OrbitCamera expected = before;
+    expected.orbit(50, 0);
+    CHECK(r.c.camera.azimuth_deg == Approx(expected.azimuth_deg));
+    CHECK(r.scene.objects[0].position_m == default_scene().objects[0].position_m);
+    CHECK(r.c.selected == kNothingSelected); // a drag is not a click
+    CHECK_FALSE(r.c.take_edit_finished());
 }
 
 TEST_CASE("a plain drag on an unselected object orbits; a click selects it, then a drag moves it",

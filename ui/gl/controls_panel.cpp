@@ -201,6 +201,7 @@ void material_section(Session& session, ControlsUi& ui) {
     if (ui.selected == kWaterSurface && !water) ui.selected = -1;
     if (ui.selected == -1 && !s.seafloor) ui.selected = n > 0 ? 0 : water ? kWaterSurface : -1;
     auto name = [&](int i) {
+        if (i == kNothingSelected) return std::string("none");
         if (i == kWaterSurface) return std::string("water surface");
         if (i < 0) return std::string("seafloor");
         return object_label(s, size_t(i));
@@ -216,6 +217,14 @@ void material_section(Session& session, ControlsUi& ui) {
         ImGui::EndCombo();
     } else if (ImGui::IsItemHovered() && ui.selected >= 0) {
         ImGui::SetTooltip("%s", object_tooltip(s, size_t(ui.selected)).c_str());
+    }
+    if (ui.selected == kNothingSelected) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+        ImGui::TextWrapped(
+            "Click an object or the floor in 3D (or choose a surface above) to edit its material; "
+            "a selected object can then be dragged.");
+        ImGui::PopStyleColor();
+        return;
     }
     if (ui.selected == -1 && !s.seafloor) return;
     const bool surface = ui.selected == kWaterSurface;

@@ -3,6 +3,7 @@
 #pragma once
 #include "ui/model/layout.hpp"
 #include "ui/model/session.hpp"
+#include "ui/model/view_controller.hpp"
 #include "ui/gl/trajectory_panel.hpp"
 
 #include <map>
@@ -14,8 +15,8 @@ namespace sonarsim::ui {
 constexpr int kWaterSurface = -2;
 
 struct ControlsUi {
-    int selected = 0;       ///< object whose material is edited; -1 = seafloor, kWaterSurface
-    bool show_hits = false; ///< draw every traced hit in the 3D view
+    int selected = kNothingSelected; ///< object whose material is edited; -1 = seafloor, kWaterSurface
+    bool show_hits = false;          ///< draw every traced hit in the 3D view
     std::string snapshot_dir = ".";
     double frame_ms = 0; ///< shown on screen
     // Requests raised by the panel, handled by the viewer.

@@ -40,13 +40,16 @@ std::vector<glm::dvec3> frustum_handles(const SceneDesc& scene);
 /// Which drag a press with these modifiers starts on the frustum (and, Alt aside, on an object).
 DragMode drag_mode_for(int mods, bool object);
 
+/// ViewController::selected before anything is clicked: a drag anywhere but on the sonar orbits.
+constexpr int kNothingSelected = -3;
+
 class ViewController {
   public:
     enum class Grab { None, Orbit, Pan, Frustum, Object };
 
     OrbitCamera camera;
-    /// Object whose material and placement the panel edits; -1 = seafloor.
-    int selected = 0;
+    /// Object whose material and placement the panel edits; -1 = seafloor; kNothingSelected at start.
+    int selected = kNothingSelected;
 
     /// Handles one event. Returns the edited scene when the event changed it (a frustum or object drag).
     std::optional<SceneDesc> handle(const InputEvent& e, const ViewContext& ctx);
