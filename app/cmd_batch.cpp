@@ -11,6 +11,7 @@
 
 #include <atomic>
 #include <csignal>
+#include <ctime>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -25,6 +26,7 @@ struct BatchCliOptions {
     double rate_hz = 10.0;
     bool resume = false;
     bool ground_truth = false;
+    bool start_now = false;
 };
 
 std::string progress_text(const BatchProgress& p) {
@@ -53,7 +55,13 @@ extern "C" void on_stop_signal(int sig) {
 }
 
 int run_batch_command(const BatchCliOptions& o) {
-    const SceneDesc scene = load_scene_from_options(o.scene);
+    SceneDesc scene = load_scene_from_options(o.scene);
+    if (o.start_now) { // the wall clock, asked for; without it the dataset's start is a fixed time
+        if (scene.exports.start_time_s > 0)
+            throw InputError("--start-now", "",
+                             "export.start_time_s is given too: give either the start or --start-now");
+        scene.exports.start_time_s = double(std::time(nullptr));
+    }
     const Trajectory trajectory =
         make_trajectory(o.trajectory, o.circle, o.line, o.rate_hz, scene.sonar.pose.orientation_deg);
     BatchOptions options;
@@ -132,6 +140,10 @@ void register_batch(CLI::App& app, std::function<int()>& run) {
     cmd->add_option("--shard", o->shard,
                     "i/n: render only frames i, i+n, i+2n, ... (e.g. a Slurm array task)");
     cmd->add_flag("--resume", o->resume, "Skip frames that are already complete");
+    cmd->add_flag(
+        "--start-now", o->start_now,
+        "Start the dataset's clock (ARIS FrameTime, MCAP stamps) at the wall clock when it is first "
+        "prepared, instead of export.start_time_s (default 2026-01-01 00:00:00 UTC)");
     cmd->add_flag("--ground-truth", o->ground_truth,
                   "Also write each frame's NNNNNN_gt_<name>.npy (elevation, point, object id, incidence, "
                   "surfaces and reflections per range bin and beam)");

@@ -1,5 +1,7 @@
 #include "core/dataset/batch.hpp"
 
+#include "core/base/build_info.hpp"
+
 #include "core/sensor/sensor.hpp"
 
 #include "core/base/errors.hpp"
@@ -161,9 +163,15 @@ void prepare_dataset(const std::string& dir, const SceneDesc& base, const Trajec
     // The dataset's start (UNIX s of t = 0), fixed when it is first prepared so that resumed runs agree.
     const std::string start_path = dir + "/dataset.json";
     if (!fs::exists(start_path, ec)) {
-        const double start =
-            base.exports.start_time_s > 0 ? base.exports.start_time_s : double(std::time(nullptr));
-        files.push_back({start_path, to_bytes(json{{"start_time_s", start}}.dump(2) + "\n")});
+        const double start = base.exports.start_time_s > 0 ? base.exports.start_time_s : kDefaultStartTimeS;
+        const json provenance = {
+            {"start_time_s", start},
+            {"scene_file", base.source_file.empty()
+                               ? json(nullptr)
+                               : json(fs::absolute(base.source_file).lexically_normal().string())},
+            {"program",
+             {{"name", "sonarsim"}, {"version", program_version()}, {"commit", program_commit()}}}};
+        files.push_back({start_path, to_bytes(provenance.dump(2) + "\n")});
     }
     write_files_atomically(files);
 }

@@ -31,15 +31,20 @@ std::string frame_prefix(const std::string& dir, size_t k);
 /// Whether every file of frame k exists.
 bool frame_complete(const std::string& dir, size_t k);
 
+/// The dataset's start when no export.start_time_s is given: 2026-01-01 00:00:00 UTC, so that the same
+/// command writes the same files (`batch --start-now` asks for the wall clock instead).
+constexpr double kDefaultStartTimeS = 1767225600;
+
 /// Creates DIR and DIR/frames and writes scene.json (mesh paths made absolute), trajectory.csv and, the
-/// first time, dataset.json (the start time, dataset_start_time_s); when DIR
+/// first time, dataset.json (the start time, dataset_start_time_s; where the scene came from,
+/// base.source_file; and the program that made it: name, version, commit); when DIR
 /// already holds a dataset of another scene or trajectory, throws InputError (frames of two datasets are
 /// never mixed). Every run renders the scene as read back from DIR, so shards, resumed runs and other
 /// processes (the Dask example) render exactly the same scene.
 void prepare_dataset(const std::string& dir, const SceneDesc& base, const Trajectory& trajectory);
 
 /// The dataset's start, UNIX seconds of t = 0: DIR/dataset.json, which prepare_dataset writes once (from
-/// base.exports.start_time_s, or the wall clock when that is 0); for a dataset without it, the time its
+/// base.exports.start_time_s, or kDefaultStartTimeS when that is 0); for a dataset without it, the time its
 /// trajectory.csv was written. Throws InputError naming the file for a malformed one.
 double dataset_start_time_s(const std::string& dir);
 

@@ -102,3 +102,28 @@ def test_resume_after_a_kill_completes_the_set(sonarsim_exe, scratch):
     assert samples == 256
     assert len(data) == 1024 + 40 * (1024 + 48 * samples)
     assert (scratch / "o.mcap").read_bytes()[:8] == b"\x89MCAP0\r\n"
+
+
+def test_the_dataset_clock_is_fixed_unless_the_wall_clock_is_asked_for(sonarsim_exe, scratch):
+    import json
+    scene = write_scene(scratch)
+    line = ["--line", "0.3,2.4,0.9,0.4,2.4,0.9,2"]
+    subprocess.run([sonarsim_exe, "batch", "--scene", str(scene), *line, "--out", str(scratch / "fixed")],
+                   capture_output=True, text=True, check=True)
+    d = json.loads((scratch / "fixed" / "dataset.json").read_text())
+    assert d["start_time_s"] == 1767225600  # 2026-01-01 00:00:00 UTC
+    assert d["scene_file"] == str(scene.resolve())
+    assert d["program"]["name"] == "sonarsim" and d["program"]["commit"]
+
+    before = time.time()
+    subprocess.run([sonarsim_exe, "batch", "--scene", str(scene), *line, "--out", str(scratch / "now"),
+                    "--start-now"], capture_output=True, text=True, check=True)
+    start = json.loads((scratch / "now" / "dataset.json").read_text())["start_time_s"]
+    assert before - 1 <= start <= time.time() + 1
+
+    r = subprocess.run([sonarsim_exe, "batch", "--scene", str(scene), *line, "--out", str(scratch / "both"),
+                        "--start-now", "--set", "export.start_time_s=1700000000"], capture_output=True, text=True)
+    assert r.returncode == 2
+    assert r.stderr == ("sonarsim: error: --start-now: export.start_time_s is given too: give either the start "
+                        "or --start-now\n")
+    assert not (scratch / "both").exists()

@@ -3,7 +3,8 @@
 
 Renders each example scene with its own sensor, the device sensor, ground truth and (in the tank) multipath;
 the three sampling schemes; and a small batch dataset with ARIS and MCAP files. Every file written is hashed;
-timings (`time_ms`, index.csv's `ms`) and the ARIS file's creation date are taken out before hashing, and
+timings (`time_ms`, index.csv's `ms`), the commit a dataset records and the ARIS file's creation date are taken
+out before hashing, and
 the repository's absolute path (mesh paths in the metadata) is replaced by a placeholder, everything else must match.
 
   golden.py SONARSIM ASSETS OUTDIR MANIFEST            compare (exit 1 listing every file that differs)
@@ -50,6 +51,8 @@ def normalise(path, root):
     if path.endswith(".json"):  # timings vary; mesh paths are absolute, in whichever clone this runs
         doc = json.loads(data)
         doc.pop("time_ms", None)
+        if isinstance(doc.get("program"), dict):  # dataset.json: the commit changes with every commit
+            doc["program"].pop("commit", None)
         data = json.dumps(doc, sort_keys=True).replace(root, "<repository>").encode()
     elif path.endswith("index.csv"):  # the ms column is a timing
         rows = [line.split(",") for line in data.decode().splitlines()]

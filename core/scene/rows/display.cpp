@@ -42,10 +42,12 @@ std::vector<ParamSpec> export_rows() {
     t.push_back(number("export.hi_db", "dB", -1000, 1000, false, false, Stage::None,
                        "8-bit exports without export.auto: the image level written as byte 255 (and above)",
                        [](S s) -> double& { return s.exports.hi_db; }));
-    t.push_back(number("export.start_time_s", "s", 0, 4102444800, false, false, Stage::None,
-                       "UNIX time of the dataset's t = 0 in exports (ARIS FrameTime = start + t); 0: the "
-                       "time batch prepared the dataset (or this value then), kept in DIR/dataset.json",
-                       [](S s) -> double& { return s.exports.start_time_s; }));
+    t.push_back(
+        number("export.start_time_s", "s", 0, 4102444800, false, false, Stage::None,
+               "UNIX time of the dataset's t = 0 in exports (ARIS FrameTime, MCAP stamps = start + t); 0: "
+               "the dataset's, kept in DIR/dataset.json when batch first prepared it (this value then, "
+               "else 2026-01-01 00:00:00 UTC = 1767225600, or the wall clock with batch --start-now)",
+               [](S s) -> double& { return s.exports.start_time_s; }));
     return t;
 }
 
