@@ -60,6 +60,14 @@ std::string khz(double f) {
 
 /// The mode of the scene's device (an ARIS preset fixes the system), beam count and frequency.
 const ArisMode& aris_mode(const SonarParams& sonar, const std::string& origin) {
+    // A DIDSON's recordings are DDF files of an older version whose layout Sound Metrics has not published;
+    // written as an ARIS 1800 file, ARIS tools would place its beams by the ARIS 1800's lens table.
+    if (sonar.device.rfind("didson", 0) == 0)
+        throw InputError(origin, "sonar.device",
+                         sonar.device +
+                             " is a DIDSON: its own file format is not public, and as an ARIS file "
+                             "its beams would be read with the ARIS 1800's angles; write --mcap "
+                             "instead (it carries each beam's direction)");
     const int system = preset_system(sonar.device);
     const ArisMode* best = nullptr;
     std::string counts;

@@ -53,6 +53,10 @@ TEST_CASE("ARIS files hold only the beam counts and frequencies ARIS modes have"
     // 2300 kHz is 28 % above 1800; 2200 kHz 22 %.
     CHECK_THROWS_AS(check_aris(with(s, {"sonar.beams=96", "sonar.frequency_khz=2300"}), "s"), InputError);
     CHECK_NOTHROW(check_aris(with(s, {"sonar.beams=96", "sonar.frequency_khz=2200"}), "s"));
+    // A DIDSON is no ARIS: its beams would be read with the ARIS 1800's lens table.
+    CHECK_THROWS_WITH(check_aris(with(s, {"sonar.device=didson300-hf"}), "scene.json"),
+                      Catch::StartsWith("scene.json: sonar.device: didson300-hf is a DIDSON") &&
+                          Catch::Contains("write --mcap instead"));
     // An ARIS preset fixes the system: the ARIS 3000 has no 96-beam mode.
     CHECK_THROWS_WITH(
         check_aris(with(s, {"sonar.device=aris3000-hf", "sonar.beams=96"}), "scene.json"),
