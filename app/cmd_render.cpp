@@ -54,8 +54,17 @@ void check_parent_dir(const std::string& path, const std::string& option) {
                          "\"" + path + "\" names a directory; give a file name prefix, e.g. dir/image");
     const auto dir = p.parent_path().empty() ? std::filesystem::path(".") : p.parent_path();
     std::error_code ec;
-    if (!std::filesystem::is_directory(dir, ec))
+    if (!std::filesystem::is_directory(dir, ec)) {
+        // A file where a directory of the path should be is in the way; otherwise the directory is missing.
+        for (auto up = dir; !up.empty(); up = up.parent_path()) {
+            if (std::filesystem::exists(up, ec) && !std::filesystem::is_directory(up, ec))
+                throw InputError(option, "",
+                                 "\"" + up.string() +
+                                     "\" is a file, not a directory: it is in the way of \"" + path + "\"");
+            if (up == up.parent_path()) break;
+        }
         throw InputError(option, "", "directory \"" + dir.string() + "\" does not exist");
+    }
 }
 
 int run_render(const RenderOptions& o) {

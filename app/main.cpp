@@ -25,6 +25,15 @@ int main(int argc, char** argv) {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return app.exit(e); // --help and the like
+        if (argc > 1 && argv[1][0] != '-' &&
+            !app.get_subcommands().size()) { // a first word that is no command
+            std::string commands;
+            for (const CLI::App* c : app.get_subcommands({}))
+                commands += (commands.empty() ? "" : ", ") + c->get_name();
+            std::cerr << "sonarsim: error: unknown command \"" << InputError::printable(argv[1])
+                      << "\"; the commands are " << commands << " (see sonarsim --help)\n";
+            return 2;
+        }
         std::cerr << "sonarsim: error: " << InputError::printable(e.what()) << " (see sonarsim --help)\n";
         return 2;
     }

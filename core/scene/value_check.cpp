@@ -5,6 +5,7 @@
 #include "core/base/errors.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 namespace sonarsim {
@@ -14,7 +15,15 @@ std::string type_name(const json& v) {
     if (v.is_null()) return "null";
     if (v.is_boolean()) return "a boolean";
     if (v.is_number()) return "a number";
-    if (v.is_string()) return "a string";
+    if (v.is_string()) {
+        // "nan", "inf", "1e999": a number's text that is no finite number.
+        const std::string& t = v.get_ref<const std::string&>();
+        char* end = nullptr;
+        const double x = t.empty() ? 0.0 : std::strtod(t.c_str(), &end);
+        if (!t.empty() && end && *end == '\0' && !std::isfinite(x))
+            return "\"" + t + "\", not a finite number";
+        return "a string";
+    }
     if (v.is_array()) return "an array";
     return "an object";
 }
@@ -31,7 +40,10 @@ void check_number(const ValueSpec& spec, double x, const std::string& file, cons
 
 std::string number_text(double v) {
     std::ostringstream s;
-    s << v;
+    if (std::isfinite(v) && v == std::floor(v) && std::abs(v) < 1e15)
+        s << static_cast<long long>(v); // whole numbers in plain digits: 50000000, not 5e+07
+    else
+        s << v;
     return s.str();
 }
 

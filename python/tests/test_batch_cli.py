@@ -127,3 +127,10 @@ def test_the_dataset_clock_is_fixed_unless_the_wall_clock_is_asked_for(sonarsim_
     assert r.stderr == ("sonarsim: error: --start-now: export.start_time_s is given too: give either the start "
                         "or --start-now\n")
     assert not (scratch / "both").exists()
+
+
+def test_an_unknown_command_is_named_with_the_commands(sonarsim_exe):
+    r = subprocess.run([sonarsim_exe, "frobnicate"], capture_output=True, text=True)
+    assert r.returncode == 2
+    assert r.stderr.startswith('sonarsim: error: unknown command "frobnicate"; the commands are render, view, ')
+    assert "batch" in r.stderr and len(r.stderr.splitlines()) == 1
