@@ -121,3 +121,32 @@ TEST_CASE("the fan is formed as high as it is shown, in steps of 64 px, never ab
     s.range_bins = 200; // a full fan of 256 px (its least): nothing smaller is formed
     CHECK(fan_height_to_form(100, *sonar_grid(s)) == 0);
 }
+
+TEST_CASE("an asymmetric beam-table fan is drawn and labelled between its own edges", "[ui][panel]") {
+    // The DIDSON's table (didson300_hf_96.csv): beam centres -14.72 ... +14.09 deg, edges -14.836 ... +14.219
+    // (starboard ... port), where a symmetric fan of its width would span +-14.528.
+    SceneDesc s = default_scene();
+    apply_setting(s, "sonar.device", "didson300-hf", "test");
+    REQUIRE(s.sonar.beam_table != "uniform");
+    const ViewerLayout V = viewer_layout(1600, 1000, 1.0f, fan_aspect(s.sonar));
+    const SonarPanelLayout L =
+        sonar_panel_layout(V.sonar, {s.sonar, 70, 125, colorbar_title(s)}, TextMetrics{});
+    CHECK(L.fan.port_deg == Approx(14.219189).margin(1e-5));
+    CHECK(L.fan.starboard_deg == Approx(-14.836324).margin(1e-5));
+    const double r = 0.5 * (s.sonar.range_min_m + s.sonar.range_max_m);
+    auto inside = [&](double a_deg) {
+        const glm::dvec2 p = L.fan.at(r, a_deg);
+        return L.fan.contains(p.x, p.y);
+    };
+    CHECK(inside(14.1));
+    CHECK_FALSE(inside(14.4)); // beyond the port edge, inside a symmetric fan
+    CHECK(inside(-14.7));      // inside the starboard edge, outside a symmetric fan
+    CHECK_FALSE(inside(-14.9));
+    for (double a : L.bearing_deg) { // every bearing label within the fan's own edges
+        CHECK(a <= L.fan.port_deg + 1e-9);
+        CHECK(a >= L.fan.starboard_deg - 1e-9);
+    }
+    REQUIRE_FALSE(L.ranges.empty()); // range labels beside the port edge, outside the fan
+    for (const PanelLabel& l : L.ranges)
+        CHECK_FALSE(L.fan.contains(l.box.x + l.box.w / 2, l.box.y + l.box.h / 2));
+}

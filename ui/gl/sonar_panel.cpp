@@ -239,12 +239,13 @@ void SonarPanel::draw_fan_overlay(const Rect& r, const RenderResult& shown) {
         L.polar_to_pixel(range, az, px, py);
         return ImVec2(r.x + float(px / f.sector().width) * r.w, r.y + float(py / f.sector().height) * r.h);
     };
-    const double half = s.azimuth_fov_deg / 2;
-    // Range rings and bearing lines at the labelled values (labels: draw_labels, outside the fan).
+    // Range rings from the fan's port edge to its starboard edge (a beam table's need not be symmetric) and
+    // bearing lines, at the labelled values (labels: draw_labels, outside the fan).
+    const double port = layout_.fan.port_deg, starboard = layout_.fan.starboard_deg;
     for (double rr : layout_.range_m) {
         const int n = 40;
         ImVec2 pts[n + 1];
-        for (int k = 0; k <= n; ++k) pts[k] = to_screen(rr, half - 2 * half * k / n);
+        for (int k = 0; k <= n; ++k) pts[k] = to_screen(rr, port - (port - starboard) * k / n);
         dl->AddPolyline(pts, n + 1, kGridColor, 0, 1.0f);
     }
     for (double a : layout_.bearing_deg)

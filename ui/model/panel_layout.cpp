@@ -67,11 +67,13 @@ Labels place_labels(const PanelContent& c, const SectorLayout& sector, float x, 
     Labels L;
     L.bounds = {x, y, w, h};
     const float th = t.line_h, gap = kGap;
-    const double half = s.azimuth_fov_deg / 2;
+    const SonarGrid& grid = sector.grid();
+    const double port = rad2deg(grid.beam_port_edge_rad(0)),
+                 starboard = rad2deg(grid.beam_starboard_edge_rad(grid.beams - 1));
     const double astep = nice_step(s.azimuth_fov_deg, 6), rstep = nice_step(s.range_max_m - s.range_min_m, 5);
     // Bearings: 0 first, then from the edges inwards (the extremes matter most), each where it fits.
     std::vector<double> angles;
-    for (double a = std::floor(half / astep + 1e-9) * astep; a >= -half - 1e-9; a -= astep)
+    for (double a = std::floor(port / astep + 1e-9) * astep; a >= starboard - 1e-9; a -= astep)
         angles.push_back(a);
     std::stable_sort(angles.begin(), angles.end(), [](double a, double b) {
         auto rank = [](double v) { return std::abs(v) < 1e-9 ? -1.0 : -std::abs(v); };
@@ -81,7 +83,6 @@ Labels place_labels(const PanelContent& c, const SectorLayout& sector, float x, 
     for (double r = std::ceil(s.range_min_m / rstep - 1e-9) * rstep; r <= s.range_max_m + 1e-9; r += rstep)
         if (r > 0) rings.push_back(r);
     if (c.polar) {
-        const SonarGrid& grid = sector.grid();
         auto x_of = [&](double a) { return x + float(grid.column_of_azimuth_deg(a) / grid.beams) * w; };
         auto y_of = [&](double r) {
             return y + float((s.range_max_m - r) / (s.range_max_m - s.range_min_m)) * h;
@@ -101,7 +102,8 @@ Labels place_labels(const PanelContent& c, const SectorLayout& sector, float x, 
                          gap, none);
         }
     } else {
-        fan.r_min_m = s.range_min_m, fan.r_max_m = s.range_max_m, fan.half_deg = half;
+        fan.r_min_m = s.range_min_m, fan.r_max_m = s.range_max_m;
+        fan.port_deg = port, fan.starboard_deg = starboard;
         double px0, py0, px1, py1;
         sector.polar_to_pixel(0, 0, px0, py0);
         sector.polar_to_pixel(1, 0, px1, py1);
@@ -117,11 +119,11 @@ Labels place_labels(const PanelContent& c, const SectorLayout& sector, float x, 
             keep_if_free(L.bearings, L.bearing_deg, {}, {txt, box}, a, gap, inside);
         }
         // Ranges: beside the port edge, outside the fan; the ones that would collide are left out.
-        const double hr = deg2rad(half);
+        const double hr = deg2rad(port);
         const glm::dvec2 normal(-std::cos(hr), std::sin(hr));
         for (double r : rings) {
             const std::string txt = m_text(r);
-            const Rect box = box_beyond(fan.at(r, half), normal, t.width(txt), th, gap);
+            const Rect box = box_beyond(fan.at(r, port), normal, t.width(txt), th, gap);
             keep_if_free(L.ranges, L.range_m, L.bearings, {txt, box}, r, gap, inside);
         }
     }
@@ -140,7 +142,7 @@ glm::dvec2 FanOnScreen::at(double r, double a_deg) const {
 bool FanOnScreen::contains(double x, double y) const {
     const glm::dvec2 d = (glm::dvec2(x, y) - apex) / px_per_m;
     const double r = glm::length(d), a = rad2deg(std::atan2(-d.x, -d.y));
-    return r >= r_min_m && r <= r_max_m && std::abs(a) <= half_deg;
+    return r >= r_min_m && r <= r_max_m && a <= port_deg && a >= starboard_deg;
 }
 
 std::string colorbar_title(const SceneDesc& scene) {

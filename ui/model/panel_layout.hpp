@@ -30,10 +30,12 @@ struct PanelLabel {
 /// The fan on screen: the sonar's apex, metres to pixels, the range window and the half field of view.
 struct FanOnScreen {
     glm::dvec2 apex{0};
-    double px_per_m = 1, r_min_m = 0, r_max_m = 1, half_deg = 45;
+    double px_per_m = 1, r_min_m = 0, r_max_m = 1;
+    /// The fan's port and starboard edges [deg] (SonarGrid: a beam table's fan need not be symmetric).
+    double port_deg = 45, starboard_deg = -45;
     /// Screen point at range r [m] and azimuth a [deg] (port, positive azimuth, on the left).
     glm::dvec2 at(double range_m, double azimuth_deg) const;
-    /// True inside the annular sector r_min..r_max x -half..half.
+    /// True inside the annular sector r_min..r_max x starboard..port.
     bool contains(double x, double y) const;
 };
 
