@@ -196,42 +196,26 @@ TEST_CASE("the housing and the handle are grabbable and the field of view shell 
     CHECK_FALSE(r.c.sonar_hot());
 }
 
-TEST_CASE("nothing is selected at start: a drag from an object orbits and moves nothing",
-          "[ui][controller]") {
-    Rig r;
-    REQUIRE(r.c.selected == kNothingSelected);
-    const glm::dvec2 p = r.pixel_of({1.5, 1.5, 0.22}); // the prism's top face
-    const OrbitCamera before = r.c.camera;
-    r.feed(T::Press, p);
-    r.feed(T::Move, p + glm::dvec2(25, 0));
-    r.feed(T::Move, p + glm::dvec2(50, 0));
-    CHECK(r.c.grab() == ViewController::Grab::Orbit);
-    r.feed(T::Release, p + glm::dvec2(50, 0));
-    OrbitCamera expected = before;
-    expected.orbit(50, 0);
-    CHECK(r.c.camera.azimuth_deg == Approx(expected.azimuth_deg));
-    CHECK(r.scene.objects[0].position_m == default_scene().objects[0].position_m);
-    CHECK(r.c.selected == kNothingSelected); // a drag is not a click
-    CHECK_FALSE(r.c.take_edit_finished());
-}
-
 TEST_CASE("a plain drag on an unselected object orbits; a click selects it, then a drag moves it",
           "[ui][controller]") {
     Rig r;
-    r.c.selected = -1; // the seafloor
+    REQUIRE(r.c.selected == kNothingSelected); // at start: a drag anywhere but on the sonar orbits
     const glm::dvec2 p = r.pixel_of({1.5, 1.5, 0.22});
     const OrbitCamera before = r.c.camera;
-    r.feed(T::Press, p);
-    r.feed(T::Move, p + glm::dvec2(20, 0));
-    r.feed(T::Move, p + glm::dvec2(40, 0));
-    CHECK(r.c.grab() == ViewController::Grab::Orbit);
-    r.feed(T::Release, p + glm::dvec2(40, 0));
-    OrbitCamera expected = before;
-    expected.orbit(40, 0);
-    CHECK(r.c.camera.azimuth_deg == Approx(expected.azimuth_deg));
-    CHECK(r.scene.objects[0].position_m == default_scene().objects[0].position_m);
-    CHECK(r.c.selected == -1); // a drag is not a click
-    CHECK_FALSE(r.c.take_edit_finished());
+    for (const int selected : {kNothingSelected, -1}) { // nothing, then the seafloor
+        r.c.selected = selected, r.c.camera = before;
+        r.feed(T::Press, p);
+        r.feed(T::Move, p + glm::dvec2(20, 0));
+        r.feed(T::Move, p + glm::dvec2(40, 0));
+        CHECK(r.c.grab() == ViewController::Grab::Orbit);
+        r.feed(T::Release, p + glm::dvec2(40, 0));
+        OrbitCamera expected = before;
+        expected.orbit(40, 0);
+        CHECK(r.c.camera.azimuth_deg == Approx(expected.azimuth_deg));
+        CHECK(r.scene.objects[0].position_m == default_scene().objects[0].position_m);
+        CHECK(r.c.selected == selected); // a drag is not a click
+        CHECK_FALSE(r.c.take_edit_finished());
+    }
 
     r.c.camera = before;
     r.feed(T::Press, p);
