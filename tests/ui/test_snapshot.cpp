@@ -9,6 +9,7 @@
 #include "core/scene/scene_io.hpp"
 #include "core/pipeline/simulator.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <filesystem>
@@ -46,11 +47,15 @@ TEST_CASE("snapshot files -> load_scene -> render gives identical .npy and PNG b
 
         const std::string prefix = test::ui_out_path(std::string("snapshot_roundtrip_") + scheme);
         const Bytes fake3d = {1, 2, 3};
-        const auto paths = ui::write_snapshot(prefix, shown.scene, *shown.frame, fake3d);
-        REQUIRE(paths.size() == 6);
+        const Bytes fake_annotated = {4, 5, 6};
+        const auto paths =
+            ui::write_snapshot(prefix, shown.scene, *shown.frame, fake3d, nullptr, fake_annotated);
+        REQUIRE(paths.size() == 7); // every file written is listed, the annotated panel included
         for (auto& p : paths) CHECK(std::filesystem::exists(p));
+        CHECK(std::count(paths.begin(), paths.end(), prefix + "_annotated.png") == 1);
         const bool same_3d = test::read_bytes(prefix + "_3d.png") == fake3d;
         CHECK(same_3d);
+        CHECK(test::read_bytes(prefix + "_annotated.png") == fake_annotated);
 
         // What `sonarsim render --scene PREFIX_scene.json` does.
         const SceneDesc again = load_scene(prefix + "_scene.json");

@@ -121,15 +121,8 @@ void Viewer::take_snapshot(const std::string& prefix_in, bool as_shown, const By
         session_.set_error(std::string("3D view snapshot failed: ") + e.what());
     }
     const std::string prefix = prefix_in.empty() ? default_snapshot_prefix(ui_.snapshot_dir) : prefix_in;
-    if (!session_.snapshot(prefix, png)) return;
+    if (!session_.snapshot(prefix, png, ui_.annotated_snapshot ? annotated : Bytes{})) return;
     ++snapshots_taken_;
-    if (ui_.annotated_snapshot && annotated.size() > 0) {
-        try {
-            write_files_atomically({{prefix + "_annotated.png", annotated}});
-        } catch (const std::exception& e) {
-            session_.set_error(std::string("annotated snapshot failed: ") + e.what());
-        }
-    }
     std::cerr << session_.status() << "\n";
 }
 

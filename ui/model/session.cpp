@@ -193,7 +193,7 @@ void Session::set_fan_height_px(int height_px) {
     dirty_ = true; // the same scene again: the worker re-forms its fan
 }
 
-bool Session::snapshot(const std::string& prefix, const Bytes& view3d_png) {
+bool Session::snapshot(const std::string& prefix, const Bytes& view3d_png, const Bytes& annotated_png) {
     if (!shown_) {
         error_ = "no sonar image yet: nothing to snapshot";
         return false;
@@ -214,8 +214,9 @@ bool Session::snapshot(const std::string& prefix, const Bytes& view3d_png) {
             frame.sector_ptr =
                 std::make_shared<const Image8>(frame.sector_map_ptr->apply(frame.polar(), frame.display));
         }
-        const auto paths = write_snapshot(prefix, shown_->scene, frame, view3d_png,
-                                          ground_truth_ ? shown_->ground_truth.get() : nullptr);
+        const auto paths =
+            write_snapshot(prefix, shown_->scene, frame, view3d_png,
+                           ground_truth_ ? shown_->ground_truth.get() : nullptr, annotated_png);
         status_ = "snapshot:";
         for (auto& p : paths) status_ += " " + std::filesystem::path(p).filename().string();
         error_.clear();

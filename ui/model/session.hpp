@@ -79,10 +79,11 @@ class Session {
     const std::string& status() const { return status_; }
     void set_status(const std::string& s) { status_ = s; }
 
-    /// Writes the sonar files of the shown frame, the 3D view PNG and the scene file (see snapshot.hpp); a
-    /// preview on screen is first replaced by the full-quality image (wait_full).
+    /// Writes the sonar files of the shown frame, the 3D view PNG, the annotated panel PNG (when not empty)
+    /// and the scene file in one step (see snapshot.hpp), and lists every file in status(); a preview on
+    /// screen is first replaced by the full-quality image (wait_full).
     /// Returns false (and sets error()) when there is nothing to save or writing fails.
-    bool snapshot(const std::string& prefix, const Bytes& view3d_png);
+    bool snapshot(const std::string& prefix, const Bytes& view3d_png, const Bytes& annotated_png = {});
     /// Ground truth per pixel for full-quality frames (computed by the worker): shown by the hover readout
     /// and written by snapshots as PREFIX_gt_<name>.npy. Turning it on re-requests the shown scene.
     void set_ground_truth(bool on);
