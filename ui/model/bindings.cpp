@@ -29,7 +29,8 @@ const std::vector<Binding>& bindings() {
     // A key row's input is its key presses as menus show them ("Ctrl+Shift+Z or Ctrl+Y"), filled in below
     // where the row leaves it empty.
     static const std::vector<Binding> table = with_key_inputs({
-        {"3D view", "left-drag (anywhere but the sonar or the selected object)", "orbit the camera"},
+        {"3D view", "left-drag (anywhere but the sonar or the selected object; nothing is selected at start)",
+         "orbit the camera"},
         {"3D view", "right- or middle-drag", "pan the camera"},
         {"3D view", "wheel", "zoom"},
         {"3D view", "drag the sonar housing or its yellow handle", "move the sonar on the horizontal plane"},
