@@ -440,7 +440,8 @@ TEST_CASE("a ProjectedSonarImage's rx_beamwidths are the receive beams' -3 dB wi
     img.beams = s.sonar.beams, img.bins = s.sonar.range_bins;
     img.level_db.assign(size_t(img.beams) * size_t(img.bins), 50.0f);
     ClipCount count;
-    const auto msg = encode_projected_sonar_image(s, img, 0.5, "sonar", SonarDataType::Uint8, kZeroTo80, count);
+    const auto msg =
+        encode_projected_sonar_image(s, img, 0.5, "sonar", SonarDataType::Uint8, kZeroTo80, count);
     Reader c{msg, 4, 4};
     c.get<std::int32_t>(true), c.get<std::uint32_t>(true), c.str(true);
     c.get<float>(true), c.get<float>(true);
