@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace sonarsim::ui {
 namespace {
@@ -321,7 +322,16 @@ void stats_section(Session& session, const ControlsUi& ui) {
         const Frame& f = *r->frame;
         ImGui::SameLine();
         ImGui::Text("  image %.1f ms%s", r->wall_ms, f.preview() ? " (preview)" : "");
-        ImGui::TextDisabled("trace %.1f  shade %.1f  map %.1f ms", f.trace_ms, f.shade_ms, f.image_ms);
+        // This image's own work per stage: a stage it shares with the image before is "kept"; an adaptive
+        // trace shades its cells itself.
+        auto stage_ms = [](double ms, const char* none) {
+            char b[32];
+            if (ms > 0) std::snprintf(b, sizeof b, "%.1f", ms);
+            return ms > 0 ? std::string(b) : std::string(none);
+        };
+        ImGui::TextDisabled("trace %s  shade %s  map %s ms", stage_ms(f.trace_ms, "kept").c_str(),
+                            stage_ms(f.shade_ms, f.trace_ms > 0 ? "in trace" : "kept").c_str(),
+                            stage_ms(f.image_ms, "kept").c_str());
         const MemoryReport m = memory_report();
         ImGui::TextDisabled("%llu rays  kept %s MiB", static_cast<unsigned long long>(f.hits().rays_traced),
                             mib_text(m.mesh_bytes + m.kept_bytes).c_str());
