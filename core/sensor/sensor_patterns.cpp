@@ -1,11 +1,11 @@
 #include "core/sensor/sensor_patterns.hpp"
 
 #include "core/base/pose.hpp"
+#include "core/base/recent_shared.hpp"
 #include "core/scene/sonar_grid.hpp"
 
 #include <algorithm>
 #include <memory>
-#include <mutex>
 #include <cmath>
 #include <numeric>
 
@@ -207,41 +207,25 @@ AzimuthBeamforming make_azimuth_beamforming(const SceneDesc& s, bool amplitudes)
 }
 
 std::shared_ptr<const AzimuthBeamforming> shared_azimuth_beamforming(const SceneDesc& s, bool amplitudes) {
-    // Everything make_azimuth_beamforming reads: the grid (held here, so that the pointer stays its own),
-    // the window and its level, the broadside -3 dB width and the beamformer.
-    struct Entry {
+    // Everything make_azimuth_beamforming reads: the grid (held in the key, so that the pointer stays its
+    // own), the window and its level, the broadside -3 dB width and the beamformer.
+    struct Key {
         std::shared_ptr<const SonarGrid> grid;
         AzimuthWindow window;
         double taylor_db, width_deg;
         Beamformer beamformer;
         bool amplitudes;
-        std::shared_ptr<const AzimuthBeamforming> value;
+        bool operator==(const Key& o) const {
+            return grid == o.grid && window == o.window && taylor_db == o.taylor_db &&
+                   width_deg == o.width_deg && beamformer == o.beamformer && amplitudes == o.amplitudes;
+        }
     };
-    constexpr std::size_t kKept = 4; // the most recently used; a few simulators may alternate
-    static std::mutex m;
-    static std::vector<Entry> kept; // most recently used first
-    Entry e{sonar_grid(s.sonar),
-            s.sensor.azimuth_window,
-            s.sensor.taylor_sidelobe_db,
-            azimuth_beamwidth_deg(s),
-            s.sensor.beamformer,
-            amplitudes,
-            nullptr};
-    {
-        std::lock_guard<std::mutex> lock(m);
-        for (auto it = kept.begin(); it != kept.end(); ++it)
-            if (it->grid == e.grid && it->window == e.window && it->taylor_db == e.taylor_db &&
-                it->width_deg == e.width_deg && it->beamformer == e.beamformer &&
-                it->amplitudes == amplitudes) {
-                std::rotate(kept.begin(), it, it + 1);
-                return kept.front().value;
-            }
-    }
-    e.value = std::make_shared<const AzimuthBeamforming>(make_azimuth_beamforming(s, amplitudes));
-    std::lock_guard<std::mutex> lock(m);
-    kept.insert(kept.begin(), e);
-    if (kept.size() > kKept) kept.pop_back();
-    return e.value;
+    static RecentShared<Key, AzimuthBeamforming, 4> kept; // a few simulators may alternate
+    const Key key{sonar_grid(s.sonar),      s.sensor.azimuth_window, s.sensor.taylor_sidelobe_db,
+                  azimuth_beamwidth_deg(s), s.sensor.beamformer,     amplitudes};
+    return kept.get(key, [&] {
+        return std::make_shared<const AzimuthBeamforming>(make_azimuth_beamforming(s, amplitudes));
+    });
 }
 
 std::vector<double> range_amplitude_kernel(Pulse pulse, double res_m, double dr_m) {

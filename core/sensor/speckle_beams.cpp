@@ -1,6 +1,7 @@
 #include "core/sensor/speckle_beams.hpp"
 
 #include "core/base/fast_math.hpp"
+#include "core/base/recent_shared.hpp"
 #include "core/sensor/sensor_patterns.hpp"
 
 #include <algorithm>
@@ -9,7 +10,6 @@
 #include <immintrin.h>
 #endif
 #include <limits>
-#include <mutex>
 
 namespace sonarsim {
 namespace {
@@ -170,24 +170,9 @@ SONARSIM_AVX2_TARGET void to_columns_avx2(int J, const float* rows, float* field
 } // namespace
 
 std::shared_ptr<const BeamSums> shared_beam_sums(const SceneDesc& s) {
+    static RecentShared<std::shared_ptr<const AzimuthBeamforming>, BeamSums, 4> kept; // the pattern held
     const std::shared_ptr<const AzimuthBeamforming> bf = shared_azimuth_beamforming(s, true);
-    constexpr std::size_t kKept = 4; // the most recently used
-    static std::mutex m;
-    static std::vector<std::pair<std::shared_ptr<const AzimuthBeamforming>, std::shared_ptr<const BeamSums>>>
-        kept; // most recently used first; the pattern held, so that its pointer stays its own
-    {
-        std::lock_guard<std::mutex> lock(m);
-        for (auto it = kept.begin(); it != kept.end(); ++it)
-            if (it->first == bf) {
-                std::rotate(kept.begin(), it, it + 1);
-                return kept.front().second;
-            }
-    }
-    auto sums = std::make_shared<const BeamSums>(by_beam(*bf));
-    std::lock_guard<std::mutex> lock(m);
-    kept.emplace(kept.begin(), bf, sums);
-    if (kept.size() > kKept) kept.pop_back();
-    return sums;
+    return kept.get(bf, [&] { return std::make_shared<const BeamSums>(by_beam(*bf)); });
 }
 
 // form_group_lanes with the widest vectors the CPU has (the same sums either way).
