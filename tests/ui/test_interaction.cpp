@@ -111,3 +111,38 @@ TEST_CASE("dragging the frustum sideways moves the prism's echo across the fan",
     CHECK(after < before - 10);
     CHECK(after == Approx(expected_beam).margin(4));
 }
+
+TEST_CASE("a translation seen at a grazing angle moves what the cursor covers at the grabbed depth",
+          "[ui][drag]") {
+    // Monterey-like: the camera 2 m above the sonar's plane, 200 m away; a 5 px drag upwards meets the
+    // plane some 500 m away.
+    SceneDesc s = default_scene();
+    OrbitCamera cam;
+    cam.target =
+        glm::dvec3(s.sonar.pose.position_m[0], s.sonar.pose.position_m[1], s.sonar.pose.position_m[2]);
+    cam.distance_m = 200;
+    cam.elevation_deg = 0.6;
+    const int w = 800, h = 600;
+    glm::dvec2 px0;
+    REQUIRE(cam.project(cam.target, w, h, px0));
+    const Ray r0 = cam.ray_through(px0.x, px0.y, w, h);
+    const double t0 = glm::length(cam.target - cam.eye());
+    const double m_px = metres_per_px(cam, r0, t0, h);
+    CHECK(m_px == Approx(2 * 200 * std::tan(glm::radians(22.5)) / h).epsilon(1e-3));
+    const FrustumDrag d = begin_drag(DragMode::Translate, s.sonar.pose, r0, t0, px0, m_px);
+    const glm::dvec2 px1 = px0 + glm::dvec2(0, -5);
+    const Pose p = drag_pose(d, cam.ray_through(px1.x, px1.y, w, h), px1);
+    const double moved = std::hypot(p.position_m[0] - s.sonar.pose.position_m[0],
+                                    p.position_m[1] - s.sonar.pose.position_m[1]);
+    CHECK(moved == Approx(kMaxDragStretch * 5 * m_px).epsilon(1e-6)); // limited: the plane's hit is far
+    CHECK(moved < 10); // where the plane is met: some 300 m from the grabbed point
+    CHECK(p.position_m[2] == s.sonar.pose.position_m[2]);
+    // Above the horizon the ray misses the plane: the sonar still moves away from the camera, as far.
+    const glm::dvec2 px2 = px0 + glm::dvec2(0, -200);
+    const Pose q = drag_pose(d, cam.ray_through(px2.x, px2.y, w, h), px2);
+    const glm::dvec3 away = glm::normalize(glm::dvec3(cam.forward().x, cam.forward().y, 0));
+    const glm::dvec3 dq(q.position_m[0] - s.sonar.pose.position_m[0],
+                        q.position_m[1] - s.sonar.pose.position_m[1], 0);
+    CHECK(glm::length(dq) == Approx(kMaxDragStretch * 200 * m_px).epsilon(1e-6));
+    CHECK(glm::dot(dq, away) > 0.99 * glm::length(dq));
+}

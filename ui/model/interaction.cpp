@@ -27,6 +27,9 @@ std::optional<double> ray_triangle(const Ray& ray, const glm::dvec3& a, const gl
 
 namespace {
 
+/// Farther than any scene: a drag ray that meets its plane beyond this, or not at all, stops here.
+constexpr double kFarM = 1e7;
+
 double wrap180(double deg) {
     deg = std::fmod(deg + 180.0, 360.0);
     if (deg < 0) deg += 360.0;
@@ -46,9 +49,15 @@ std::optional<SurfaceHit> pick_surface(const Ray& ray, const SceneGeometry& geom
     return best;
 }
 
+double metres_per_px(const OrbitCamera& camera, const Ray& ray, double t_m, double view_h_px) {
+    const double depth_m = t_m * std::abs(glm::dot(ray.dir, camera.forward()));
+    return view_h_px > 0 ? 2 * depth_m * std::tan(glm::radians(camera.fov_y_deg) / 2) / view_h_px : 0.0;
+}
+
 FrustumDrag begin_drag(DragMode mode, const Pose& pose, const Ray& ray, double t_grab,
-                       const glm::dvec2& mouse_px) {
+                       const glm::dvec2& mouse_px, double metres_per_px) {
     FrustumDrag d;
+    d.metres_per_px = metres_per_px;
     d.mode = mode;
     d.start_pose = pose;
     d.grab = ray.origin + t_grab * ray.dir;
@@ -69,8 +78,15 @@ Pose drag_pose(const FrustumDrag& d, const Ray& ray, const glm::dvec2& mouse_px)
     case DragMode::Translate:
     case DragMode::Vertical: {
         double t = 0;
-        if (!ray_plane(ray, d.grab, d.plane_n, t) || t > 1e4) return p;
-        const glm::dvec3 move = ray.origin + t * ray.dir - d.grab;
+        // Where the ray meets the drag plane; a ray above the horizon goes as far along it as it can.
+        if (!ray_plane(ray, d.grab, d.plane_n, t) || t > kFarM) {
+            if (!(d.metres_per_px > 0)) return p;
+            t = kFarM;
+        }
+        glm::dvec3 move = ray.origin + t * ray.dir - d.grab;
+        move -= glm::dot(move, d.plane_n) * d.plane_n;
+        const double limit_m = kMaxDragStretch * d.metres_per_px * glm::length(delta);
+        if (d.metres_per_px > 0 && glm::length(move) > limit_m) move *= limit_m / glm::length(move);
         if (d.mode == DragMode::Translate) {
             p.position_m[0] += move.x;
             p.position_m[1] += move.y;

@@ -38,13 +38,24 @@ struct FrustumDrag {
     glm::dvec3 grab{0};     ///< world point grabbed [m]
     glm::dvec3 plane_n{0};  ///< normal of the drag plane (translate / vertical)
     glm::dvec2 start_px{0}; ///< mouse position at the start [px]
+    /// What one pixel of the view covers at the grabbed point's depth [m] (0: no limit). A translation
+    /// moves at most kMaxDragStretch times that per pixel of mouse motion, so a drag across a plane seen at
+    /// a grazing angle moves the sonar by what the cursor covers, not to the horizon.
+    double metres_per_px = 0;
 };
+
+/// A translation keeps the grabbed point under the cursor while the drag plane is seen at 30 deg or more;
+/// flatter, it moves this many times what a pixel covers at the grabbed point's depth, per pixel.
+constexpr double kMaxDragStretch = 2.0;
+
+/// What a pixel of a viewport `view_h_px` tall covers at distance `t_m` along `ray` from the camera [m].
+double metres_per_px(const OrbitCamera& camera, const Ray& ray, double t_m, double view_h_px);
 
 /// Degrees of rotation per pixel of mouse motion.
 constexpr double kDegPerPixel = 0.25;
 
 FrustumDrag begin_drag(DragMode mode, const Pose& pose, const Ray& ray, double t_grab,
-                       const glm::dvec2& mouse_px);
+                       const glm::dvec2& mouse_px, double metres_per_px = 0);
 /// The pose for the mouse now at `mouse_px` with ray `ray`; angles stay within [-180, 180] (pitch [-90, 90]).
 Pose drag_pose(const FrustumDrag& drag, const Ray& ray, const glm::dvec2& mouse_px);
 

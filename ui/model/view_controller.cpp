@@ -79,7 +79,8 @@ void ViewController::press(const InputEvent& e, const ViewContext& ctx, const Ra
     press_hit_ = pick_surface(ray, ctx.geometry, s.seafloor);
     if (sonar_t && (!press_hit_ || *sonar_t <= press_hit_->t)) {
         grab_ = Grab::Frustum;
-        drag_ = begin_drag(drag_mode_for(e.mods, false), s.sonar.pose, ray, *sonar_t, e.pos);
+        drag_ = begin_drag(drag_mode_for(e.mods, false), s.sonar.pose, ray, *sonar_t, e.pos,
+                           metres_per_px(camera, ray, *sonar_t, ctx.view.h));
         press_hit_.reset();
         return;
     }
@@ -91,7 +92,8 @@ void ViewController::press(const InputEvent& e, const ViewContext& ctx, const Ra
         scaling_ = (e.mods & mods::Alt) && !(e.mods & (mods::Control | mods::Shift));
         start_scale_ = o.scale;
         const Pose as_pose{o.position_m, o.orientation_deg};
-        drag_ = begin_drag(drag_mode_for(e.mods, true), as_pose, ray, press_hit_->t, e.pos);
+        drag_ = begin_drag(drag_mode_for(e.mods, true), as_pose, ray, press_hit_->t, e.pos,
+                           metres_per_px(camera, ray, press_hit_->t, ctx.view.h));
         return;
     }
     grab_ = Grab::Orbit;
