@@ -122,6 +122,7 @@ le::Bytes frame_header(const SceneDesc& s, const ArisMode& mode, const ArisTimin
     le::put<std::uint64_t>(h, 4, time_us);
     le::put<std::uint32_t>(h, 12, kArisVersion);
     le::put<std::uint64_t>(h, 20, time_us);
+    le::put<std::uint32_t>(h, 68, tm.receiver_gain_db); // ReceiverGain [dB]
     le::put<float>(h, 52, float(tm.window_start_m));
     le::put<float>(h, 56, float(tm.window_length_m));
     le::put<float>(h, 92, float(mapping.lo_db)); // UserValue1, 2: the image levels of bytes 0 and 255

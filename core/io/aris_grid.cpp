@@ -99,6 +99,16 @@ ArisTiming aris_timing(const SceneDesc& s, const ArisLimits& lim, const std::str
                              us(cycle) + ": range_max_m from about " + num((1802 - 360) / to_us) + " to " +
                              num((cycle_max - 360) / to_us) + " m");
     t.cycle_period_us = std::uint32_t(cycle);
+
+    // ReceiverGain: the sensor's gain, in the whole dB (0-24) a system's receiver takes.
+    const double gain = s.sensor.gain_db;
+    const double legal = std::clamp(std::round(gain), 0.0, double(kArisMaxReceiverGainDb));
+    t.receiver_gain_db = std::uint32_t(legal);
+    if (legal != gain)
+        t.adjusted += std::string(t.adjusted.empty() ? "" : "; ") + "ReceiverGain " + num(legal) +
+                      " dB, the nearest an ARIS receiver takes (whole dB, 0-" +
+                      std::to_string(kArisMaxReceiverGainDb) + ") to sensor.gain_db " + num(gain) +
+                      " dB; the samples keep the image's levels";
     return t;
 }
 

@@ -19,6 +19,8 @@ struct ArisLimits {
     double window_start_max_m, window_end_max_m;
 };
 constexpr std::uint32_t kArisMaxSamples = 4096;
+/// An ARIS receiver's gain in whole dB, 0 to this (ARIS Integration SDK: ReceiverGain 0-24 dB).
+constexpr std::uint32_t kArisMaxReceiverGainDb = 24;
 
 /// Range geometry of an ARIS frame: sample j at range window_start_m + j * sample_m, where
 /// window_start_m = SampleStartDelay c / 2 and sample_m = SamplePeriod c / 2 (c = SoundSpeed, the
@@ -26,6 +28,7 @@ constexpr std::uint32_t kArisMaxSamples = 4096;
 struct ArisTiming {
     std::uint32_t sample_period_us = 0, sample_start_delay_us = 0, samples = 0;
     std::uint32_t pulse_width_us = 0, cycle_period_us = 0;
+    std::uint32_t receiver_gain_db = 0; ///< ReceiverGain: sensor.gain_db, the nearest whole dB in 0-24
     float sound_speed_m_s = 0;
     double window_start_m = 0, sample_m = 0, window_length_m = 0; ///< window_length_m = samples x sample_m
     /// What the grid chose that the scene did not ask for, as the nearest legal setting; empty when nothing.
@@ -37,7 +40,8 @@ struct ArisTiming {
 /// bin's centre, its window start within the system's (sonar.range_min_m); as many samples as cover the
 /// window, one fewer when the last would end past the system's window end (`adjusted` says so), 128-4096
 /// (sonar.range_bins); PulseWidth 2 sensor.range_resolution_m / c, or one sample period when that is 0
-/// (sensor.range_resolution_m); CyclePeriod SSD + SP samples + 360 us (sonar.range_max_m).
+/// (sensor.range_resolution_m); CyclePeriod SSD + SP samples + 360 us (sonar.range_max_m); ReceiverGain
+/// sensor.gain_db, the nearest whole dB in 0-24 (`adjusted` says so when that differs).
 ArisTiming aris_timing(const SceneDesc& scene, const ArisLimits& limits, const std::string& origin);
 
 /// The image on the device's samples: per beam, the intensity 10^(L/10) interpolated linearly between

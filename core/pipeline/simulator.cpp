@@ -141,6 +141,7 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
 json frame_metadata(const SceneDesc& s, const Frame& f) {
     json j = scene_to_json(s);
     j["alpha_db_per_m"] = f.alpha_db_per_m;
+    j["sound_speed_m_s"] = sound_speed_m_s(s.water.temperature_c, s.water.depth_m);
     const auto grid = f.grid_ptr ? f.grid_ptr : sonar_grid(s.sonar);
     j["beam_azimuths_deg"] = grid->beam_azimuths_deg();
     j["range_bin_edges_m"] = grid->bin_edges_m();

@@ -260,6 +260,30 @@ TEST_CASE("every ARIS preset's window ends within its system's, one sample short
     }
 }
 
+TEST_CASE("ARIS ReceiverGain is the sensor's gain, the nearest whole dB in 0-24 and said so", "[aris]") {
+    const struct {
+        const char* gain;
+        std::uint32_t written;
+        bool note;
+    } cases[] = {{"12", 12, false},  {"0", 0, false},  {"24", 24, false},
+                 {"12.4", 12, true}, {"30", 24, true}, {"-6", 0, true}};
+    for (const auto& c : cases) {
+        INFO(c.gain);
+        const SceneDesc s = with(small_scene(), {"sonar.device=aris3000-hf", "sensor.model=device",
+                                                 (std::string("sensor.gain_db=") + c.gain).c_str()});
+        const std::string dir = batch_out("aris_receiver_gain");
+        std::filesystem::create_directories(dir);
+        const std::string path = dir + "/g.aris";
+        const Trajectory t = line_trajectory("0.3,2.4,0.9,0.4,2.3,0.9,1", {-1, 30, -39}, 1, "test");
+        const PolarImage img = profile(s.sonar);
+        const ExportReport r = write_aris(
+            path, s, t, [&](size_t) { return img; }, ByteMapping{0, 80, false}, "--aris");
+        CHECK(read_aris_frame(path, 0).info.receiver_gain_db == c.written);
+        REQUIRE(r.notes.size() == (c.note ? 1u : 0u));
+        if (c.note) CHECK(r.notes[0].find("ReceiverGain") != std::string::npos);
+    }
+}
+
 TEST_CASE("ARIS FrameTime is the dataset's start plus t, the start kept when a run resumes", "[aris]") {
     const std::string dir = batch_out("aris_start_time");
     const SceneDesc s = small_aris_scene();
