@@ -163,11 +163,39 @@ TEST_CASE("the sonar is grabbed by its handle and moves, objects keep still", "[
 }
 
 TEST_CASE("drag modes follow the modifiers", "[ui][controller]") {
-    CHECK(drag_mode_for(0, false) == DragMode::Translate);
-    CHECK(drag_mode_for(mods::Shift, false) == DragMode::Vertical);
-    CHECK(drag_mode_for(mods::Control, false) == DragMode::YawPitch);
-    CHECK(drag_mode_for(mods::Control | mods::Shift, true) == DragMode::Roll);
-    CHECK(drag_mode_for(mods::Alt, false) == DragMode::Roll);
+    CHECK(drag_mode_for(0) == DragMode::Translate);
+    CHECK(drag_mode_for(mods::Shift) == DragMode::Vertical);
+    CHECK(drag_mode_for(mods::Control) == DragMode::YawPitch);
+    CHECK(drag_mode_for(mods::Control | mods::Shift) == DragMode::Roll);
+    CHECK(drag_mode_for(mods::Alt) == DragMode::Translate); // Alt: fine, not another drag
+    CHECK(drag_mode_for(mods::Alt | mods::Control) == DragMode::YawPitch);
+}
+
+TEST_CASE("Alt makes a drag of the sonar fine: a tenth of the move and of the turn", "[ui][controller]") {
+    for (const int m : {0, int(mods::Control)}) {
+        INFO(m);
+        Rig plain, fine;
+        const glm::dvec2 p = plain.pixel_of(frustum_handles(plain.scene)[0]);
+        const glm::dvec2 path[] = {p, p + glm::dvec2(20, 0), p + glm::dvec2(40, -10)};
+        for (Rig* r : {&plain, &fine}) {
+            const int held = r == &plain ? m : m | mods::Alt;
+            r->feed(T::Press, path[0], button::Left, held);
+            r->feed(T::Move, path[1], button::Left, held);
+            r->feed(T::Move, path[2], button::Left, held);
+            r->feed(T::Release, path[2], button::Left, held);
+        }
+        const Pose start = default_scene().sonar.pose;
+        const Pose &a = plain.scene.sonar.pose, &b = fine.scene.sonar.pose;
+        for (size_t i = 0; i < 3; ++i) {
+            CHECK(b.position_m[i] - start.position_m[i] ==
+                  Approx(kFineDrag * (a.position_m[i] - start.position_m[i])).margin(1e-9));
+            CHECK(b.orientation_deg[i] - start.orientation_deg[i] ==
+                  Approx(kFineDrag * (a.orientation_deg[i] - start.orientation_deg[i])).margin(1e-9));
+        }
+        CHECK(std::abs(a.position_m[0] - start.position_m[0]) +
+                  std::abs(a.orientation_deg[2] - start.orientation_deg[2]) >
+              0.01);
+    }
 }
 
 TEST_CASE("the wheel zooms only inside the view", "[ui][controller]") {

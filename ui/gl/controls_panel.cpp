@@ -1,6 +1,7 @@
 #include "ui/gl/controls_panel.hpp"
 
 #include "ui/model/bindings.hpp"
+#include "ui/model/interaction.hpp"
 #include "ui/model/scene_labels.hpp"
 
 #include "core/geometry/mesh_formats.hpp"
@@ -24,7 +25,7 @@ void help_tooltip(const ValueSpec& spec) {
                           spec.key.c_str(), allowed_text(spec).c_str());
 }
 
-/// Shift held while a slider is dragged: the value moves kFineDrag times less per pixel, from where it was
+/// Shift held while a slider is dragged: the value moves kFineDrag as far per pixel, from where it was
 /// when Shift went down.
 struct FineDrag {
     ImGuiID id = 0;
@@ -42,7 +43,7 @@ bool fine_drag(const SliderRange& r, double current, double& value) {
     }
     if (g_fine.id != id) g_fine = {id, current, io.MousePos.x};
     const float width = std::max(1.0f, ImGui::GetItemRectSize().x);
-    const double t = double(io.MousePos.x - g_fine.mouse_x0) / width / kFineDrag;
+    const double t = double(io.MousePos.x - g_fine.mouse_x0) / width * kFineDrag;
     if (r.logarithmic && r.lo > 0)
         value = g_fine.base * std::pow(r.hi / r.lo, t);
     else
@@ -190,7 +191,7 @@ void pose_section(Session& session) {
     }
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
     ImGui::TextWrapped("In 3D, drag the sonar's housing or its yellow handle to move it; Shift: up/down, "
-                       "Ctrl: yaw/pitch, Ctrl+Shift: roll.");
+                       "Ctrl: yaw/pitch, Ctrl+Shift: roll; Alt: fine.");
     ImGui::PopStyleColor();
 }
 

@@ -26,9 +26,6 @@ struct ControlsUi {
     bool annotated_snapshot = true; ///< snapshots also write PREFIX_annotated.png (the panel as on screen)
 };
 
-/// Slider drags move 1/kFineDrag as far per pixel while Shift is held.
-constexpr double kFineDrag = 10.0;
-
 /// Where each parameter's widget was drawn last frame (key -> window px), for `--script move_to`.
 const std::map<std::string, Rect>& controls_item_rects();
 

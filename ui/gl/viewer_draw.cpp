@@ -72,10 +72,11 @@ void Viewer::draw_view_text(const Rect& v) {
                       trajectory_.track.size());
         put(v.y + pad * 0.5f + 2 * line, IM_COL32(255, 90, 90, 255), buf);
     }
-    const char* hints[] = {
-        "drag the sonar (housing or handle): move it", "  Shift: up/down  Ctrl: yaw/pitch  Ctrl+Shift: roll",
-        "click an object to select it, then drag it", "  Shift: up/down  Ctrl: turn  Alt: scale",
-        "left-drag: orbit  right: pan  wheel: zoom  F: frame"};
+    const char* hints[] = {"drag the sonar (housing or handle): move it",
+                           "  Shift: up/down  Ctrl: yaw/pitch  Ctrl+Shift: roll  Alt: fine",
+                           "click an object to select it, then drag it",
+                           "  Shift: up/down  Ctrl: turn  Alt: scale",
+                           "left-drag: orbit  right: pan  wheel: zoom  F: frame"};
     float y = v.y + v.h - pad * 0.5f - 5 * line;
     for (const char* h : hints) put(y, IM_COL32(200, 200, 200, 200), h), y += line;
 }

@@ -73,7 +73,7 @@ FrustumDrag begin_drag(DragMode mode, const Pose& pose, const Ray& ray, double t
 
 Pose drag_pose(const FrustumDrag& d, const Ray& ray, const glm::dvec2& mouse_px) {
     Pose p = d.start_pose;
-    const glm::dvec2 delta = mouse_px - d.start_px;
+    const glm::dvec2 delta = d.fine * (mouse_px - d.start_px);
     switch (d.mode) {
     case DragMode::Translate:
     case DragMode::Vertical: {
@@ -86,6 +86,7 @@ Pose drag_pose(const FrustumDrag& d, const Ray& ray, const glm::dvec2& mouse_px)
         glm::dvec3 move = ray.origin + t * ray.dir - d.grab;
         move -= glm::dot(move, d.plane_n) * d.plane_n;
         const double limit_m = kMaxDragStretch * d.metres_per_px * glm::length(delta);
+        move *= d.fine;
         if (d.metres_per_px > 0 && glm::length(move) > limit_m) move *= limit_m / glm::length(move);
         if (d.mode == DragMode::Translate) {
             p.position_m[0] += move.x;

@@ -42,7 +42,12 @@ struct FrustumDrag {
     /// moves at most kMaxDragStretch times that per pixel of mouse motion, so a drag across a plane seen at
     /// a grazing angle moves the sonar by what the cursor covers, not to the horizon.
     double metres_per_px = 0;
+    /// What the mouse's motion is multiplied by: 1, or kFineDrag while a fine modifier was held at the start.
+    double fine = 1;
 };
+
+/// A fine drag (Alt on the sonar in 3D, Shift on a slider) moves and turns a tenth as much per pixel.
+constexpr double kFineDrag = 0.1;
 
 /// A translation keeps the grabbed point under the cursor while the drag plane is seen at 30 deg or more;
 /// flatter, it moves this many times what a pixel covers at the grabbed point's depth, per pixel.

@@ -12,9 +12,9 @@ std::vector<glm::dvec3> frustum_handles(const SceneDesc& scene) {
     return {sonar_point(scene.sonar, scene.sonar.range_min_m, 0, 0)};
 }
 
-DragMode drag_mode_for(int m, bool object) {
-    const bool ctrl = m & mods::Control, shift = m & mods::Shift, alt = m & mods::Alt;
-    if ((ctrl && shift) || (alt && !object)) return DragMode::Roll;
+DragMode drag_mode_for(int m) {
+    const bool ctrl = m & mods::Control, shift = m & mods::Shift;
+    if (ctrl && shift) return DragMode::Roll;
     if (ctrl) return DragMode::YawPitch;
     if (shift) return DragMode::Vertical;
     return DragMode::Translate;
@@ -79,8 +79,9 @@ void ViewController::press(const InputEvent& e, const ViewContext& ctx, const Ra
     press_hit_ = pick_surface(ray, ctx.geometry, s.seafloor);
     if (sonar_t && (!press_hit_ || *sonar_t <= press_hit_->t)) {
         grab_ = Grab::Frustum;
-        drag_ = begin_drag(drag_mode_for(e.mods, false), s.sonar.pose, ray, *sonar_t, e.pos,
+        drag_ = begin_drag(drag_mode_for(e.mods), s.sonar.pose, ray, *sonar_t, e.pos,
                            metres_per_px(camera, ray, *sonar_t, ctx.view.h));
+        if (e.mods & mods::Alt) drag_.fine = kFineDrag;
         press_hit_.reset();
         return;
     }
@@ -92,8 +93,9 @@ void ViewController::press(const InputEvent& e, const ViewContext& ctx, const Ra
         scaling_ = (e.mods & mods::Alt) && !(e.mods & (mods::Control | mods::Shift));
         start_scale_ = o.scale;
         const Pose as_pose{o.position_m, o.orientation_deg};
-        drag_ = begin_drag(drag_mode_for(e.mods, true), as_pose, ray, press_hit_->t, e.pos,
+        drag_ = begin_drag(drag_mode_for(e.mods), as_pose, ray, press_hit_->t, e.pos,
                            metres_per_px(camera, ray, press_hit_->t, ctx.view.h));
+        if ((e.mods & mods::Alt) && !scaling_) drag_.fine = kFineDrag; // Alt with Shift or Ctrl
         return;
     }
     grab_ = Grab::Orbit;

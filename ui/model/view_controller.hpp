@@ -37,8 +37,9 @@ constexpr double kScalePerPixel = 0.01;
 /// field of view (the blind zone in front of the sonar, where objects seldom are).
 std::vector<glm::dvec3> frustum_handles(const SceneDesc& scene);
 
-/// Which drag a press with these modifiers starts on the frustum (and, Alt aside, on an object).
-DragMode drag_mode_for(int mods, bool object);
+/// Which drag a press with these modifiers starts on the sonar or an object (Alt does not choose one: it
+/// makes a sonar's drag fine, and scales an object when held alone).
+DragMode drag_mode_for(int mods);
 
 /// ViewController::selected before anything is clicked: a drag anywhere but on the sonar orbits.
 constexpr int kNothingSelected = -3;
