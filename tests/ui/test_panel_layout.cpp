@@ -72,6 +72,15 @@ TEST_CASE("the fan fills its panel: as wide as the labels allow, or as tall as t
     for (double a : {-60.0, -40.0, -20.0, 0.0, 20.0, 40.0, 60.0})
         CHECK(std::count(L130.bearing_deg.begin(), L130.bearing_deg.end(), a) == 1);
 
+    // At 1280 x 800 too: the side bearings sit above the arc's ends, so the fan takes the panel's width
+    // (it was 68 % of it with the +-60 deg labels beside the fan), and the 10 m ring keeps its label.
+    const ViewerLayout small = viewer_layout(1280, 800, 1.0f, fan_aspect(s.sonar));
+    const SonarPanelLayout S130 = layout_at(130, small.sonar);
+    CHECK(S130.image.w >= 0.8f * small.sonar.w);
+    for (double a : {-60.0, 0.0, 60.0})
+        CHECK(std::count(S130.bearing_deg.begin(), S130.bearing_deg.end(), a) == 1);
+    CHECK(std::count(S130.range_m.begin(), S130.range_m.end(), 10.0) == 1);
+
     s.sonar.azimuth_fov_deg = 30;
     const ViewerLayout narrow = viewer_layout(1600, 1000, 1.0f, fan_aspect(s.sonar));
     const SonarPanelLayout L30 = layout_at(30, narrow.sonar);

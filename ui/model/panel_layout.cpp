@@ -111,11 +111,26 @@ Labels place_labels(const PanelContent& c, const SectorLayout& sector, float x, 
         fan.apex = {x + px0 * k, y + py0 * k};
         fan.px_per_m = (py0 - py1) * k;
         auto inside = [&](float px, float py) { return fan.contains(px, py); };
+        // Bearings: beyond the arc, along the bearing; where that would widen the image (45 deg and more off
+        // the boresight, the sides of a wide fan), above the arc within the image's width instead, so that
+        // the fan, not its labels, takes the panel's width.
+        const double R = fan.px_per_m * s.range_max_m;
         for (double a : angles) {
             const double ar = deg2rad(a);
             const std::string txt = deg_text(a);
-            const Rect box =
-                box_beyond(fan.at(s.range_max_m, a), {-std::sin(ar), -std::cos(ar)}, t.width(txt), th, gap);
+            const float tw = t.width(txt);
+            const glm::dvec2 p = fan.at(s.range_max_m, a);
+            Rect box = box_beyond(p, {-std::sin(ar), -std::cos(ar)}, tw, th, gap);
+            if (std::abs(a) >= 45 && (box.x < x || box.x + box.w > x + w)) {
+                const float bx = std::clamp(float(p.x) - tw / 2, x, x + w - tw);
+                // Its lower edge above the arc over the box's whole width (highest at its inner end).
+                const double inner =
+                    std::clamp(std::min(std::abs(bx - fan.apex.x), std::abs(bx + tw - fan.apex.x)) *
+                                   (bx <= fan.apex.x && bx + tw >= fan.apex.x ? 0.0 : 1.0),
+                               0.0, R);
+                const double arc_y = fan.apex.y - std::sqrt(R * R - inner * inner);
+                box = {bx, float(arc_y) - gap - th, tw, th};
+            }
             keep_if_free(L.bearings, L.bearing_deg, {}, {txt, box}, a, gap, inside);
         }
         // Ranges: beside the port edge, outside the fan; the ones that would collide are left out.
