@@ -11,6 +11,7 @@
 #include "core/scene/scene_io.hpp"
 
 #include <catch2/catch.hpp>
+#include <filesystem>
 #include <chrono>
 #include <fstream>
 
@@ -237,6 +238,14 @@ TEST_CASE("a drag renders previews, then the full image once the input rests", "
     CHECK_FALSE(session.shown()->frame->preview());
     Simulator fresh(session.scene());
     CHECK(test::read_bytes(prefix + ".npy") == encode_npy(fresh.render()->polar()));
+    // The status says where the files went and names each one.
+    const std::string folder = std::filesystem::absolute(prefix).lexically_normal().parent_path().string();
+    CHECK(session.status().rfind("snapshot in " + folder + ":", 0) == 0);
+    for (const char* suffix : {".png", "_polar.png", ".npy", ".json", "_scene.json"}) {
+        const std::string name = std::filesystem::path(prefix + suffix).filename().string();
+        CHECK(session.status().find(" " + name) != std::string::npos);
+        CHECK(std::filesystem::is_regular_file(prefix + suffix));
+    }
 }
 
 TEST_CASE("a preview request of a scheme without previews needs no second render", "[ui][session]") {

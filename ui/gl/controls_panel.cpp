@@ -13,6 +13,7 @@
 #include <imgui_stdlib.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <cmath>
 #include <cstdio>
 
@@ -416,7 +417,11 @@ void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, Tra
         same_line_if_fits("Add mesh...");
         if (ImGui::Button("Add mesh...")) ui.want_add_mesh = true;
         if (ImGui::Button("Save scene...")) ui.want_save = true;
-        ImGui::InputText(field_label("snapshots in", "snapdir").c_str(), &ui.snapshot_dir);
+        const std::string where =
+            (std::filesystem::absolute(ui.snapshot_dir) / "").lexically_normal().parent_path().string();
+        ImGui::TextWrapped("Snapshots (%s) go to %s", shortcut_text(KeyAction::Snapshot).c_str(),
+                           where.c_str());
+        if (ImGui::Button("Snapshot folder...")) ui.want_snapshot_dir = true;
         ImGui::Checkbox("annotated PNG too", &ui.annotated_snapshot);
         ImGui::TextWrapped("Drop a scene (.json) or mesh (%s) on the window",
                            mesh_extensions_text(" ").c_str());

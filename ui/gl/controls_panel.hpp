@@ -21,6 +21,7 @@ struct ControlsUi {
     double frame_ms = 0; ///< shown on screen
     // Requests raised by the panel, handled by the viewer.
     bool want_snapshot = false, want_open = false, want_add_mesh = false, want_save = false;
+    bool want_snapshot_dir = false; ///< the folder dialog for snapshot_dir
     bool want_reset_camera = false;
     float ui_scale = 1.0f;          ///< the user's UI scale, times the monitor's content scale
     bool annotated_snapshot = true; ///< snapshots also write PREFIX_annotated.png (the panel as on screen)

@@ -9,9 +9,14 @@ namespace sonarsim::ui {
 void FileDialog::open(const std::string& title, bool save, std::vector<std::string> extensions,
                       const std::string& start_dir, std::function<bool(const std::string&)> accept) {
     title_ = title, save_ = save, open_ = true;
-    close_ = false;
+    folder_ = false, focus_name_ = save, close_ = false;
     browser_.open(start_dir, std::move(extensions), std::move(accept));
     dir_field_ = browser_.dir();
+}
+
+void FileDialog::open_folder(const std::string& title, const std::string& start_dir) {
+    open(title, false, {}, start_dir, [](const std::string&) { return false; }); // lists folders only
+    folder_ = true;
 }
 
 bool FileDialog::draw(std::string& path, const DialogInput& in) {
@@ -45,7 +50,9 @@ bool FileDialog::draw(std::string& path, const DialogInput& in) {
         ImGui::EndChild();
         // Keys: Enter opens the selection (or the typed name or folder, in its field), arrows move it.
         if (in.enter && !chosen) {
-            if (name_active_)
+            if (folder_ && !dir_active && browser_.selected() < 0)
+                chosen = browser_.dir();
+            else if (name_active_)
                 chosen = browser_.typed();
             else if (dir_active)
                 browser_.set_dir(dir_field_);
@@ -55,11 +62,18 @@ bool FileDialog::draw(std::string& path, const DialogInput& in) {
             browser_.move_selection(in.down ? 1 : -1), scroll_to_selected_ = true;
         }
         if (!dir_active) dir_field_ = browser_.dir();
-        ImGui::SetNextItemWidth(-1);
-        if (ImGui::InputText("##name", &browser_.name, ImGuiInputTextFlags_EnterReturnsTrue) && !chosen)
-            chosen = browser_.typed();
-        name_active_ = ImGui::IsItemActive();
-        if (ImGui::Button(save_ ? "Save" : "Open")) chosen = browser_.confirm();
+        if (folder_) {
+            ImGui::TextDisabled("double click or Enter: into a folder; Enter with none selected: this one");
+            name_active_ = false;
+        } else {
+            ImGui::SetNextItemWidth(-1);
+            if (focus_name_) ImGui::SetKeyboardFocusHere(), focus_name_ = false; // type a name at once
+            if (ImGui::InputText("##name", &browser_.name, ImGuiInputTextFlags_EnterReturnsTrue) && !chosen)
+                chosen = browser_.typed();
+            name_active_ = ImGui::IsItemActive();
+        }
+        if (ImGui::Button(folder_ ? "Use this folder" : save_ ? "Save" : "Open"))
+            chosen = folder_ ? std::optional(browser_.dir()) : browser_.confirm();
         ImGui::SameLine();
         if (ImGui::Button("Cancel") || close_) {
             visible_ = close_ = false;

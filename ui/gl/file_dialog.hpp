@@ -22,6 +22,9 @@ class FileDialog {
     /// `accept` (optional) further filters files by path (e.g. scene files, not render metadata).
     void open(const std::string& title, bool save, std::vector<std::string> extensions,
               const std::string& start_dir, std::function<bool(const std::string&)> accept = {});
+    /// Opens it on the next draw() to choose a folder: folders only, no name field; the path returned is the
+    /// folder shown when the user confirms.
+    void open_folder(const std::string& title, const std::string& start_dir);
     /// Closes it without a choice (Escape).
     void close() { close_ = open_ || visible_; }
     /// Draws it while open; returns true once, when the user confirms, with the chosen path in `path`.
@@ -32,7 +35,8 @@ class FileDialog {
     std::string title_, dir_field_;
     FileBrowser browser_;
     bool close_ = false;
-    bool save_ = false, open_ = false, visible_ = false;
+    bool save_ = false, folder_ = false, open_ = false, visible_ = false;
+    bool focus_name_ = false; ///< a Save dialog's name field takes the keyboard when it appears
     bool scroll_to_selected_ = false;
     bool name_active_ = false; ///< the name field had the keyboard last frame
 };

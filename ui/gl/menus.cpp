@@ -111,6 +111,7 @@ void Viewer::close_menus() {
     open_dialog_.close();
     mesh_dialog_.close();
     save_dialog_.close();
+    snapshot_dir_dialog_.close();
 }
 
 void Viewer::dialogs() {
@@ -120,8 +121,9 @@ void Viewer::dialogs() {
     if (ui_.want_open) open_dialog_.open("Open scene", false, {".json"}, dir, looks_like_scene_file);
     if (ui_.want_add_mesh) mesh_dialog_.open("Add mesh", false, mesh_extensions(), dir);
     if (ui_.want_save) save_dialog_.open("Save scene", true, {".json"}, dir);
+    if (ui_.want_snapshot_dir) snapshot_dir_dialog_.open_folder("Snapshots go to", ui_.snapshot_dir);
     if (ui_.want_reset_camera) reset_camera();
-    ui_.want_open = ui_.want_add_mesh = ui_.want_save = ui_.want_reset_camera = false;
+    ui_.want_open = ui_.want_add_mesh = ui_.want_save = ui_.want_snapshot_dir = ui_.want_reset_camera = false;
     std::string path;
     DialogInput dialog_input;
     dialog_input.double_clicked = input_->double_clicked();
@@ -130,6 +132,7 @@ void Viewer::dialogs() {
     if (open_dialog_.draw(path, dialog_input)) open_files({path});
     if (mesh_dialog_.draw(path, dialog_input)) session_.add_mesh(path);
     if (save_dialog_.draw(path, dialog_input)) session_.save_scene(path);
+    if (snapshot_dir_dialog_.draw(path, dialog_input)) ui_.snapshot_dir = path;
 }
 
 } // namespace sonarsim::ui

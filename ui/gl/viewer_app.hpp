@@ -85,7 +85,7 @@ class Viewer {
     ViewController controller_;
     UndoStack undo_;
     TrajectoryUi trajectory_;
-    FileDialog open_dialog_, mesh_dialog_, save_dialog_;
+    FileDialog open_dialog_, mesh_dialog_, save_dialog_, snapshot_dir_dialog_;
     std::uint64_t meshes_uploaded_ = 0;
     std::string title_file_ = "?";
 

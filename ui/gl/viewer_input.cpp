@@ -48,7 +48,7 @@ void Viewer::handle_key(const InputEvent& e) {
     if (!b) return;
     // A text field takes the keys; a dialog too. A slider or a 3D drag held does not.
     const bool typing = ImGui::GetIO().WantTextInput || open_dialog_.is_open() || mesh_dialog_.is_open() ||
-                        save_dialog_.is_open();
+                        save_dialog_.is_open() || snapshot_dir_dialog_.is_open();
     if (typing && !b->while_typing) return;
     run_key_action(b->key_action);
 }

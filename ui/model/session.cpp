@@ -217,7 +217,9 @@ bool Session::snapshot(const std::string& prefix, const Bytes& view3d_png, const
         const auto paths =
             write_snapshot(prefix, shown_->scene, frame, view3d_png,
                            ground_truth_ ? shown_->ground_truth.get() : nullptr, annotated_png);
-        status_ = "snapshot:";
+        const std::filesystem::path folder =
+            std::filesystem::absolute(prefix).lexically_normal().parent_path();
+        status_ = "snapshot in " + folder.string() + ":";
         for (auto& p : paths) status_ += " " + std::filesystem::path(p).filename().string();
         error_.clear();
         return true;
