@@ -81,8 +81,8 @@ const char* const kHeader[] = {"name",         "title",           "frequency",
                                "beams",        "HFOV × VFOV",     "azimuth beamwidth",
                                "range window", "range resolution"};
 constexpr char kUnsureNote[] =
-    "? = unsure: a value SENSORS.md marks U, or a plausible default. Every value's source is in "
-    "assets/devices/NAME.json (sonarsim devices NAME).";
+    "? = unsure: a value the device survey grades U (docs/devices.md), or a plausible default. Every "
+    "value's source is in assets/devices/NAME.json (sonarsim devices NAME).";
 
 void print_markdown(const std::vector<Row>& rows) {
     std::ostringstream out;

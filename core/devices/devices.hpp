@@ -12,8 +12,8 @@ namespace sonarsim {
 struct DeviceValue {
     std::string key; ///< a key of the parameter table, e.g. "sonar.beams" or "sensor.azimuth_window"
     nlohmann::json value;
-    bool sure = false;  ///< stated or derived in a cited source (SENSORS.md "S"/"D"), not a plausible default
-    std::string source; ///< e.g. "SENSORS.md 1.1 [ARIS-CORE]"
+    bool sure = false;  ///< stated or derived in a cited source (graded S or D), not a plausible default
+    std::string source; ///< e.g. "device survey [ARIS-CORE] ..." (docs/devices.md explains the keys)
 };
 
 struct DevicePreset {
