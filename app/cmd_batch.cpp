@@ -70,9 +70,21 @@ int run_batch_command(const BatchCliOptions& o) {
     options.ground_truth = o.ground_truth;
     StatusLine status;
     options.progress = [&](const BatchProgress& p) { status.show(progress_text(p)); };
-    if (!o.aris.empty()) // before rendering: the scene as an ARIS mode, and its frames no faster than it
-        check_aris_frame_times(scene, trajectory, o.scene.scene_file.empty() ? "--aris" : o.scene.scene_file,
-                               o.trajectory.empty() ? "--rate" : o.trajectory);
+    if (!o.aris.empty()) { // before rendering: the scene as an ARIS mode, on its samples, no faster than it
+        const std::string origin = o.scene.scene_file.empty() ? "--aris" : o.scene.scene_file;
+        std::string note;
+        const SceneDesc on_samples = on_aris_samples(scene, origin, note);
+        // A dataset begun without --aris keeps its grid (resumed, its frames must agree): the file resamples.
+        if (!note.empty() && dataset_holds_other_scene(o.out, on_samples) &&
+            !dataset_holds_other_scene(o.out, scene))
+            note = "the dataset in " + o.out +
+                   " was begun on its own range grid, which it keeps: its frames are resampled onto the "
+                   "ARIS samples (a new dataset with --aris renders on them)";
+        else
+            scene = on_samples;
+        if (!note.empty()) std::cout << o.aris << ": " << note << "\n";
+        check_aris_frame_times(scene, trajectory, origin, o.trajectory.empty() ? "--rate" : o.trajectory);
+    }
     prepare_dataset(o.out, scene, trajectory);
     options.stop = &g_stop;
     std::signal(SIGINT, on_stop_signal);

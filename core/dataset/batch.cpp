@@ -134,27 +134,44 @@ bool frame_complete(const std::string& dir, size_t k) {
     return true;
 }
 
-void prepare_dataset(const std::string& dir, const SceneDesc& base, const Trajectory& trajectory) {
-    std::error_code ec;
-    fs::create_directories(fs::path(dir) / "frames", ec);
-    if (ec) throw InputError(dir, "", "cannot create the dataset directory: " + ec.message());
+namespace {
+
+/// The scene file text a dataset stores: mesh paths absolute.
+std::string stored_scene_text(const SceneDesc& base) {
     SceneDesc stored = base;
     for (auto& o : stored.objects)
         if (!o.mesh_resolved.empty())
             o.mesh_resolved = fs::absolute(o.mesh_resolved).lexically_normal().string();
-    const std::string scene_text = scene_to_json(stored).dump(2) + "\n";
+    return scene_to_json(stored).dump(2) + "\n";
+}
+
+/// Whether two of a dataset's files say the same: the export keys choose how a dataset is packed, not what
+/// it holds, so they may differ between runs.
+bool same_content(const std::string& path, const std::string& a, const std::string& b) {
+    if (path.size() < 5 || path.compare(path.size() - 5, 5, ".json") != 0) return a == b;
+    json x = json::parse(a, nullptr, false), y = json::parse(b, nullptr, false);
+    if (x.is_object()) x.erase("export");
+    if (y.is_object()) y.erase("export");
+    return x == y;
+}
+
+} // namespace
+
+bool dataset_holds_other_scene(const std::string& dir, const SceneDesc& base) {
+    const std::string path = dir + "/scene.json";
+    std::error_code ec;
+    return fs::exists(path, ec) && !same_content(path, read_text(path), stored_scene_text(base));
+}
+
+void prepare_dataset(const std::string& dir, const SceneDesc& base, const Trajectory& trajectory) {
+    std::error_code ec;
+    fs::create_directories(fs::path(dir) / "frames", ec);
+    if (ec) throw InputError(dir, "", "cannot create the dataset directory: " + ec.message());
+    const std::string scene_text = stored_scene_text(base);
     const std::string traj_text = trajectory_to_csv(trajectory);
     const std::string scene_path = dir + "/scene.json", traj_path = dir + "/trajectory.csv";
-    // The export keys choose how a dataset is packed, not what it holds: they may differ between runs.
-    auto same = [](const std::string& path, const std::string& a, const std::string& b) {
-        if (path.size() < 5 || path.compare(path.size() - 5, 5, ".json") != 0) return a == b;
-        json x = json::parse(a, nullptr, false), y = json::parse(b, nullptr, false);
-        if (x.is_object()) x.erase("export");
-        if (y.is_object()) y.erase("export");
-        return x == y;
-    };
     for (auto [path, text] : {std::pair{scene_path, scene_text}, std::pair{traj_path, traj_text}})
-        if (fs::exists(path, ec) && !same(path, read_text(path), text))
+        if (fs::exists(path, ec) && !same_content(path, read_text(path), text))
             throw InputError(dir, "",
                              "holds a dataset of another scene or trajectory (" + path +
                                  " differs); choose another directory");

@@ -43,6 +43,10 @@ constexpr double kDefaultStartTimeS = 1767225600;
 /// processes (the Dask example) render exactly the same scene.
 void prepare_dataset(const std::string& dir, const SceneDesc& base, const Trajectory& trajectory);
 
+/// True when DIR holds a dataset (its scene.json) of another scene than `base` (export keys aside): the one
+/// prepare_dataset would refuse.
+bool dataset_holds_other_scene(const std::string& dir, const SceneDesc& base);
+
 /// The dataset's start, UNIX seconds of t = 0: DIR/dataset.json, which prepare_dataset writes once (from
 /// base.exports.start_time_s, or kDefaultStartTimeS when that is 0); for a dataset without it, the time its
 /// trajectory.csv was written. Throws InputError naming the file for a malformed one.

@@ -159,6 +159,26 @@ le::Bytes frame_header(const SceneDesc& s, const ArisMode& mode, const ArisTimin
 
 } // namespace
 
+SceneDesc on_aris_samples(const SceneDesc& s, const std::string& origin, std::string& note) {
+    const ArisTiming tm = aris_timing(s, limits_of(aris_mode(s.sonar, origin)), origin);
+    note.clear();
+    if (bins_are_samples(s.sonar, tm)) return s;
+    SceneDesc out = s;
+    out.sonar = on_samples(s.sonar, tm);
+    auto num = [](double v, int digits) {
+        std::ostringstream o;
+        o.precision(digits);
+        o << v;
+        return o.str();
+    };
+    note = "the range grid is the ARIS samples': " + std::to_string(tm.samples) + " bins of " +
+           num(tm.sample_m * 1e3, 4) + " mm from " + num(out.sonar.range_min_m, 6) + " to " +
+           num(out.sonar.range_max_m, 6) + " m (asked: " + std::to_string(s.sonar.range_bins) + " from " +
+           num(s.sonar.range_min_m, 6) + " to " + num(s.sonar.range_max_m, 6) +
+           " m), so the file holds the rendered samples";
+    return out;
+}
+
 void check_aris(const SceneDesc& s, const std::string& origin) {
     aris_timing(s, limits_of(aris_mode(s.sonar, origin)), origin);
 }
@@ -204,6 +224,12 @@ ExportReport write_aris(const std::string& path, const SceneDesc& s, const Traje
     ExportReport report;
     report.mapping = mapping;
     if (!tm.adjusted.empty()) report.notes.push_back(tm.adjusted);
+    if (!bins_are_samples(s.sonar, tm))
+        report.notes.push_back(
+            "resampled: the frames' " + std::to_string(s.sonar.range_bins) +
+            " range bins are not the device's " + std::to_string(tm.samples) +
+            " samples, so each sample interpolates the intensity of the two bins beside it "
+            "(batch --aris renders on the samples)");
     for (size_t k = 0; k < trajectory.size(); ++k) {
         const PolarImage frame = image(k);
         if (frame.beams != beams || frame.bins != s.sonar.range_bins)

@@ -26,8 +26,14 @@ void check_aris(const SceneDesc& scene, const std::string& origin);
 void check_aris_frame_times(const SceneDesc& scene, const Trajectory& frames, const std::string& origin,
                             const std::string& times_origin);
 
+/// The scene with its range window and bins on the samples its ARIS file would hold (on_samples of
+/// aris_timing), so that the file holds the rendered samples rather than a resampling; `note` says what moved
+/// (empty when the bins are the samples already). Throws what check_aris throws.
+SceneDesc on_aris_samples(const SceneDesc& scene, const std::string& origin, std::string& note);
+
 /// Writes every frame of `trajectory` as one .aris file (atomically: a temporary, then a rename) on the
-/// device's grid (aris_timing; the image resampled onto it by aris_resample), each sample the byte of its
+/// device's grid (aris_timing; the image itself when its bins are the samples, else resampled onto them by
+/// aris_resample, which `notes` then says), each sample the byte of its
 /// image level (the frame's .npy: the sensor's output, TVG and gain included; with
 /// the ideal sensor, L_EN) under `mapping`, whose levels of bytes 0 and 255 go into every frame header's
 /// UserValue1 and UserValue2 [dB]. Pose and time go into the frame headers (SonarX/Y/Z,

@@ -112,7 +112,21 @@ ArisTiming aris_timing(const SceneDesc& s, const ArisLimits& lim, const std::str
     return t;
 }
 
+bool bins_are_samples(const SonarParams& sonar, const ArisTiming& t) {
+    const double bin = (sonar.range_max_m - sonar.range_min_m) / sonar.range_bins, tol = 1e-6 * t.sample_m;
+    return sonar.range_bins == int(t.samples) && std::abs(bin - t.sample_m) * t.samples <= tol &&
+           std::abs(sonar.range_min_m + bin / 2 - t.window_start_m) <= tol;
+}
+
+SonarParams on_samples(SonarParams sonar, const ArisTiming& t) {
+    sonar.range_min_m = t.window_start_m - t.sample_m / 2;
+    sonar.range_max_m = sonar.range_min_m + t.samples * t.sample_m;
+    sonar.range_bins = int(t.samples);
+    return sonar;
+}
+
 PolarImage aris_resample(const PolarImage& img, const SonarParams& sonar, const ArisTiming& t) {
+    if (img.bins == sonar.range_bins && bins_are_samples(sonar, t)) return img;
     PolarImage out;
     out.beams = img.beams;
     out.bins = int(t.samples);

@@ -44,7 +44,17 @@ struct ArisTiming {
 /// sensor.gain_db, the nearest whole dB in 0-24 (`adjusted` says so when that differs).
 ArisTiming aris_timing(const SceneDesc& scene, const ArisLimits& limits, const std::string& origin);
 
-/// The image on the device's samples: per beam, the intensity 10^(L/10) interpolated linearly between
+/// True when the sonar's range bins are the device's samples of `timing`: one bin per sample, each centred
+/// on its sample's range (to 1e-6 of a sample).
+bool bins_are_samples(const SonarParams& sonar, const ArisTiming& timing);
+
+/// The sonar with its range window and bins on the samples of `timing`: range_bins = SamplesPerBeam, bin j
+/// centred on sample j's range (range_min_m half a sample before the first, range_max_m half a sample past
+/// the last). aris_timing of the result gives `timing` again.
+SonarParams on_samples(SonarParams sonar, const ArisTiming& timing);
+
+/// The image on the device's samples: the image itself when its bins are the samples (bins_are_samples);
+/// otherwise per beam, the intensity 10^(L/10) interpolated linearly between
 /// the centres of the bins either side of each sample's range (the nearest bin's level beyond the first
 /// and last centre); -inf where neither echoes.
 PolarImage aris_resample(const PolarImage& image, const SonarParams& sonar, const ArisTiming& timing);

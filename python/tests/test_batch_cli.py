@@ -85,7 +85,10 @@ def test_resume_after_a_kill_completes_the_set(sonarsim_exe, scratch):
     r = subprocess.run(args + ["--resume", "--aris", str(scratch / "o.aris"), "--mcap", str(scratch / "o.mcap")],
                        capture_output=True, text=True, check=True)
     assert "index.csv lists 40 of 40 frames" in r.stdout
-    rendered = int(r.stdout.split()[1])
+    rendered_line = next(line for line in r.stdout.splitlines() if line.startswith("rendered "))
+    rendered = int(rendered_line.split()[1])
+    # Begun without --aris, the dataset keeps its grid and the file resamples it, saying so.
+    assert "was begun on its own range grid" in r.stdout
     assert 40 - done_before <= rendered <= 40 - done_before + 1  # at most the frame in flight again
     rows = (out / "index.csv").read_text().splitlines()
     assert len(rows) == 41
