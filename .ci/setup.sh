@@ -10,7 +10,7 @@ packages=(build-essential cmake ninja-build pkg-config libglfw3-dev libimgui-dev
           libglm-dev libtbb-dev catch2 libepoxy-dev libegl-dev libgl1-mesa-dev libosmesa6-dev libstb-dev
           zlib1g-dev nlohmann-json3-dev libcli11-dev xvfb xauth mesa-utils libegl-mesa0 clang libclang-rt-14-dev
           pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed python3-venv python3-setuptools
-          python3-wheel)
+          python3-wheel ccache)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
