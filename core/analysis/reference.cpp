@@ -4,7 +4,7 @@
 #include "core/sensor/sensor_patterns.hpp"
 
 #include "core/shading/physics.hpp"
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 #include "core/analysis/study.hpp"
 
 #include "core/base/errors.hpp"
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 #include "core/devices/beam_tables.hpp"
 #include "core/shading/accumulate.hpp"
 #include "core/base/timing.hpp"

@@ -1,6 +1,6 @@
 #include "core/display/sector.hpp"
 
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 #include "core/base/scratch_pool.hpp"
 
 #include <algorithm>

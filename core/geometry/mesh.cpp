@@ -4,9 +4,9 @@
 
 #include "core/base/errors.hpp"
 #include "core/base/file_io.hpp"
-#include "core/base/pose.hpp"
-#include "core/geometry/mesh_formats.hpp"
-#include "core/geometry/mesh_tokens.hpp"
+#include "core/scene/pose.hpp"
+#include "core/meshfile/mesh_formats.hpp"
+#include "core/meshfile/mesh_tokens.hpp"
 
 #include <cmath>
 #include <filesystem>

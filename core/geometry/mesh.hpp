@@ -1,6 +1,7 @@
 // Triangle meshes: loading (the formats of mesh_formats.hpp), boxes, and placement in the world.
 // Shared, cached meshes: mesh_cache.hpp.
 #pragma once
+#include "core/meshfile/trimesh.hpp"
 #include "core/scene/scene.hpp"
 
 #include <glm/glm.hpp>
@@ -9,10 +10,7 @@
 
 namespace sonarsim {
 
-struct TriMesh {
-    std::vector<glm::vec3> vertices;
-    std::vector<glm::uvec3> triangles;
-};
+
 
 /// Loads a mesh file by its format (mesh_formats.hpp). Throws InputError(file, key, ...) if it is missing,
 /// unreadable, empty or malformed.

@@ -4,7 +4,7 @@
 
 #include "core/base/le_bytes.hpp"
 #include "core/io/mcap.hpp"
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 #include "core/scene/sonar_grid.hpp"
 
 #include <cmath>

@@ -1,6 +1,6 @@
 #include "core/sampling/acquisition.hpp"
 
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 #include "core/scene/sonar_grid.hpp"
 
 #include <algorithm>

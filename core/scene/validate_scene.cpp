@@ -4,7 +4,7 @@
 #include "core/scene/params.hpp"
 
 #include "core/base/errors.hpp"
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 #include "core/devices/beam_tables.hpp"
 #include "core/scene/sonar_grid.hpp"
 #include "core/sensor/sensor_patterns.hpp"

@@ -1,7 +1,7 @@
 #include "core/sensor/sensor.hpp"
 
 #include "core/base/fast_math.hpp"
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 #include "core/base/scratch_pool.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/sonar_grid.hpp"

@@ -1,6 +1,6 @@
 #include "core/sensor/sensor_patterns.hpp"
 
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 #include "core/base/recent_shared.hpp"
 #include "core/scene/sonar_grid.hpp"
 

@@ -1,6 +1,6 @@
 #include "core/shading/accumulate.hpp"
 
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 #include "core/scene/sonar_grid.hpp"
 #include "core/sensor/sensor_patterns.hpp"
 #include "core/shading/footprint.hpp"

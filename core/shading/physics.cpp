@@ -1,6 +1,6 @@
 #include "core/shading/physics.hpp"
 
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 
 #include <algorithm>
 #include <cmath>

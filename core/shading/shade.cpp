@@ -3,7 +3,7 @@
 #include "core/shading/footprint.hpp"
 #include "core/shading/log_sum.hpp"
 #include "core/geometry/geometry.hpp"
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 #include "core/sensor/sensor_patterns.hpp"
 
 #include <algorithm>

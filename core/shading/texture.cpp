@@ -1,6 +1,6 @@
 #include "core/shading/texture.hpp"
 
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 #include "core/base/units.hpp"
 #include "core/geometry/geometry.hpp"
 

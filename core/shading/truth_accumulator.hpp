@@ -1,6 +1,6 @@
 // One (range bin, beam) cell's ground-truth sums over the contributions echoing into it (accumulate.cpp).
 #pragma once
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 #include "core/shading/ground_truth.hpp"
 
 #include <array>

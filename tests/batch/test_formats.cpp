@@ -8,7 +8,7 @@
 #include "core/base/errors.hpp"
 #include "core/devices/beam_tables.hpp"
 #include "core/io/output.hpp"
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 #include "core/io/ros2_sonar.hpp"
 #include "core/shading/physics.hpp"
 

@@ -1,6 +1,6 @@
 // Trajectory files and generated paths.
 #include "core/base/errors.hpp"
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 #include "core/dataset/trajectory.hpp"
 
 #include <catch2/catch.hpp>

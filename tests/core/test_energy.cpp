@@ -3,7 +3,7 @@
 #include "core/scene/sampling_scheme.hpp"
 
 #include "core/shading/physics.hpp"
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/shading/footprint.hpp"
 #include "core/shading/shade.hpp"

@@ -1,10 +1,10 @@
-// The whole-file reader (core/base/file_io) and the mesh format table (core/geometry/mesh_formats).
+// The whole-file reader (core/base/file_io) and the mesh format table (core/meshfile/mesh_formats).
 #include "support.hpp"
 
 #include "core/base/errors.hpp"
 #include "core/base/file_io.hpp"
 #include "core/geometry/mesh.hpp"
-#include "core/geometry/mesh_formats.hpp"
+#include "core/meshfile/mesh_formats.hpp"
 
 #include <catch2/catch.hpp>
 #include <cctype>

@@ -1,6 +1,6 @@
 // Display geometry: gray mapping, the raw image's orientation and the sector-formed (fan) image layout.
 #include "core/display/image.hpp"
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 
 #include <catch2/catch.hpp>
 #include <algorithm>

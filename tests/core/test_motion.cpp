@@ -1,7 +1,7 @@
 // Motion during a frame (sampling/acquisition.hpp): poses along the frame, the interleaved ARIS pings and
 // the single ping's range-dependent receive time, each against its closed form.
 #include "core/base/errors.hpp"
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 #include "core/dataset/batch.hpp"
 #include "core/dataset/trajectory.hpp"
 #include "core/pipeline/simulator.hpp"

@@ -1,5 +1,5 @@
 // Pose, beam and range-bin geometry against the paper's equations written out here independently.
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 #include "core/scene/scene_io.hpp"
 
 #include <catch2/catch.hpp>

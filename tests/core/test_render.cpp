@@ -2,7 +2,7 @@
 #include "support.hpp"
 
 #include "core/io/output.hpp"
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/pipeline/simulator.hpp"
 

@@ -5,7 +5,7 @@
 
 #include "core/io/output.hpp"
 #include "core/scene/params.hpp"
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 #include "core/analysis/reference.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/base/fast_math.hpp"

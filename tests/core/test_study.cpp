@@ -1,6 +1,6 @@
 // The streamed reference of `sonarsim study` and the benchmark: a scene traced a chunk of beams at a time
 // must give the same image as the whole scene traced at once.
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 #include "core/scene/sampling_scheme.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/shading/accumulate.hpp"

@@ -4,7 +4,7 @@
 #include "ui/model/interaction.hpp"
 #include "ui/model/scene_labels.hpp"
 
-#include "core/geometry/mesh_formats.hpp"
+#include "core/meshfile/mesh_formats.hpp"
 #include "core/pipeline/memory_report.hpp"
 #include "core/shading/physics.hpp"
 

@@ -6,7 +6,7 @@
 #include "ui/model/scene_files.hpp"
 
 #include "core/devices/devices.hpp"
-#include "core/geometry/mesh_formats.hpp"
+#include "core/meshfile/mesh_formats.hpp"
 
 #include <filesystem>
 #include <imgui.h>

@@ -5,7 +5,7 @@
 
 #include "ui/gl/viewer_app.hpp"
 
-#include "core/geometry/mesh_formats.hpp"
+#include "core/meshfile/mesh_formats.hpp"
 
 #include <algorithm>
 #include <imgui.h>

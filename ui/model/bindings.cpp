@@ -1,6 +1,6 @@
 #include "ui/model/bindings.hpp"
 
-#include "core/geometry/mesh_formats.hpp"
+#include "core/meshfile/mesh_formats.hpp"
 #include "ui/model/input_events.hpp"
 
 namespace sonarsim::ui {

@@ -1,6 +1,6 @@
 #include "ui/model/measure.hpp"
 
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 #include "core/scene/param_rows.hpp"
 
 #include "core/base/errors.hpp"
-#include "core/geometry/mesh_formats.hpp"
+#include "core/meshfile/mesh_formats.hpp"
 
 #include <filesystem>
 

@@ -1,7 +1,7 @@
 // The mesh file formats, in one table: extension -> reader. load_mesh dispatches by it; scene file errors,
 // the viewer's file dialog, its drop handling and its help texts list the extensions from it.
 #pragma once
-#include "core/geometry/mesh.hpp"
+#include "core/meshfile/trimesh.hpp"
 
 #include <string>
 #include <vector>

@@ -16,7 +16,7 @@
 // complete reader); openmesh_import.cpp runs OpenMesh on checked bytes. Every reader throws
 // mesh_io::Problem (mesh_tokens.hpp).
 #pragma once
-#include "core/geometry/mesh_formats.hpp"
+#include "core/meshfile/mesh_formats.hpp"
 
 #include <string>
 

@@ -1,4 +1,4 @@
-#include "core/geometry/mesh_tokens.hpp"
+#include "core/meshfile/mesh_tokens.hpp"
 
 #include <cerrno>
 #include <cmath>

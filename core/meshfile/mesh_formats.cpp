@@ -1,6 +1,6 @@
-#include "core/geometry/mesh_formats.hpp"
+#include "core/meshfile/mesh_formats.hpp"
 
-#include "core/geometry/mesh_readers.hpp"
+#include "core/meshfile/mesh_readers.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -1,6 +1,6 @@
-#include "core/geometry/mesh_readers.hpp"
+#include "core/meshfile/mesh_readers.hpp"
 
-#include "core/geometry/mesh_tokens.hpp"
+#include "core/meshfile/mesh_tokens.hpp"
 
 #include <set>
 #include <sstream>

@@ -1,4 +1,4 @@
-#include "core/base/pose.hpp"
+#include "core/scene/pose.hpp"
 
 #include "core/scene/sonar_grid.hpp"
 
