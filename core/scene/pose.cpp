@@ -1,6 +1,5 @@
 #include "core/scene/pose.hpp"
 
-#include "core/scene/sonar_grid.hpp"
 
 namespace sonarsim {
 
@@ -16,13 +15,6 @@ glm::dmat3 rotation_matrix(const Vec3d& o) {
     return m;
 }
 
-std::vector<double> beam_azimuths_deg(const SonarParams& s) {
-    return sonar_grid(s)->beam_azimuths_deg();
-}
-
-std::vector<double> range_bin_edges_m(const SonarParams& s) {
-    return sonar_grid(s)->bin_edges_m();
-}
 
 Polar world_to_sonar_polar(const Pose& pose, const glm::dvec3& p) {
     const glm::dvec3 local =

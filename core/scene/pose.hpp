@@ -29,12 +29,6 @@ inline glm::dvec3 sonar_direction(double azimuth_rad, double elevation_rad) {
     return {ce * std::cos(azimuth_rad), ce * std::sin(azimuth_rad), std::sin(elevation_rad)};
 }
 
-/// Azimuth of each beam's centre [deg] (the sonar's grid, sonar_grid.hpp); beam 0 is port-most.
-std::vector<double> beam_azimuths_deg(const SonarParams& sonar);
-
-/// K + 1 range bin edges [m] over [r_min, r_max] (the sonar's grid).
-std::vector<double> range_bin_edges_m(const SonarParams& sonar);
-
 /// Range and azimuth [deg] and elevation [deg] of a world point as seen by the sonar.
 struct Polar {
     double range_m, azimuth_deg, elevation_deg;

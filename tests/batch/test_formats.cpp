@@ -12,6 +12,7 @@
 #include "core/io/ros2_sonar.hpp"
 #include "core/shading/physics.hpp"
 
+#include "core/scene/sonar_grid.hpp"
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <random>
@@ -262,8 +263,8 @@ TEST_CASE("an MCAP bag read from its specification gives back the frames", "[mca
         CHECK(chunk_indexes == 3);
         REQUIRE(messages.size() == 3);
 
-        const std::vector<double> az = beam_azimuths_deg(d.scene.sonar),
-                                  edges = range_bin_edges_m(d.scene.sonar);
+        const std::vector<double> az = sonar_grid(d.scene.sonar)->beam_azimuths_deg(),
+                                  edges = sonar_grid(d.scene.sonar)->bin_edges_m();
         for (size_t k = 0; k < 3; ++k) {
             const auto& msg = messages[k];
             REQUIRE(msg[1] == 0x01); // CDR little-endian encapsulation
@@ -449,7 +450,7 @@ TEST_CASE("a ProjectedSonarImage's rx_beamwidths are the receive beams' -3 dB wi
     for (size_t i = 0; i < tx; ++i) c.get<float>(true);
     const auto rx = c.get<std::uint32_t>(true);
     REQUIRE(int(rx) == s.sonar.beams);
-    const std::vector<double> az = beam_azimuths_deg(s.sonar);
+    const std::vector<double> az = sonar_grid(s.sonar)->beam_azimuths_deg();
     double widest = 0, narrowest = 1e9;
     for (size_t i = 0; i < rx; ++i) {
         const double w_deg = c.get<float>(true) * 180 / kPi;

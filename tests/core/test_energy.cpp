@@ -10,6 +10,7 @@
 #include "core/pipeline/simulator.hpp"
 
 #include <algorithm>
+#include "core/scene/sonar_grid.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
@@ -49,7 +50,7 @@ TEST_CASE("each beam's bins hold exactly the sum of its cells' intensities", "[e
         Simulator sim(s);
         const auto f = sim.render();
         const ShadeConstants k = shade_constants(s);
-        const std::vector<double> edges = range_bin_edges_m(s.sonar);
+        const std::vector<double> edges = sonar_grid(s.sonar)->bin_edges_m();
         double worst = 0;
         size_t cells = 0, object_cells = 0;
         for (int i = 0; i < s.sonar.beams; ++i) {
@@ -90,7 +91,7 @@ TEST_CASE("cell_fraction_in sums to 1 over the bins covering each cell", "[energ
     SceneDesc s = inside_scene();
     Simulator sim(s);
     const auto f = sim.render();
-    const std::vector<double> edges = range_bin_edges_m(s.sonar);
+    const std::vector<double> edges = sonar_grid(s.sonar)->bin_edges_m();
     const double dr = edges[1] - edges[0];
     size_t checked = 0;
     double worst = 0;

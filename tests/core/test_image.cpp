@@ -2,6 +2,7 @@
 #include "core/display/image.hpp"
 #include "core/scene/pose.hpp"
 
+#include "core/scene/sonar_grid.hpp"
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <chrono>
@@ -92,7 +93,7 @@ TEST_CASE("SectorLayout: apex at the bottom centre, range up, port on the left",
 TEST_CASE("SectorLayout: polar_to_index hits bin and beam centres", "[image]") {
     SonarParams s;
     const SectorLayout L(s, 512);
-    const std::vector<double> az = beam_azimuths_deg(s);
+    const std::vector<double> az = sonar_grid(s)->beam_azimuths_deg();
     const double dr = (s.range_max_m - s.range_min_m) / s.range_bins;
     for (int k : {0, 100, 511})
         for (int i : {0, 40, 127}) {
@@ -116,7 +117,7 @@ TEST_CASE("sector and raw images put beam 0 (port) on the left, near range at th
         L.polar_to_pixel(r, a, px, py);
         return int(sec.pixels[(size_t(py) * sec.width + size_t(px)) * 3]);
     };
-    const std::vector<double> az = beam_azimuths_deg(s);
+    const std::vector<double> az = sonar_grid(s)->beam_azimuths_deg();
     CHECK(gray_at(3.0, az[0]) > 128); // the lit beam (bilinear across beams), left side
     CHECK(gray_at(3.0, az[2]) == 0);
     CHECK(gray_at(3.0, az[31]) == 0); // the starboard-most beam stays black

@@ -2,6 +2,7 @@
 #include "core/scene/pose.hpp"
 #include "core/scene/scene_io.hpp"
 
+#include "core/scene/sonar_grid.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -116,7 +117,7 @@ TEST_CASE("sonar_direction is (cos e cos a, cos e sin a, sin e)", "[pose]") {
 
 TEST_CASE("beam azimuths: a_i = Theta/2 - (i + 1/2) Theta/N, beam 0 port-most", "[pose]") {
     SonarParams s; // 32 deg, 128 beams
-    const std::vector<double> a = beam_azimuths_deg(s);
+    const std::vector<double> a = sonar_grid(s)->beam_azimuths_deg();
     REQUIRE(a.size() == 128);
     CHECK(a[0] == Approx(16.0 - 0.125));
     CHECK(a[127] == Approx(-16.0 + 0.125));
@@ -124,7 +125,7 @@ TEST_CASE("beam azimuths: a_i = Theta/2 - (i + 1/2) Theta/N, beam 0 port-most", 
     CHECK(a[64] == Approx(-0.125));
     for (size_t i = 1; i < a.size(); ++i) CHECK(a[i - 1] - a[i] == Approx(0.25));
     s.azimuth_fov_deg = 30, s.beams = 3;
-    const std::vector<double> b = beam_azimuths_deg(s);
+    const std::vector<double> b = sonar_grid(s)->beam_azimuths_deg();
     REQUIRE(b.size() == 3);
     CHECK(b[0] == Approx(10.0));
     CHECK(b[1] == Approx(0.0).margin(1e-14));
@@ -133,14 +134,14 @@ TEST_CASE("beam azimuths: a_i = Theta/2 - (i + 1/2) Theta/N, beam 0 port-most", 
 
 TEST_CASE("range bin edges: K + 1 edges, r_min + k dr, last exactly r_max", "[pose]") {
     SonarParams s; // [0.5, 5) m, 512 bins
-    const std::vector<double> e = range_bin_edges_m(s);
+    const std::vector<double> e = sonar_grid(s)->bin_edges_m();
     REQUIRE(e.size() == 513);
     CHECK(e.front() == 0.5);
     CHECK(e.back() == 5.0);
     CHECK(e[256] == Approx(0.5 + 256 * 4.5 / 512));
     for (size_t k = 1; k < e.size(); ++k) CHECK(e[k] - e[k - 1] == Approx(4.5 / 512).epsilon(1e-9));
     s.range_min_m = 1.0, s.range_max_m = 2.0, s.range_bins = 4;
-    CHECK(range_bin_edges_m(s) == std::vector<double>{1.0, 1.25, 1.5, 1.75, 2.0});
+    CHECK(sonar_grid(s)->bin_edges_m() == std::vector<double>{1.0, 1.25, 1.5, 1.75, 2.0});
 }
 
 TEST_CASE("world_to_sonar_polar of points placed along known directions", "[pose]") {

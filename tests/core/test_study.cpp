@@ -7,6 +7,7 @@
 #include "core/analysis/study.hpp"
 #include "core/sampling/trace.hpp"
 
+#include "core/scene/sonar_grid.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
@@ -53,11 +54,11 @@ TEST_CASE("orientation_deg_of inverts rotation_matrix, also at and near pitch +-
 TEST_CASE("a beam sub-scene's beams point exactly where the full scene's beams do", "[study][pose]") {
     SceneDesc s = default_scene();
     s.sonar.beams = 10;
-    const std::vector<double> full = beam_azimuths_deg(s.sonar);
+    const std::vector<double> full = sonar_grid(s.sonar)->beam_azimuths_deg();
     const glm::dmat3 R = rotation_matrix(s.sonar.pose.orientation_deg);
     for (auto [first, last] : {std::pair{0, 3}, std::pair{3, 7}, std::pair{7, 10}, std::pair{4, 5}}) {
         const SceneDesc sub = beam_subscene(s, first, last);
-        const std::vector<double> part = beam_azimuths_deg(sub.sonar);
+        const std::vector<double> part = sonar_grid(sub.sonar)->beam_azimuths_deg();
         const glm::dmat3 Rs = rotation_matrix(sub.sonar.pose.orientation_deg);
         for (int j = 0; j < last - first; ++j)
             for (double e : {-0.1, 0.0, 0.05}) {
