@@ -1,6 +1,6 @@
 #pragma once
 #include "commands.hpp"
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 namespace sonarsim::app {
 /// Loads the scene named by the options (or the built-in one) and applies --set and --pose.

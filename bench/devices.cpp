@@ -18,7 +18,7 @@
 
 #include "bench/terrain.hpp"
 #include "core/analysis/reference.hpp"
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/devices/devices.hpp"
 #include "core/io/output.hpp"
 #include "core/pipeline/simulator.hpp"

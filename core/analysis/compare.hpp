@@ -7,7 +7,7 @@
 // left out): n = I / Ibar. Closed forms for fully developed speckle (exponential intensity): contrast of n 1,
 // of sqrt(n) sqrt(4/pi - 1) = 0.523, dB quantiles 10 log10(-ln(1 - q)).
 #pragma once
-#include "core/display/polar_image.hpp"
+#include "core/data/polar_image.hpp"
 
 #include <array>
 #include <vector>

@@ -2,7 +2,7 @@
 
 #include "core/base/errors.hpp"
 #include "core/base/file_io.hpp"
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/display/image.hpp"
 #include "core/scene/scene_io.hpp"
 

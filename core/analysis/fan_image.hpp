@@ -1,7 +1,7 @@
 // A fan-shaped sonar image (a PNG as a device's software or `sonarsim render` shows it) sampled back onto a
 // polar grid of range bins x beams, so that `sonarsim compare` can measure it like an .aris frame or an .npy.
 #pragma once
-#include "core/display/polar_image.hpp"
+#include "core/data/polar_image.hpp"
 
 #include <string>
 

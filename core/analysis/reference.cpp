@@ -1,10 +1,10 @@
 #include "core/analysis/reference.hpp"
 
-#include "core/scene/sonar_grid.hpp"
-#include "core/sensor/sensor_patterns.hpp"
+#include "core/grid/sonar_grid.hpp"
+#include "core/grid/sensor_patterns.hpp"
 
 #include "core/shading/physics.hpp"
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 
 #include <algorithm>
 #include <cmath>

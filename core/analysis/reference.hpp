@@ -1,6 +1,7 @@
 // Independent answers to compare sampling schemes against (sonarsim study, tests).
 #pragma once
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
+#include "core/data/polar_image.hpp"
 #include "core/shading/shade.hpp"
 
 namespace sonarsim {

@@ -1,8 +1,8 @@
 #include "core/analysis/study.hpp"
 
 #include "core/base/errors.hpp"
-#include "core/scene/pose.hpp"
-#include "core/devices/beam_tables.hpp"
+#include "core/data/pose.hpp"
+#include "core/grid/beam_tables.hpp"
 #include "core/shading/accumulate.hpp"
 #include "core/base/timing.hpp"
 #include "core/sampling/trace.hpp"

@@ -3,7 +3,7 @@
 #include "core/geometry/geometry.hpp"
 #include "core/analysis/reference.hpp"
 #include "core/scene/sampling_scheme.hpp"
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -6,9 +6,9 @@
 // files exist. index.csv is rebuilt from the complete frames at the end of every run (under a lock, so
 // concurrent shards end with a full index).
 #pragma once
-#include "core/display/polar_image.hpp"
-#include "core/scene/scene.hpp"
-#include "core/dataset/trajectory.hpp"
+#include "core/data/polar_image.hpp"
+#include "core/data/scene.hpp"
+#include "core/data/trajectory.hpp"
 
 #include <atomic>
 #include <cstddef>

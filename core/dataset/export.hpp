@@ -3,7 +3,7 @@
 // file FILE.json: the mapping and what it clipped, per frame and in all.
 #pragma once
 #include "core/io/byte_mapping.hpp"
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <string>
 

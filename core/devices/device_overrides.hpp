@@ -2,7 +2,7 @@
 // scene is another one, because a scene file or `--set` gave it. Computed from the scene alone, so the
 // metadata of `render`, `batch` and the Python module list the same keys.
 #pragma once
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <nlohmann/json.hpp>
 #include <string>

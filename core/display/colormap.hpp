@@ -1,6 +1,6 @@
 // Display levels: an 8-bit image, the gray level of an L_EN and the colour maps.
 #pragma once
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <array>
 #include <cstdint>

@@ -1,8 +1,8 @@
 // The display range an image is shown with (display.auto).
 #pragma once
-#include "core/scene/sonar_grid.hpp"
-#include "core/display/polar_image.hpp"
-#include "core/shading/shade.hpp"
+#include "core/grid/sonar_grid.hpp"
+#include "core/data/polar_image.hpp"
+#include "core/data/polar_image.hpp"
 
 namespace sonarsim {
 

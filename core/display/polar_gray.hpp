@@ -1,7 +1,7 @@
 // The raw (polar) image as gray: one pixel per (bin, beam).
 #pragma once
 #include "core/display/colormap.hpp"
-#include "core/display/polar_image.hpp"
+#include "core/data/polar_image.hpp"
 
 namespace sonarsim {
 

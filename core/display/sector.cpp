@@ -1,6 +1,6 @@
 #include "core/display/sector.hpp"
 
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/base/scratch_pool.hpp"
 
 #include <algorithm>

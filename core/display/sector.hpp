@@ -2,8 +2,8 @@
 // and the resampler that forms it.
 #pragma once
 #include "core/display/colormap.hpp"
-#include "core/scene/sonar_grid.hpp"
-#include "core/shading/shade.hpp"
+#include "core/grid/sonar_grid.hpp"
+#include "core/data/polar_image.hpp"
 
 #include <array>
 #include <cstdint>

@@ -1,8 +1,9 @@
 // The traceable scene: every object an Embree instance of its mesh's shared BVH, plus an analytic seafloor
 // plane. First-hit queries against both; shadows come from the first hit.
 #pragma once
+#include "core/data/hits.hpp"
 #include "core/geometry/mesh.hpp"
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <glm/glm.hpp>
 #include <memory>
@@ -14,11 +15,6 @@ namespace sonarsim {
 
 /// Hits closer than this are ignored: a sonar touching a surface is not blocked by it [m].
 constexpr double kMinHitRange_m = 1e-5;
-
-/// Material index of the seafloor; object i has material index i + 1.
-constexpr unsigned kFloorMaterial = 0;
-/// Material index of the water surface (water.surface_height_m): -2 as a signed ground-truth id.
-constexpr unsigned kSurfaceMaterial = 0xFFFFFFFEu;
 
 struct Hit {
     /// range along the unit ray [m]; on a smooth object with `phong_alpha` > 0, where the ray meets its

@@ -4,7 +4,7 @@
 
 #include "core/base/errors.hpp"
 #include "core/base/file_io.hpp"
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/meshfile/mesh_formats.hpp"
 #include "core/meshfile/mesh_tokens.hpp"
 

@@ -2,7 +2,7 @@
 // Shared, cached meshes: mesh_cache.hpp.
 #pragma once
 #include "core/meshfile/trimesh.hpp"
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <glm/glm.hpp>
 #include <string>

@@ -2,7 +2,7 @@
 
 #include "core/base/shared_registry.hpp"
 
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>

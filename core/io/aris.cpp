@@ -3,7 +3,7 @@
 #include "core/base/errors.hpp"
 #include "core/base/le_bytes.hpp"
 #include "core/io/output.hpp"
-#include "core/scene/sonar_grid.hpp"
+#include "core/grid/sonar_grid.hpp"
 
 #include <algorithm>
 #include <cmath>

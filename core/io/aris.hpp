@@ -2,9 +2,9 @@
 // a 1024-byte file header, then per frame a 1024-byte frame header and BeamCount x SamplesPerBeam bytes,
 // sample-major, beam 0 the starboard-most. Packed little-endian.
 #pragma once
-#include "core/display/polar_image.hpp"
-#include "core/scene/scene.hpp"
-#include "core/dataset/trajectory.hpp"
+#include "core/data/polar_image.hpp"
+#include "core/data/scene.hpp"
+#include "core/data/trajectory.hpp"
 #include "core/io/aris_grid.hpp"
 #include "core/io/byte_mapping.hpp"
 

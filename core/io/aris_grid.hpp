@@ -2,8 +2,8 @@
 // SampleStartDelay within the vendor's documented ranges (file SDK, FrameHeader.h), and our range bins
 // resampled onto the device's samples.
 #pragma once
-#include "core/display/polar_image.hpp"
-#include "core/scene/scene.hpp"
+#include "core/data/polar_image.hpp"
+#include "core/data/scene.hpp"
 
 #include <cstdint>
 #include <string>

@@ -3,7 +3,7 @@
 // (docs/formats.md), independently of our writer (aris.cpp). For comparing real recordings with simulated
 // frames (`sonarsim compare`); every malformed file is an InputError naming the file and the field.
 #pragma once
-#include "core/display/polar_image.hpp"
+#include "core/data/polar_image.hpp"
 
 #include <cstdint>
 #include <string>

@@ -2,8 +2,8 @@
 // (export.auto) or given (export.lo_db, export.hi_db), one mapping for every frame of a file, and the count
 // of the samples it clips, per frame and for the file.
 #pragma once
-#include "core/display/polar_image.hpp"
-#include "core/scene/scene.hpp"
+#include "core/data/polar_image.hpp"
+#include "core/data/scene.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -1,11 +1,11 @@
 #include "core/io/ros2_sonar.hpp"
 
-#include "core/sensor/sensor_patterns.hpp"
+#include "core/grid/sensor_patterns.hpp"
 
 #include "core/base/le_bytes.hpp"
 #include "core/io/mcap.hpp"
-#include "core/scene/pose.hpp"
-#include "core/scene/sonar_grid.hpp"
+#include "core/data/pose.hpp"
+#include "core/grid/sonar_grid.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -2,7 +2,7 @@
 // presets), each a set of material values with their sources. `material.preset` of any surface applies one
 // before the surface's explicit keys.
 #pragma once
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <nlohmann/json.hpp>
 #include <string>

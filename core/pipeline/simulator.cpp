@@ -1,6 +1,6 @@
 #include "core/pipeline/simulator.hpp"
 
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/base/scratch_pool.hpp"
 #include "core/devices/device_overrides.hpp"
 #include "core/devices/devices.hpp"

@@ -6,7 +6,7 @@
 #include "core/geometry/geometry.hpp"
 #include "core/display/image.hpp"
 #include "core/scene/params.hpp"
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 #include "core/shading/accumulate.hpp"
 #include "core/sampling/trace.hpp"
 

@@ -1,7 +1,7 @@
 #include "core/sampling/acquisition.hpp"
 
-#include "core/scene/pose.hpp"
-#include "core/scene/sonar_grid.hpp"
+#include "core/data/pose.hpp"
+#include "core/grid/sonar_grid.hpp"
 
 #include <algorithm>
 #include <cmath>

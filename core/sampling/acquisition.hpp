@@ -6,7 +6,7 @@
 // rates). The range window is cut into slabs short enough that the pose changes within one by at most a
 // quarter of a range bin and a quarter of a beam; each (ping, slab) is traced from its receive pose.
 #pragma once
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <vector>
 

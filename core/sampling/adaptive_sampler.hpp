@@ -4,6 +4,7 @@
 // disagree), adaptive_pass.cpp (one pass over some groups of beams: base grid, refinement, cells),
 // adaptive_estimate.cpp (the error estimate's shares), adaptive.cpp (the passes, by priority).
 #pragma once
+#include "core/data/polar_image.hpp"
 #include "core/sampling/adaptive_node.hpp"
 #include "core/sampling/refine_criteria.hpp"
 

@@ -1,6 +1,6 @@
 #include "core/sampling/motion_trace.hpp"
 
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/sampling/acquisition.hpp"
 #include "core/shading/accumulate.hpp"
 #include "core/shading/physics.hpp"

@@ -1,6 +1,6 @@
 #include "core/sampling/multipath.hpp"
 
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/shading/footprint.hpp"
 #include "core/shading/shade.hpp"
 

@@ -1,9 +1,9 @@
 // Internal to the tracers (trace.cpp, adaptive.cpp): one ray's first hit and the cell it stands for.
 #pragma once
 #include "core/geometry/geometry.hpp"
-#include "core/scene/pose.hpp"
-#include "core/scene/sonar_grid.hpp"
-#include "core/sensor/sensor_patterns.hpp"
+#include "core/data/pose.hpp"
+#include "core/grid/sonar_grid.hpp"
+#include "core/grid/sensor_patterns.hpp"
 #include "core/sampling/trace.hpp"
 
 #include <cmath>

@@ -2,7 +2,7 @@
 // invalidates, and the columns that feed the viewer (section, label, slider range) and the device presets
 // (whether a preset may set it). The rows themselves are in scene/rows/*.cpp, the tables in params.hpp.
 #pragma once
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <functional>
 #include <nlohmann/json.hpp>

@@ -5,7 +5,7 @@
 // in settings.cpp, stages in stages.cpp, Markdown in params_markdown.cpp.
 #pragma once
 #include "core/scene/param_spec.hpp"
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <string>
 #include <utility>

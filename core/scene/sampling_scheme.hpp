@@ -1,7 +1,7 @@
 // The sampling schemes: names for the combinations of ray placement and echo binning (sampling.scheme).
 // The one list of them, for the parameter table, the study and the benchmarks.
 #pragma once
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <array>
 #include <optional>

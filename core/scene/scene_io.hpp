@@ -1,7 +1,7 @@
 // Scene files (JSON): parsing against the parameter table, serialisation, and the built-in default scene.
 #pragma once
 #include "core/scene/params.hpp"
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <cstdint>
 #include <string>

@@ -4,10 +4,10 @@
 #include "core/scene/params.hpp"
 
 #include "core/base/errors.hpp"
-#include "core/scene/pose.hpp"
-#include "core/devices/beam_tables.hpp"
-#include "core/scene/sonar_grid.hpp"
-#include "core/sensor/sensor_patterns.hpp"
+#include "core/data/pose.hpp"
+#include "core/grid/beam_tables.hpp"
+#include "core/grid/sonar_grid.hpp"
+#include "core/grid/sensor_patterns.hpp"
 
 #include <algorithm>
 #include <cmath>

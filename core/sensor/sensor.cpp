@@ -1,12 +1,12 @@
 #include "core/sensor/sensor.hpp"
 
 #include "core/base/fast_math.hpp"
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/base/scratch_pool.hpp"
 #include "core/scene/params.hpp"
-#include "core/scene/sonar_grid.hpp"
+#include "core/grid/sonar_grid.hpp"
 #include "core/sensor/keyed_variates.hpp"
-#include "core/sensor/sensor_patterns.hpp"
+#include "core/grid/sensor_patterns.hpp"
 #include "core/sensor/speckle_field.hpp"
 
 #include <algorithm>

@@ -4,8 +4,8 @@
 // speckle_field.hpp), additive noise, then time-varying gain and receiver gain. Each effect is off
 // unless the scene turns it on (sensor.*), and the ideal sensor passes the image through untouched.
 #pragma once
-#include "core/display/polar_image.hpp"
-#include "core/scene/scene.hpp"
+#include "core/data/polar_image.hpp"
+#include "core/data/scene.hpp"
 #include "core/shading/accumulate.hpp"
 
 #include <cstdint>

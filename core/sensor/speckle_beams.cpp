@@ -2,7 +2,7 @@
 
 #include "core/base/fast_math.hpp"
 #include "core/base/recent_shared.hpp"
-#include "core/sensor/sensor_patterns.hpp"
+#include "core/grid/sensor_patterns.hpp"
 
 #include <algorithm>
 #include <cstring>

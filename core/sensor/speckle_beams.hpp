@@ -2,7 +2,7 @@
 // field's rows turned into columns, then each beam the weighted sum of its columns, in vectors as wide as the
 // CPU has (the same sums, and so the same bits, whichever).
 #pragma once
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <memory>
 #include <vector>

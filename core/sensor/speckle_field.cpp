@@ -2,9 +2,9 @@
 
 #include "core/base/fast_math.hpp"
 #include "core/base/scratch_pool.hpp"
-#include "core/scene/sonar_grid.hpp"
+#include "core/grid/sonar_grid.hpp"
 #include "core/sensor/sensor.hpp"
-#include "core/sensor/sensor_patterns.hpp"
+#include "core/grid/sensor_patterns.hpp"
 #include "core/sensor/speckle_beams.hpp"
 
 #include <algorithm>

@@ -4,8 +4,8 @@
 // |.|^2. Neighbouring beams share speckle in proportion to their overlap, range bins in proportion to the
 // pulse length, and the mean is the intensity path's (sum of P I, then the range kernel) exactly.
 #pragma once
-#include "core/scene/pose.hpp"
-#include "core/scene/scene.hpp"
+#include "core/data/pose.hpp"
+#include "core/data/scene.hpp"
 #include "core/sensor/keyed_variates.hpp"
 #include "core/sensor/sensor.hpp"
 #include "core/shading/accumulate.hpp"

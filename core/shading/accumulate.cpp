@@ -1,8 +1,8 @@
 #include "core/shading/accumulate.hpp"
 
-#include "core/scene/pose.hpp"
-#include "core/scene/sonar_grid.hpp"
-#include "core/sensor/sensor_patterns.hpp"
+#include "core/data/pose.hpp"
+#include "core/grid/sonar_grid.hpp"
+#include "core/grid/sensor_patterns.hpp"
 #include "core/shading/footprint.hpp"
 #include "core/shading/log_sum.hpp"
 #include "core/shading/shade.hpp"

@@ -2,10 +2,10 @@
 // the range bins each one's footprint covers fills every channel a frame needs. Channels nobody asked for
 // cost nothing.
 #pragma once
-#include "core/display/polar_image.hpp"
-#include "core/sampling/trace.hpp"
-#include "core/shading/channels.hpp"
-#include "core/scene/scene.hpp"
+#include "core/data/polar_image.hpp"
+#include "core/data/hits.hpp"
+#include "core/data/channels.hpp"
+#include "core/data/scene.hpp"
 #include "core/shading/ground_truth.hpp"
 
 #include <cstdint>

@@ -2,7 +2,7 @@
 // spreads over range bins: shared by shading (shade.cpp) and the ground truth (ground_truth.cpp), so both
 // see the same cells in the same bins.
 #pragma once
-#include "core/sampling/trace.hpp"
+#include "core/data/hits.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 #include "core/shading/footprint.hpp"
 #include "core/geometry/geometry.hpp"
 #include "core/shading/physics.hpp"
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/shading/shade.hpp"
 
 #include <cmath>

@@ -3,8 +3,8 @@
 // for (render --ground-truth, batch --ground-truth, the Python module, the viewer's snapshot toggle).
 #pragma once
 #include "core/io/output.hpp"
-#include "core/scene/scene.hpp"
-#include "core/sampling/trace.hpp"
+#include "core/data/scene.hpp"
+#include "core/data/hits.hpp"
 
 #include <array>
 #include <cstdint>

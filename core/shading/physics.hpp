@@ -1,7 +1,7 @@
 // The active sonar equation's terms (SONAR_MODEL.md), all levels in dB.
 #pragma once
 #include "core/base/units.hpp"
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 namespace sonarsim {
 

@@ -3,8 +3,8 @@
 #include "core/shading/footprint.hpp"
 #include "core/shading/log_sum.hpp"
 #include "core/geometry/geometry.hpp"
-#include "core/scene/pose.hpp"
-#include "core/sensor/sensor_patterns.hpp"
+#include "core/data/pose.hpp"
+#include "core/grid/sensor_patterns.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -3,8 +3,8 @@
 #pragma once
 #include "core/shading/physics.hpp"
 #include "core/shading/texture.hpp"
-#include "core/scene/scene.hpp"
-#include "core/sampling/trace.hpp"
+#include "core/data/scene.hpp"
+#include "core/data/hits.hpp"
 
 #include <vector>
 

@@ -1,6 +1,6 @@
 #include "core/shading/texture.hpp"
 
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/base/units.hpp"
 #include "core/geometry/geometry.hpp"
 

@@ -2,7 +2,7 @@
 // the surface it lies on (the seafloor's and the water surface's to the world, an object's to the object), so
 // it moves with the world and stays put while nothing moves. Formulas in docs/model.md ("Seabed texture").
 #pragma once
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <glm/glm.hpp>
 #include <vector>

@@ -1,6 +1,6 @@
 // One (range bin, beam) cell's ground-truth sums over the contributions echoing into it (accumulate.cpp).
 #pragma once
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/shading/ground_truth.hpp"
 
 #include <array>

@@ -1,6 +1,6 @@
 // Helpers of the dataset tests: a small fast scene, file bytes, fresh directories.
 #pragma once
-#include "core/display/polar_image.hpp"
+#include "core/data/polar_image.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/scene_io.hpp"
 

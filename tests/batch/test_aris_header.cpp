@@ -6,10 +6,10 @@
 
 #include "core/base/build_info.hpp"
 #include "core/base/errors.hpp"
-#include "core/devices/beam_tables.hpp"
+#include "core/grid/beam_tables.hpp"
 #include "core/dataset/batch.hpp"
 #include "core/dataset/export.hpp"
-#include "core/dataset/trajectory.hpp"
+#include "core/data/trajectory.hpp"
 #include "core/io/aris.hpp"
 #include "core/io/aris_read.hpp"
 #include "core/shading/physics.hpp"

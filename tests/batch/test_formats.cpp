@@ -6,13 +6,13 @@
 #include "core/io/aris.hpp"
 #include "core/dataset/batch.hpp"
 #include "core/base/errors.hpp"
-#include "core/devices/beam_tables.hpp"
+#include "core/grid/beam_tables.hpp"
 #include "core/io/output.hpp"
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/io/ros2_sonar.hpp"
 #include "core/shading/physics.hpp"
 
-#include "core/scene/sonar_grid.hpp"
+#include "core/grid/sonar_grid.hpp"
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <random>

@@ -1,7 +1,7 @@
 // Trajectory files and generated paths.
 #include "core/base/errors.hpp"
-#include "core/scene/pose.hpp"
-#include "core/dataset/trajectory.hpp"
+#include "core/data/pose.hpp"
+#include "core/data/trajectory.hpp"
 
 #include <catch2/catch.hpp>
 

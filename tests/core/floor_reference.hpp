@@ -2,7 +2,7 @@
 // tests only and independently of the tracer: its own rotation (eq. 12), its own absorption (eq. 7) and
 // GSAB (eq. 9), closed-form breakpoints and Gauss-Legendre quadrature.
 #pragma once
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <vector>
 

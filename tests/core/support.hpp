@@ -1,5 +1,6 @@
 // Small helpers shared by the core tests: paths, linear intensity, .npy reading, Gauss-Legendre rules.
 #pragma once
+#include "core/data/polar_image.hpp"
 #include "core/shading/shade.hpp"
 
 #include <cmath>

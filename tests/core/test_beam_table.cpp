@@ -1,11 +1,11 @@
 // Beam tables (sonar.beam_table): the tables themselves, the grid built from them, and the angles a
 // rendered image, its metadata and its fan carry.
 #include "core/base/errors.hpp"
-#include "core/devices/beam_tables.hpp"
+#include "core/grid/beam_tables.hpp"
 #include "core/devices/devices.hpp"
 #include "core/pipeline/simulator.hpp"
 #include "core/scene/params.hpp"
-#include "core/scene/sonar_grid.hpp"
+#include "core/grid/sonar_grid.hpp"
 
 #include <catch2/catch.hpp>
 #include <chrono>

@@ -3,14 +3,14 @@
 #include "core/scene/sampling_scheme.hpp"
 
 #include "core/shading/physics.hpp"
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/shading/footprint.hpp"
 #include "core/shading/shade.hpp"
 #include "core/pipeline/simulator.hpp"
 
 #include <algorithm>
-#include "core/scene/sonar_grid.hpp"
+#include "core/grid/sonar_grid.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>

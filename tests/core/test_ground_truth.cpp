@@ -4,7 +4,7 @@
 #include "support.hpp"
 
 #include "core/shading/ground_truth.hpp"
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/pipeline/simulator.hpp"
 

@@ -1,8 +1,8 @@
 // Display geometry: gray mapping, the raw image's orientation and the sector-formed (fan) image layout.
 #include "core/display/image.hpp"
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 
-#include "core/scene/sonar_grid.hpp"
+#include "core/grid/sonar_grid.hpp"
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <chrono>

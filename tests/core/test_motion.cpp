@@ -1,9 +1,9 @@
 // Motion during a frame (sampling/acquisition.hpp): poses along the frame, the interleaved ARIS pings and
 // the single ping's range-dependent receive time, each against its closed form.
 #include "core/base/errors.hpp"
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/dataset/batch.hpp"
-#include "core/dataset/trajectory.hpp"
+#include "core/data/trajectory.hpp"
 #include "core/pipeline/simulator.hpp"
 #include "core/sampling/acquisition.hpp"
 #include "core/sampling/motion_trace.hpp"

@@ -7,7 +7,7 @@
 #include "core/analysis/reference.hpp"
 #include "core/shading/ground_truth.hpp"
 #include "core/shading/physics.hpp"
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/pipeline/simulator.hpp"
 

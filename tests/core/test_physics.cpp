@@ -1,7 +1,7 @@
 #include "core/shading/physics.hpp"
 #include "core/shading/shade.hpp"
 #include "core/geometry/geometry.hpp"
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/scene/scene_io.hpp"
 
 #include <catch2/catch.hpp>

@@ -1,8 +1,8 @@
 // Pose, beam and range-bin geometry against the paper's equations written out here independently.
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/scene/scene_io.hpp"
 
-#include "core/scene/sonar_grid.hpp"
+#include "core/grid/sonar_grid.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
 

@@ -3,7 +3,7 @@
 // test asserts the decision alone, without tracing a scene.
 #include "core/sampling/refine_criteria.hpp"
 
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/base/recent_values.hpp"
 
 #include <catch2/catch.hpp>

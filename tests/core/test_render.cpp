@@ -2,12 +2,12 @@
 #include "support.hpp"
 
 #include "core/io/output.hpp"
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/pipeline/simulator.hpp"
 
 #include <algorithm>
-#include "core/scene/sonar_grid.hpp"
+#include "core/grid/sonar_grid.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>

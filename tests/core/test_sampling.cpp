@@ -7,7 +7,7 @@
 #include "core/pipeline/simulator.hpp"
 #include "core/sampling/adaptive_sampler.hpp"
 #include "core/sampling/trace.hpp"
-#include "core/sensor/sensor_patterns.hpp"
+#include "core/grid/sensor_patterns.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -5,15 +5,15 @@
 
 #include "core/io/output.hpp"
 #include "core/scene/params.hpp"
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/analysis/reference.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/base/fast_math.hpp"
 #include "core/sensor/keyed_variates.hpp"
 #include "core/sensor/sensor.hpp"
-#include "core/sensor/sensor_patterns.hpp"
+#include "core/grid/sensor_patterns.hpp"
 #include "core/shading/accumulate.hpp"
-#include "core/scene/sonar_grid.hpp"
+#include "core/grid/sonar_grid.hpp"
 #include "core/pipeline/simulator.hpp"
 
 #include <algorithm>

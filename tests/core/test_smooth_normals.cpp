@@ -4,7 +4,7 @@
 // faces; the crease angle decides which faces share a normal.
 #include "support.hpp"
 
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/geometry/geometry.hpp"
 #include "core/geometry/phong_surface.hpp"
 #include "core/geometry/shading_normals.hpp"

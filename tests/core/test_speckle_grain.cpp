@@ -12,7 +12,7 @@
 #include "core/pipeline/simulator.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/scene_io.hpp"
-#include "core/sensor/sensor_patterns.hpp"
+#include "core/grid/sensor_patterns.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>

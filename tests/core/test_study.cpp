@@ -1,13 +1,13 @@
 // The streamed reference of `sonarsim study` and the benchmark: a scene traced a chunk of beams at a time
 // must give the same image as the whole scene traced at once.
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/scene/sampling_scheme.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/shading/accumulate.hpp"
 #include "core/analysis/study.hpp"
 #include "core/sampling/trace.hpp"
 
-#include "core/scene/sonar_grid.hpp"
+#include "core/grid/sonar_grid.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>

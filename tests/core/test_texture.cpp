@@ -2,7 +2,7 @@
 // mean kept, the texture fixed to the world, and off by default.
 #include "support.hpp"
 
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/pipeline/simulator.hpp"
 #include "core/scene/sampling_scheme.hpp"
 #include "core/shading/texture.hpp"

@@ -4,7 +4,7 @@
 #include "ui/model/sonar_geometry.hpp"
 
 #include "core/display/image.hpp"
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/pipeline/simulator.hpp"
 

@@ -3,7 +3,7 @@
 #include "ui/model/camera.hpp"
 #include "ui/model/orbit.hpp"
 
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/scene/scene_io.hpp"
 
 #include <catch2/catch.hpp>

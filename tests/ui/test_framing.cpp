@@ -4,7 +4,7 @@
 #include "ui/model/interaction.hpp"
 #include "ui/model/sonar_geometry.hpp"
 
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/geometry/geometry.hpp"
 #include "core/scene/scene_io.hpp"
 

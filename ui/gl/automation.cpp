@@ -13,7 +13,7 @@
 #include "core/base/errors.hpp"
 #include "core/io/output.hpp"
 #include "core/scene/params.hpp"
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/scene/scene_io.hpp"
 
 #include <algorithm>

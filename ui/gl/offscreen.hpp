@@ -6,7 +6,7 @@
 #include "ui/gl/view3d.hpp"
 
 #include "core/display/image.hpp"
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <string>
 

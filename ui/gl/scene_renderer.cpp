@@ -3,7 +3,7 @@
 #include "ui/model/framing.hpp"
 #include "ui/model/sonar_geometry.hpp"
 
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 
 #include <algorithm>
 #include <cmath>

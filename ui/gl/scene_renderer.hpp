@@ -8,7 +8,7 @@
 #include "ui/gl/gl_util.hpp"
 
 #include "core/geometry/mesh.hpp"
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <memory>
 #include <optional>

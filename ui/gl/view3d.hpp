@@ -1,7 +1,7 @@
 // The 3D view as a PNG with no display at all (EGL on Mesa's surfaceless platform): `sonarsim render
 // --view3d`. GL-free header: callers need no OpenGL headers.
 #pragma once
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <cstdint>
 #include <string>

@@ -1,6 +1,6 @@
 // The interactive viewer: GLFW window, Dear ImGui panels, the 3D view and the live sonar image.
 #pragma once
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <glm/glm.hpp>
 #include <array>

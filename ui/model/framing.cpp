@@ -2,7 +2,7 @@
 
 #include "ui/model/sonar_geometry.hpp"
 
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 #include "ui/model/camera.hpp"
 
 #include "core/geometry/mesh.hpp"
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <glm/glm.hpp>
 #include <memory>

@@ -3,7 +3,7 @@
 #pragma once
 #include "ui/model/camera.hpp"
 #include "core/geometry/geometry.hpp"
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <glm/glm.hpp>
 #include <optional>

@@ -1,6 +1,6 @@
 #include "ui/model/orbit.hpp"
 
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 
 #include <algorithm>
 #include <cmath>

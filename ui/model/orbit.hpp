@@ -1,6 +1,6 @@
 // Non-GL helpers of `sonarsim view --orbit`: the sonar's path and the frame-time statistics it prints.
 #pragma once
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <glm/glm.hpp>
 #include <string>

@@ -2,7 +2,7 @@
 
 #include "ui/model/image_views.hpp"
 
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 
 #include <algorithm>
 #include <cmath>

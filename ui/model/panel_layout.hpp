@@ -7,8 +7,8 @@
 #include "ui/model/layout.hpp"
 
 #include "core/display/image.hpp"
-#include "core/scene/scene.hpp"
-#include "core/scene/sonar_grid.hpp"
+#include "core/data/scene.hpp"
+#include "core/grid/sonar_grid.hpp"
 
 #include <glm/glm.hpp>
 #include <string>

@@ -1,7 +1,7 @@
 // How the viewer names what a scene holds, GL-free: the paper's Fig. 9 scene (which gets the "Fig. 9 pose"
 // and "Reset to paper values" buttons) and each object's label in the material combo.
 #pragma once
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <string>
 

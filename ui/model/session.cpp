@@ -5,7 +5,7 @@
 
 #include "core/base/errors.hpp"
 #include "core/geometry/mesh_cache.hpp"
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/scene/scene_io.hpp"
 
 #include <filesystem>

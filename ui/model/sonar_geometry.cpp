@@ -1,7 +1,7 @@
 #include "ui/model/sonar_geometry.hpp"
 
 #include "core/geometry/mesh_cache.hpp"
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/shading/shade.hpp"
 
 #include <algorithm>

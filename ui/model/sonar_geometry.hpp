@@ -3,7 +3,7 @@
 #pragma once
 #include "core/display/image.hpp"
 #include "core/geometry/mesh.hpp"
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 #include "core/sampling/trace.hpp"
 
 #include <glm/glm.hpp>

@@ -2,8 +2,8 @@
 // `sonarsim batch --trajectory` reads: header `t,x,y,z,roll_deg,pitch_deg,yaw_deg`, one pose per row, t in
 // seconds (non-decreasing), positions in metres, angles in degrees. GL-free.
 #pragma once
-#include "core/scene/scene.hpp"
-#include "core/dataset/trajectory.hpp"
+#include "core/data/scene.hpp"
+#include "core/data/trajectory.hpp"
 
 #include <string>
 #include <utility>
@@ -33,7 +33,7 @@ class Trajectory {
 
 /// CSV text with the header and full precision (parsing it gives the same doubles).
 std::string trajectory_csv(const Trajectory& trajectory);
-/// Parses CSV text with core's parser (parse_trajectory_csv in core/dataset/trajectory.hpp): throws
+/// Parses CSV text with core's parser (parse_trajectory_csv in core/data/trajectory.hpp): throws
 /// InputError on a bad header, row, number or time order.
 Trajectory parse_trajectory_csv(const std::string& text, const std::string& file);
 Trajectory load_trajectory(const std::string& path);

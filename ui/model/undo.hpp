@@ -2,7 +2,7 @@
 // scene whenever an edit is complete (a drag released, a slider let go, a value typed, a file opened), so one
 // drag is one step however many frames it took.
 #pragma once
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <cstddef>
 #include <optional>

@@ -10,7 +10,7 @@
 #include "ui/model/layout.hpp"
 
 #include "core/geometry/geometry.hpp"
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <glm/glm.hpp>
 #include <optional>

@@ -2,7 +2,7 @@
 // range window and bins) and the levels (source, noise).
 #include "core/scene/param_rows.hpp"
 
-#include "core/devices/beam_tables.hpp"
+#include "core/grid/beam_tables.hpp"
 #include "core/devices/devices.hpp"
 
 namespace sonarsim::rows {

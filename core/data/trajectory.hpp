@@ -1,7 +1,7 @@
 // Trajectories: one sonar pose per frame, read from a CSV file or generated (a circle around a point, a
 // line).
 #pragma once
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <string>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "core/devices/beam_tables.hpp"
+#include "core/grid/beam_tables.hpp"
 
 #include "core/base/embedded_files.hpp"
 

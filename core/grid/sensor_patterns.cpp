@@ -1,8 +1,8 @@
-#include "core/sensor/sensor_patterns.hpp"
+#include "core/grid/sensor_patterns.hpp"
 
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 #include "core/base/recent_shared.hpp"
-#include "core/scene/sonar_grid.hpp"
+#include "core/grid/sonar_grid.hpp"
 
 #include <algorithm>
 #include <memory>

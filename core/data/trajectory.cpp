@@ -1,8 +1,8 @@
-#include "core/dataset/trajectory.hpp"
+#include "core/data/trajectory.hpp"
 
 #include "core/base/errors.hpp"
 #include "core/base/file_io.hpp"
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // Frames and pose (SONAR_MODEL.md): world z up; sonar x forward, y port, z up; R = Rz(yaw) Ry(pitch)
 // Rx(roll).
 #pragma once
-#include "core/scene/scene.hpp"
+#include "core/data/scene.hpp"
 
 #include <cmath>
 #include <glm/glm.hpp>

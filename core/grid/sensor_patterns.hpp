@@ -2,8 +2,8 @@
 // that weights each ray, the receive pattern that forms each beam from a finer azimuth grid, and the
 // matched filter's intensity response along range. All are intensity patterns with peak 1.
 #pragma once
-#include "core/scene/scene.hpp"
-#include "core/scene/sonar_grid.hpp"
+#include "core/data/scene.hpp"
+#include "core/grid/sonar_grid.hpp"
 
 #include <memory>
 #include <vector>

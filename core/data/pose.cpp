@@ -1,4 +1,4 @@
-#include "core/scene/pose.hpp"
+#include "core/data/pose.hpp"
 
 
 namespace sonarsim {

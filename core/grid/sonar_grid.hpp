@@ -2,11 +2,11 @@
 // once per scene change (`sonar_grid`, shared) and passed to every stage and to the viewer instead of
 // re-deriving widths and angles at each call site. Beam 0 is port-most (positive azimuth), bin 0 nearest.
 // Beams are evenly spaced over Theta (eq. 10), or each beam's centre and edges come from a device's table
-// (`sonar.beam_table`, devices/beam_tables.hpp). Beam angles come from the grid, never from a formula at the
+// (`sonar.beam_table`, beam_tables.hpp). Beam angles come from the grid, never from a formula at the
 // call site.
 #pragma once
-#include "core/devices/beam_tables.hpp"
-#include "core/scene/scene.hpp"
+#include "core/grid/beam_tables.hpp"
+#include "core/data/scene.hpp"
 
 #include <algorithm>
 #include <cmath>

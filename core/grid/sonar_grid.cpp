@@ -1,4 +1,4 @@
-#include "core/scene/sonar_grid.hpp"
+#include "core/grid/sonar_grid.hpp"
 
 #include "core/base/errors.hpp"
 #include "core/base/shared_registry.hpp"
