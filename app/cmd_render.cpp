@@ -2,6 +2,7 @@
 #include "commands.hpp"
 #include "load.hpp"
 
+#include "core/io/ground_truth_files.hpp"
 #include "core/base/errors.hpp"
 #include "core/shading/ground_truth.hpp"
 #include "core/io/output.hpp"

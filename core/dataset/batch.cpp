@@ -1,3 +1,4 @@
+#include "core/io/ground_truth_files.hpp"
 #include "core/dataset/batch.hpp"
 
 #include "core/base/build_info.hpp"

@@ -2,7 +2,6 @@
 // refinement, the azimuth probe; the cells come from adaptive_cells.cpp.
 #include "core/sampling/adaptive_sampler.hpp"
 
-#include "core/analysis/reference.hpp"
 #include "core/base/fast_math.hpp"
 #include "core/shading/accumulate.hpp"
 

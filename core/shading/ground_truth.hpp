@@ -2,7 +2,6 @@
 // footprints as the image itself (footprint.hpp), so it converges with the sampler. Computed only when asked
 // for (render --ground-truth, batch --ground-truth, the Python module, the viewer's snapshot toggle).
 #pragma once
-#include "core/io/output.hpp"
 #include "core/data/scene.hpp"
 #include "core/data/hits.hpp"
 
@@ -63,10 +62,6 @@ struct EchoPath {
     std::int32_t object_id = -1; ///< the scatterer, as GroundTruth::object_id
 };
 EchoPath echo_path(const TraceResult& hits, const SceneDesc& scene, int beam, std::int32_t contribution);
-
-/// PREFIX_gt_<name>.npy for each array (float32, int32 for object_id and surfaces).
-std::vector<std::pair<std::string, Bytes>> ground_truth_files(const std::string& prefix,
-                                                              const GroundTruth& gt);
 
 /// The names of the arrays (ground_truth_fields), in file order.
 const std::vector<std::string>& ground_truth_names();

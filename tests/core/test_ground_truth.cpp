@@ -3,6 +3,7 @@
 // the prism's pixels carry its object id.
 #include "support.hpp"
 
+#include "core/io/ground_truth_files.hpp"
 #include "core/shading/ground_truth.hpp"
 #include "core/data/pose.hpp"
 #include "core/scene/scene_io.hpp"

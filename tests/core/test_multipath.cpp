@@ -2,6 +2,7 @@
 // and |R|^2 predict; the floor's first multiple by way of the surface; nothing changes without bounces or
 // mirrors; the energy of each path order adds up to the image's.
 #include "support.hpp"
+#include "core/io/output.hpp"
 #include "core/scene/sampling_scheme.hpp"
 
 #include "core/analysis/reference.hpp"

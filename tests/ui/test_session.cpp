@@ -1,6 +1,7 @@
 // The viewer's non-GL session: bad values and files keep the last good scene; the worker's newest request
 // wins; every slider of the controls panel visibly changes the image.
 #include "support.hpp"
+#include "core/io/ground_truth_files.hpp"
 #include "core/scene/sampling_scheme.hpp"
 
 #include "ui/model/render_worker.hpp"

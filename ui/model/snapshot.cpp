@@ -1,5 +1,6 @@
 #include "ui/model/snapshot.hpp"
 
+#include "core/io/ground_truth_files.hpp"
 #include "core/scene/scene_io.hpp"
 
 #include <ctime>
