@@ -1,3 +1,4 @@
+#include "core/grid/beam_tables.hpp"
 #include "core/analysis/fan_image.hpp"
 
 #include "core/base/errors.hpp"
@@ -93,6 +94,7 @@ FanGeometry fan_geometry_from_metadata(const std::string& png_path, int height) 
     s.azimuth_fov_deg = sj.at("azimuth_fov_deg"), s.beams = sj.at("beams");
     s.range_min_m = sj.at("range_min_m"), s.range_max_m = sj.at("range_max_m"),
     s.range_bins = sj.at("range_bins");
+    s.beam_table = sj.value("beam_table", std::string(kUniformBeams)); // a table's fan need not be symmetric
     const SectorLayout layout(s, height);
     FanGeometry g;
     layout.polar_to_pixel(0, 0, g.apex_x_px, g.apex_y_px);
@@ -100,6 +102,7 @@ FanGeometry fan_geometry_from_metadata(const std::string& png_path, int height) 
     g.azimuth_fov_deg = s.azimuth_fov_deg, g.range_min_m = s.range_min_m, g.range_max_m = s.range_max_m;
     g.lo_db = j["display_range_db"].at(0), g.hi_db = j["display_range_db"].at(1);
     g.beams = s.beams, g.bins = s.range_bins;
+    if (!layout.grid().uniform()) g.beam_azimuths_deg = layout.grid().beam_azimuths_deg();
     return g;
 }
 
@@ -130,7 +133,8 @@ PolarImage load_fan_png(const std::string& path, const std::string& spec) {
     for (int k = 0; k < g.bins; ++k)
         for (int i = 0; i < g.beams; ++i) {
             const double r = g.range_min_m + (k + 0.5) * dr,
-                         a = deg2rad(g.azimuth_fov_deg / 2 - (i + 0.5) * da);
+                         a = deg2rad(g.beam_azimuths_deg.empty() ? g.azimuth_fov_deg / 2 - (i + 0.5) * da
+                                                                 : g.beam_azimuths_deg[size_t(i)]);
             // Continuous pixel coordinates, then the four pixel centres around them.
             const double x = g.apex_x_px - r * std::sin(a) * g.px_per_m - 0.5;
             const double y = g.apex_y_px - r * std::cos(a) * g.px_per_m - 0.5;
