@@ -162,7 +162,9 @@ double ArrayPattern::extent(double floor_db) const {
 
 int azimuth_subcolumns(const SceneDesc& s) {
     if (s.sensor.azimuth_window == AzimuthWindow::None) return 1;
-    const SonarGrid& grid = *sonar_grid(s.sonar);
+    const std::shared_ptr<const SonarGrid> grid_ptr =
+        sonar_grid(s.sonar); // held: the registry keeps only what someone holds
+    const SonarGrid& grid = *grid_ptr;
     double spacing = 0; // the widest beam's [deg]: every beam gets four columns per -3 dB width
     for (int b = 0; b < grid.beams; ++b) spacing = std::max(spacing, grid.beam_width_deg(b));
     return std::clamp(int(std::ceil(4 * spacing / azimuth_beamwidth_deg(s) - 1e-9)), 1, 8);
@@ -170,7 +172,9 @@ int azimuth_subcolumns(const SceneDesc& s) {
 
 AzimuthBeamforming make_azimuth_beamforming(const SceneDesc& s, bool amplitudes) {
     AzimuthBeamforming f;
-    const SonarGrid& grid = *sonar_grid(s.sonar);
+    const std::shared_ptr<const SonarGrid> grid_ptr =
+        sonar_grid(s.sonar); // held: the registry keeps only what someone holds
+    const SonarGrid& grid = *grid_ptr;
     const int N = grid.beams, S = azimuth_subcolumns(s);
     f.beams = N, f.sub = S;
     const ArrayPattern& pattern = array_pattern(s.sensor.azimuth_window, s.sensor.taylor_sidelobe_db);

@@ -6,6 +6,7 @@
 // call site.
 #pragma once
 #include "core/grid/beam_tables.hpp"
+#include "core/data/pose.hpp"
 #include "core/data/scene.hpp"
 
 #include <algorithm>
@@ -72,6 +73,10 @@ class SonarGrid {
     /// The narrowest and the widest beam [rad].
     double narrowest_beam_rad() const { return table_ ? narrowest_rad_ : spacing_rad; }
     double widest_beam_rad() const { return table_ ? widest_rad_ : spacing_rad; }
+    /// The fan's port and starboard edges [deg]: beam 0's port edge, the last beam's starboard edge (a
+    /// table's fan need not be symmetric: the DIDSON's spans -14.72 ... +14.09 deg).
+    double port_edge_deg() const { return rad2deg(beam_port_edge_rad(0)); }
+    double starboard_edge_deg() const { return rad2deg(beam_starboard_edge_rad(beams - 1)); }
     /// Half the azimuth aperture the sonar sees [rad] (the widest side of the fan).
     double half_aperture_rad() const { return table_ ? fan_half_rad : fov_rad / 2; }
     /// Centre of fine column j when each beam is split into `per_beam` equal columns [rad]; column 0 is the

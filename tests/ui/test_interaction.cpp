@@ -2,6 +2,8 @@
 #include "ui/model/interaction.hpp"
 #include "ui/model/sonar_geometry.hpp"
 
+#include "core/grid/sonar_grid.hpp"
+#include "core/scene/params.hpp"
 #include "core/data/pose.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/pipeline/simulator.hpp"
@@ -145,4 +147,32 @@ TEST_CASE("a translation seen at a grazing angle moves what the cursor covers at
                         q.position_m[1] - s.sonar.pose.position_m[1], 0);
     CHECK(glm::length(dq) == Approx(kMaxDragStretch * 200 * m_px).epsilon(1e-6));
     CHECK(glm::dot(dq, away) > 0.99 * glm::length(dq));
+}
+
+TEST_CASE("the 3D frustum and its floor footprint span a beam table's own fan, not +-fov/2",
+          "[ui][geometry]") {
+    // The DIDSON's table fan spans -14.72 ... +14.09 deg: the shell and the footprint reach exactly its
+    // edges.
+    SceneDesc s = default_scene();
+    apply_setting_text(s, "sonar.device=didson300-hf", "test");
+    const std::shared_ptr<const SonarGrid> grid_ptr =
+        sonar_grid(s.sonar); // held: the registry keeps only what someone holds
+    const SonarGrid& grid = *grid_ptr;
+    // Its table's outer edges (assets/devices/beam_tables/didson300_hf_96.csv): not symmetric.
+    REQUIRE(grid.port_edge_deg() + grid.starboard_edge_deg() < -0.5);
+    auto azimuth_span = [&](const std::vector<glm::vec3>& points) {
+        double lo = 1e9, hi = -1e9;
+        for (const glm::vec3& p : points) {
+            const Polar q = world_to_sonar_polar(s.sonar.pose, {p.x, p.y, p.z});
+            if (q.range_m < 1e-3) continue; // the apex
+            lo = std::min(lo, q.azimuth_deg), hi = std::max(hi, q.azimuth_deg);
+        }
+        return std::pair(lo, hi);
+    };
+    const auto [lo, hi] = azimuth_span(frustum_shell(s.sonar, 8, 4).triangles);
+    CHECK(lo == Approx(grid.starboard_edge_deg()).margin(1e-3));
+    CHECK(hi == Approx(grid.port_edge_deg()).margin(1e-3));
+    const auto [flo, fhi] = azimuth_span(floor_footprint(s.sonar, 0.0, 64));
+    CHECK(flo == Approx(grid.starboard_edge_deg()).margin(1e-3));
+    CHECK(fhi == Approx(grid.port_edge_deg()).margin(1e-3));
 }

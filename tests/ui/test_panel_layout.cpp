@@ -118,7 +118,9 @@ TEST_CASE("the fan is formed as high as it is shown, in steps of 64 px, never ab
           "[ui][layout]") {
     SonarParams s;
     s.beams = 512, s.azimuth_fov_deg = 130, s.range_min_m = 1, s.range_max_m = 120, s.range_bins = 1500;
-    const SonarGrid& g = *sonar_grid(s); // one row per bin: 1500 px
+    const std::shared_ptr<const SonarGrid> g_ptr =
+        sonar_grid(s);           // held: the registry keeps only what someone holds
+    const SonarGrid& g = *g_ptr; // one row per bin: 1500 px
     REQUIRE(g.default_fan_height_px() == 1500);
     CHECK(fan_height_to_form(190, g) == 256); // at least 256
     CHECK(fan_height_to_form(256, g) == 256);

@@ -2,6 +2,7 @@
 
 #include "ui/model/sonar_geometry.hpp"
 
+#include "core/grid/sonar_grid.hpp"
 #include "core/data/pose.hpp"
 
 #include <algorithm>
@@ -45,10 +46,12 @@ OrbitCamera default_camera(const SceneDesc& scene, const std::vector<Box3>& obje
     // patch it sees and the objects (terrain only near the sonar).
     std::vector<glm::dvec3> pts;
     for (const glm::vec3& v : sonar_body(s).vertices) pts.emplace_back(v);
-    for (double a : {-1.0, 0.0, 1.0})
+    const std::shared_ptr<const SonarGrid> grid_ptr =
+        sonar_grid(s); // held: the registry keeps only what someone holds
+    const SonarGrid& grid = *grid_ptr;
+    for (double a : {grid.starboard_edge_deg(), 0.0, grid.port_edge_deg()})
         for (double e : {-1.0, 1.0}) {
-            glm::dvec3 p =
-                sonar_point(s, s.range_max_m, a * s.azimuth_fov_deg / 2, e * s.elevation_fov_deg / 2);
+            glm::dvec3 p = sonar_point(s, s.range_max_m, a, e * s.elevation_fov_deg / 2);
             if (scene.seafloor && p.z < scene.seafloor->height_m) continue; // the floor patch stands for it
             pts.push_back(p);
         }

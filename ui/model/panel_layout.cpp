@@ -68,8 +68,7 @@ Labels place_labels(const PanelContent& c, const SectorLayout& sector, float x, 
     L.bounds = {x, y, w, h};
     const float th = t.line_h, gap = kGap;
     const SonarGrid& grid = sector.grid();
-    const double port = rad2deg(grid.beam_port_edge_rad(0)),
-                 starboard = rad2deg(grid.beam_starboard_edge_rad(grid.beams - 1));
+    const double port = grid.port_edge_deg(), starboard = grid.starboard_edge_deg();
     const double astep = nice_step(s.azimuth_fov_deg, 6), rstep = nice_step(s.range_max_m - s.range_min_m, 5);
     // Bearings: 0 first, then from the edges inwards (the extremes matter most), each where it fits.
     std::vector<double> angles;

@@ -1,5 +1,6 @@
 #include "ui/model/sonar_geometry.hpp"
 
+#include "core/grid/sonar_grid.hpp"
 #include "core/geometry/mesh_cache.hpp"
 #include "core/data/pose.hpp"
 #include "core/shading/shade.hpp"
@@ -16,9 +17,12 @@ glm::dvec3 sonar_point(const SonarParams& s, double r, double a_deg, double e_de
 
 FrustumShell frustum_shell(const SonarParams& s, int na, int ne) {
     na = std::max(1, na), ne = std::max(1, ne);
-    const double r0 = s.range_min_m, r1 = s.range_max_m, ha = s.azimuth_fov_deg / 2,
-                 he = s.elevation_fov_deg / 2;
-    auto az = [&](int i) { return ha - 2 * ha * i / na; };
+    const std::shared_ptr<const SonarGrid> grid_ptr =
+        sonar_grid(s); // held: the registry keeps only what someone holds
+    const SonarGrid& grid = *grid_ptr;
+    const double r0 = s.range_min_m, r1 = s.range_max_m, pa = grid.port_edge_deg(),
+                 sa = grid.starboard_edge_deg(), he = s.elevation_fov_deg / 2;
+    auto az = [&](int i) { return pa - (pa - sa) * i / na; };
     auto el = [&](int j) { return he - 2 * he * j / ne; };
     auto P = [&](double r, double a, double e) { return glm::vec3(sonar_point(s, r, a, e)); };
     FrustumShell f;
@@ -64,7 +68,10 @@ std::vector<glm::vec3> floor_footprint(const SonarParams& s, double z0, int step
     std::vector<glm::vec3> out;
     const glm::dvec3 o = to_glm(s.pose.position_m);
     const glm::dmat3 R = rotation_matrix(s.pose.orientation_deg);
-    const double ha = s.azimuth_fov_deg / 2, he = s.elevation_fov_deg / 2;
+    const std::shared_ptr<const SonarGrid> grid_ptr =
+        sonar_grid(s); // held: the registry keeps only what someone holds
+    const SonarGrid& grid = *grid_ptr;
+    const double pa = grid.port_edge_deg(), sa = grid.starboard_edge_deg(), he = s.elevation_fov_deg / 2;
     // Floor hit of the ray (a, e) when its range lies in the window.
     auto hit = [&](double a, double e) -> std::optional<glm::vec3> {
         const glm::dvec3 d = R * sonar_direction(deg2rad(a), deg2rad(e));
@@ -82,12 +89,12 @@ std::vector<glm::vec3> floor_footprint(const SonarParams& s, double z0, int step
         }
     };
     // The four edges of the field of view where their rays meet the floor inside the range window ...
-    for (double e : {-he, he}) edge([&](double u) { return hit(ha - 2 * ha * u, e); });
-    for (double a : {-ha, ha}) edge([&](double u) { return hit(a, he - 2 * he * u); });
+    for (double e : {-he, he}) edge([&](double u) { return hit(pa - (pa - sa) * u, e); });
+    for (double a : {sa, pa}) edge([&](double u) { return hit(a, he - 2 * he * u); });
     // ... and the arcs where the spheres r_min and r_max cut the floor inside the field of view.
     for (double r : {s.range_min_m, s.range_max_m})
         edge([&](double u) -> std::optional<glm::vec3> {
-            const double a = ha - 2 * ha * u;
+            const double a = pa - (pa - sa) * u;
             auto f = [&](double e) { return o.z + r * (R * sonar_direction(deg2rad(a), deg2rad(e))).z - z0; };
             double lo = -he, hi = he, flo = f(lo), fhi = f(hi);
             if (r <= 0 || flo * fhi > 0) return std::nullopt;
