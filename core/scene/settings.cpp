@@ -4,6 +4,7 @@
 #include "core/scene/params.hpp"
 
 #include "core/base/errors.hpp"
+#include "core/scene/scene_parts.hpp"
 
 #include <cctype>
 #include <filesystem>
@@ -17,45 +18,31 @@ void set_value(SceneDesc& scene, const std::string& key, const json& value, cons
         apply_group_key(scene, key);
         return;
     }
-    const std::string surface_prefix = "water.surface_material.";
-    if (key.rfind(surface_prefix, 0) == 0) {
-        set_material(scene.water.surface_material, key.substr(surface_prefix.size()), value, file, key);
-        return;
-    }
-    if (key.rfind("seafloor.material.", 0) == 0) {
-        if (!scene.seafloor) throw InputError(file, key, "the scene has no seafloor");
-        set_material(scene.seafloor->material, key.substr(18), value, file, key);
-        return;
-    }
-    if (key.rfind("seafloor.", 0) == 0)
-        if (const SeafloorSpec* p = find_seafloor_param(key.substr(9))) {
-            const json v = p->validated(value, file, key);
-            if (!scene.seafloor) scene.seafloor = Seafloor{};
-            p->put(*scene.seafloor, v, "");
+    if (const std::optional<PartKey> part = part_key(scene, key, file)) {
+        if (part->material) {
+            Material* m = material_of(scene, part->part);
+            if (!m) throw InputError(file, key, "the scene has no seafloor");
+            set_material(*m, part->field, value, file, key);
             return;
         }
-    if (key.rfind("objects.", 0) == 0) {
-        const std::string rest = key.substr(8);
-        const size_t dot = rest.find('.');
-        size_t idx = 0;
-        const std::string idx_text = rest.substr(0, dot);
-        if (idx_text.empty() || idx_text.find_first_not_of("0123456789") != std::string::npos ||
-            idx_text.size() > 6 || (idx = std::stoul(idx_text)) >= scene.objects.size())
-            throw InputError(file, key,
-                             "object index must be in [0, " + std::to_string(scene.objects.size()) + ")");
-        const std::string field = dot == std::string::npos ? "" : rest.substr(dot + 1);
-        ObjectDesc& o = scene.objects[idx];
-        if (field.rfind("material.", 0) == 0) {
-            set_material(o.material, field.substr(9), value, file, key);
+        if (part->part == kSeafloorPart) {
+            if (const SeafloorSpec* p = find_seafloor_param(part->field)) {
+                const json v = p->validated(value, file, key);
+                if (!scene.seafloor) scene.seafloor = Seafloor{};
+                p->put(*scene.seafloor, v, "");
+                return;
+            }
+        } else if (part->part >= 0) {
+            const ObjectSpec* p = find_object_param(part->field);
+            if (!p)
+                throw InputError(file, key,
+                                 "unknown key; allowed: " + part_keys_text(object_params()) + ".*");
+            // A mesh path given on the command line or in the viewer is relative to the working directory.
+            std::error_code ec;
+            p->put(scene.objects[size_t(part->part)], p->validated(value, file, key),
+                   std::filesystem::current_path(ec).string());
             return;
         }
-        const ObjectSpec* p = find_object_param(field);
-        if (!p)
-            throw InputError(file, key, "unknown key; allowed: " + part_keys_text(object_params()) + ".*");
-        // A mesh path given on the command line or in the viewer is relative to the working directory.
-        std::error_code ec;
-        p->put(o, p->validated(value, file, key), std::filesystem::current_path(ec).string());
-        return;
     }
     std::string known;
     for (const auto* list : {&scene_params(), &input_params()})

@@ -2,6 +2,7 @@
 // rows that steer the sampler, a mirror appearing or disappearing re-traces), and the earliest stage at
 // which two scenes differ.
 #include "core/scene/params.hpp"
+#include "core/scene/scene_parts.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -23,26 +24,21 @@ Stage changed_stage(const SceneDesc& a, const SceneDesc& b) {
     auto mark = [&](Stage s) { st = std::min(st, s); };
     for (auto& p : scene_params())
         if (p.get(a) != p.get(b)) mark(p.effective_stage(b));
-    auto material_stage = [&](const Material& x, const Material& y) {
-        for (auto& p : material_params())
-            if (p.get(x) != p.get(y)) mark(p.stage_of_change(x.*p.field, y.*p.field, b));
-    };
-    material_stage(a.water.surface_material, b.water.surface_material);
-    if (a.objects.size() != b.objects.size()) {
-        mark(Stage::Geometry);
-    } else {
-        for (size_t i = 0; i < a.objects.size(); ++i) {
-            for (auto& p : object_params())
-                if (p.get(a.objects[i]) != p.get(b.objects[i])) mark(p.effective_stage(b));
-            material_stage(a.objects[i].material, b.objects[i].material);
-        }
-    }
-    if (bool(a.seafloor) != bool(b.seafloor))
-        mark(Stage::Trace);
-    else if (a.seafloor) {
+    if (a.objects.size() != b.objects.size()) mark(Stage::Geometry);
+    if (bool(a.seafloor) != bool(b.seafloor)) mark(Stage::Trace);
+    // The parts both scenes have: their own rows, then their materials.
+    if (a.seafloor && b.seafloor)
         for (auto& p : seafloor_params())
             if (p.get(*a.seafloor) != p.get(*b.seafloor)) mark(p.effective_stage(b));
-        material_stage(a.seafloor->material, b.seafloor->material);
+    if (a.objects.size() == b.objects.size())
+        for (size_t i = 0; i < a.objects.size(); ++i)
+            for (auto& p : object_params())
+                if (p.get(a.objects[i]) != p.get(b.objects[i])) mark(p.effective_stage(b));
+    for (int part : material_parts(b)) {
+        const Material *x = material_of(a, part), *y = material_of(b, part);
+        if (x)
+            for (auto& p : material_params())
+                if (p.get(*x) != p.get(*y)) mark(p.stage_of_change((*x).*p.field, (*y).*p.field, b));
     }
     return st;
 }

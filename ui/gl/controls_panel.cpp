@@ -201,18 +201,20 @@ void material_section(Session& session, ControlsUi& ui) {
     const int n = int(s.objects.size());
     const bool water = s.water.surface_height_m.has_value();
     if (ui.selected >= n) ui.selected = n - 1;
-    if (ui.selected == kWaterSurface && !water) ui.selected = -1;
-    if (ui.selected == -1 && !s.seafloor) ui.selected = n > 0 ? 0 : water ? kWaterSurface : -1;
+    if (ui.selected == kSurfacePart && !water) ui.selected = kSeafloorPart;
+    if (ui.selected == kSeafloorPart && !s.seafloor)
+        ui.selected = n > 0 ? 0 : water ? kSurfacePart : kSeafloorPart;
     auto name = [&](int i) {
         if (i == kNothingSelected) return std::string("none");
-        if (i == kWaterSurface) return std::string("water surface");
+        if (i == kSurfacePart) return std::string("water surface");
         if (i < 0) return std::string("seafloor");
         return object_label(s, size_t(i));
     };
     if (ImGui::BeginCombo(field_label("surface", "surface").c_str(), name(ui.selected).c_str())) {
-        if (s.seafloor && ImGui::Selectable("seafloor", ui.selected == -1)) ui.selected = -1;
-        if (water && ImGui::Selectable("water surface", ui.selected == kWaterSurface))
-            ui.selected = kWaterSurface;
+        if (s.seafloor && ImGui::Selectable("seafloor", ui.selected == kSeafloorPart))
+            ui.selected = kSeafloorPart;
+        if (water && ImGui::Selectable("water surface", ui.selected == kSurfacePart))
+            ui.selected = kSurfacePart;
         for (int i = 0; i < n; ++i) {
             if (ImGui::Selectable(name(i).c_str(), ui.selected == i)) ui.selected = i;
             if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", object_tooltip(s, size_t(i)).c_str());
@@ -229,14 +231,10 @@ void material_section(Session& session, ControlsUi& ui) {
         ImGui::PopStyleColor();
         return;
     }
-    if (ui.selected == -1 && !s.seafloor) return;
-    const bool surface = ui.selected == kWaterSurface;
-    const Material& m = surface             ? s.water.surface_material
-                        : ui.selected == -1 ? s.seafloor->material
-                                            : s.objects[size_t(ui.selected)].material;
-    const std::string prefix = surface             ? "water.surface_material."
-                               : ui.selected == -1 ? "seafloor.material."
-                                                   : "objects." + std::to_string(ui.selected) + ".material.";
+    if (ui.selected == kSeafloorPart && !s.seafloor) return;
+    const bool surface = ui.selected == kSurfacePart;
+    const Material& m = *material_of(s, ui.selected);
+    const std::string prefix = material_prefix(ui.selected);
     const ValueSpec& preset = material_preset_param(); // a combo box of the presets' names
     if (ImGui::BeginCombo(field_label(preset.label_text(), prefix + preset.key).c_str(), m.preset.c_str())) {
         for (auto& c : preset.choices)
@@ -261,7 +259,7 @@ void material_section(Session& session, ControlsUi& ui) {
     }
     if (ui.selected >= 0) {
         const ObjectDesc& o = s.objects[size_t(ui.selected)];
-        const std::string key = "objects." + std::to_string(ui.selected) + ".";
+        const std::string key = part_prefix(ui.selected);
         for (const ObjectSpec& p : object_params()) {
             if (p.section != Section::Object) continue;
             const json cur = p.get(o);

@@ -1,6 +1,7 @@
 // The controls panel (ImGui): sliders generated from core's parameter table, numeric pose, the material of
 // the selected object, files, snapshot, timings and errors.
 #pragma once
+#include "core/scene/scene_parts.hpp"
 #include "ui/model/layout.hpp"
 #include "ui/model/session.hpp"
 #include "ui/model/view_controller.hpp"
@@ -11,11 +12,9 @@
 
 namespace sonarsim::ui {
 
-/// ControlsUi::selected for the water surface's material (water.surface_material).
-constexpr int kWaterSurface = -2;
-
 struct ControlsUi {
-    int selected = kNothingSelected; ///< object whose material is edited; -1 = seafloor, kWaterSurface
+    int selected = kNothingSelected; ///< the part whose material is edited (scene_parts.hpp): an object,
+                                     ///< kSeafloorPart, kSurfacePart
     bool show_hits = false;          ///< draw every traced hit in the 3D view
     std::string snapshot_dir = ".";
     double frame_ms = 0; ///< shown on screen

@@ -3,6 +3,7 @@
 #include "ui/model/snapshot.hpp"
 #include "ui/model/sonar_geometry.hpp"
 
+#include "core/scene/scene_parts.hpp"
 #include "core/base/errors.hpp"
 #include "core/geometry/mesh_cache.hpp"
 #include "core/data/pose.hpp"
@@ -28,8 +29,8 @@ void Session::update_geometry(const SceneDesc& scene) {
     ++meshes_version_;
 }
 
-void Session::set_scene(SceneDesc next) {
-    const Stage st = changed_stage(scene_, next);
+void Session::set_scene(SceneDesc next, std::optional<Stage> known) {
+    const Stage st = known ? *known : changed_stage(scene_, next);
     if (st == Stage::None && next.source_file == scene_.source_file) return;
     if (st == Stage::Geometry) update_geometry(next); // throws InputError: caller keeps the old scene
     scene_ = std::move(next);
@@ -38,11 +39,15 @@ void Session::set_scene(SceneDesc next) {
 }
 
 bool Session::edit(const std::function<void(SceneDesc&)>& change) {
+    return edit_known(change, nullptr);
+}
+
+bool Session::edit_known(const std::function<void(SceneDesc&)>& change, const std::optional<Stage>* stage) {
     try {
         SceneDesc next = scene_;
         change(next);
         validate_scene(next, next.source_file.empty() ? "viewer" : next.source_file);
-        set_scene(std::move(next));
+        set_scene(std::move(next), stage ? *stage : std::nullopt);
         return true;
     } catch (const InputError& e) {
         error_ = e.what();
@@ -51,7 +56,8 @@ bool Session::edit(const std::function<void(SceneDesc&)>& change) {
 }
 
 bool Session::set(const std::string& key, const json& value) {
-    return edit([&](SceneDesc& s) { apply_setting(s, key, value, "viewer"); });
+    std::optional<Stage> stage; // apply_setting's: what the edit invalidates, computed once
+    return edit_known([&](SceneDesc& s) { stage = apply_setting(s, key, value, "viewer"); }, &stage);
 }
 
 bool Session::reset_to_paper() {
@@ -59,9 +65,8 @@ bool Session::reset_to_paper() {
         const SceneDesc paper;
         for (auto& p : scene_params())
             if (p.type != ParamType::Vec3) p.put(s, p.get(paper));
-        if (s.seafloor) s.seafloor->material = Material{};
-        for (auto& o : s.objects) o.material = Material{};
-        s.water.surface_material = WaterParams{}.surface_material;
+        for (int part : material_parts(s))
+            *material_of(s, part) = part == kSurfacePart ? WaterParams{}.surface_material : Material{};
     });
 }
 

@@ -93,7 +93,10 @@ class Session {
     void set_fan_height_px(int height_px);
 
   private:
-    void set_scene(SceneDesc next);
+    /// `st`: changed_stage from the current scene to `next` when the caller knows it (apply_setting's).
+    void set_scene(SceneDesc next, std::optional<Stage> st = std::nullopt);
+    /// edit() with the stage the change reports (`stage`, filled by `change`; null: computed here).
+    bool edit_known(const std::function<void(SceneDesc&)>& change, const std::optional<Stage>* stage);
     /// Makes geometry_ match `scene`: new transforms when only poses differ, else a new SceneGeometry (meshes
     /// from the cache). Throws InputError, keeping the old geometry.
     void update_geometry(const SceneDesc& scene);
