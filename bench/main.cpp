@@ -168,8 +168,8 @@ int run_driver(const DriverOptions& o) {
         return 1;
     }
     auto log = [](const std::string& s) { std::cout << s << std::endl; };
-    const std::vector<std::string> names = {"fig9",      "floor",    "terrain200k", "terrain2M",
-                                            "shipwreck", "monterey", "bunny",       "oculus"};
+    const std::vector<std::string> names = {"fig9",     "floor", "terrain200k", "terrain2M", "shipwreck",
+                                            "monterey", "bunny", "oculus",      "rough",     "objects"};
     for (const std::string& n : o.only)
         if (std::find(names.begin(), names.end(), n) == names.end()) {
             std::cerr << "sonarsim_bench: unknown scene \"" << n << "\"; scenes:";
@@ -359,7 +359,7 @@ int main(int argc, char** argv) {
                  "Smoke run: fewer settings and repeats, lighter reference, no heavy scenes, no viewer");
     app.add_option("--scenes", o.only,
                    "Only these scenes (comma-separated): fig9, floor, terrain200k, terrain2M, "
-                   "shipwreck, monterey, bunny, oculus")
+                   "shipwreck, monterey, bunny, oculus, rough, objects")
         ->delimiter(',');
     app.add_option("--out", o.out,
                    "Where RESULTS.md, results.csv, results.json go (default: REPO/bench/results; "
@@ -389,6 +389,9 @@ int main(int argc, char** argv) {
     terrain->add_option("--grid", grid, "Vertices per side (317: ~200 k triangles, 1001: 2 M)")
         ->capture_default_str();
     terrain->add_option("--out", terrain_out, "PLY file")->required();
+    bool terrain_rough = false;
+    terrain->add_flag("--rough", terrain_rough,
+                      "The rough terrain (240 x 240 m, facets and roughness to 0.4 m) of the rough scene");
     std::string report_in, report_out;
     int sensor_repeats = 21, multipath_repeats = 7;
     CLI::App* multipath = app.add_subcommand(
@@ -460,7 +463,7 @@ int main(int argc, char** argv) {
         if (*devices)
             return run_devices_bench(o.paths, devices_repeats, devices_only, devices_settings, devices_json);
         if (*terrain) {
-            write_terrain_ply(terrain_out, grid);
+            write_terrain_ply(terrain_out, grid, terrain_rough);
             std::cout << "wrote " << terrain_out << " (" << terrain_triangles(grid) << " triangles)\n";
             return 0;
         }
