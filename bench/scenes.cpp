@@ -87,6 +87,21 @@ SceneDesc terrain_scene(const std::string& mesh) {
     return s;
 }
 
+/// An Oculus M750d-class wide sonar, pitched 10 deg down: 750 kHz, 512 beams, 130 x 20 deg, 1 m to
+/// `range_max_m` in 1500 bins, shown over 25-100 dB.
+void wide_sonar(SceneDesc& s, double range_max_m) {
+    s.sonar.pose.orientation_deg = {0, 10, 0};
+    s.sonar.frequency_khz = 750;
+    s.sonar.beams = 512;
+    s.sonar.azimuth_fov_deg = 130;
+    s.sonar.elevation_fov_deg = 20;
+    s.sonar.range_min_m = 1;
+    s.sonar.range_max_m = range_max_m;
+    s.sonar.range_bins = 1500;
+    s.display.lo_db = 25;
+    s.display.hi_db = 100;
+}
+
 BenchScene entry(std::string name, std::string title, std::string file, bool heavy = false,
                  bool view = false) {
     BenchScene b;
@@ -172,16 +187,7 @@ std::vector<BenchScene> prepare_scenes(const Paths& p, const std::function<bool(
         const double sx = 6, sz = 2;
         s.objects = {mesh_object(terrain_mesh(p, 317, log), {0, 0, 0}, {0, 0, 0}, {sx, sx, sz})};
         s.sonar.pose.position_m = {-110, 0, sz * terrain_height_m(-110 / sx, 0) + 10};
-        s.sonar.pose.orientation_deg = {0, 10, 0};
-        s.sonar.frequency_khz = 750;
-        s.sonar.beams = 512;
-        s.sonar.azimuth_fov_deg = 130;
-        s.sonar.elevation_fov_deg = 20;
-        s.sonar.range_min_m = 1;
-        s.sonar.range_max_m = 120;
-        s.sonar.range_bins = 1500;
-        s.display.lo_db = 25;
-        s.display.hi_db = 100;
+        wide_sonar(s, 120);
         return write_scene(p, "oculus", s);
     });
 
@@ -199,16 +205,7 @@ std::vector<BenchScene> prepare_scenes(const Paths& p, const std::function<bool(
         apply_setting_text(s, "objects.0.material.preset=sand", "bench");
         const int i0 = int(std::lround((-100 + kRoughSize_m / 2) / kRoughSize_m * (n - 1)));
         s.sonar.pose.position_m = {-100, 0, rough_height_m(i0, (n - 1) / 2, n) + 7.5};
-        s.sonar.pose.orientation_deg = {0, 10, 0};
-        s.sonar.frequency_khz = 750;
-        s.sonar.beams = 512;
-        s.sonar.azimuth_fov_deg = 130;
-        s.sonar.elevation_fov_deg = 20;
-        s.sonar.range_min_m = 1;
-        s.sonar.range_max_m = 80;
-        s.sonar.range_bins = 1500;
-        s.display.lo_db = 25;
-        s.display.hi_db = 100;
+        wide_sonar(s, 80);
         return write_scene(p, "rough", s);
     });
 
