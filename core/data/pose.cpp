@@ -1,6 +1,5 @@
 #include "core/data/pose.hpp"
 
-
 namespace sonarsim {
 
 glm::dmat3 rotation_matrix(const Vec3d& o) {
@@ -14,7 +13,6 @@ glm::dmat3 rotation_matrix(const Vec3d& o) {
     m[0][2] = -sp, m[1][2] = cp * sr, m[2][2] = cp * cr;
     return m;
 }
-
 
 Polar world_to_sonar_polar(const Pose& pose, const glm::dvec3& p) {
     const glm::dvec3 local =

@@ -10,8 +10,6 @@
 
 namespace sonarsim {
 
-
-
 /// Loads a mesh file by its format (mesh_formats.hpp). Throws InputError(file, key, ...) if it is missing,
 /// unreadable, empty or malformed.
 TriMesh load_mesh(const std::string& path, const std::string& scene_file, const std::string& key);

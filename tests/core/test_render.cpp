@@ -30,7 +30,8 @@ void prism_echo(const SceneDesc& scene, Echo& brightest, Echo& centroid) {
     Simulator full(scene), prism(bare);
     const PolarImage& img = full.render()->polar();
     const PolarImage& only = prism.render()->polar();
-    const std::vector<double> az = sonar_grid(scene.sonar)->beam_azimuths_deg(), edges = sonar_grid(scene.sonar)->bin_edges_m();
+    const std::vector<double> az = sonar_grid(scene.sonar)->beam_azimuths_deg(),
+                              edges = sonar_grid(scene.sonar)->bin_edges_m();
     double best = -INFINITY, w = 0, wa = 0, wr = 0;
     for (int b = 0; b < img.bins; ++b)
         for (int i = 0; i < img.beams; ++i) {
