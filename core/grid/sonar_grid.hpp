@@ -132,6 +132,8 @@ class SonarGrid {
     }
     /// Centre of range bin b [m].
     double bin_centre_m(int b) const { return range_min_m + (b + 0.5) * bin_m; }
+    /// Near edge of range bin b [m] (b = bins: the far edge of the last).
+    double bin_near_edge_m(int b) const { return range_min_m + b * bin_m; }
     /// The bin holding range r, clamped to the window (callers check inside() first).
     int bin_of(double r_m) const {
         return std::clamp(int(std::floor((r_m - range_min_m) / bin_m)), 0, bins - 1);

@@ -252,7 +252,7 @@ void SonarPanel::draw_fan_overlay(const Rect& r, const RenderResult& shown) {
         dl->AddLine(to_screen(s.range_min_m, a), to_screen(s.range_max_m, a), kGridColor, 1.0f);
     if (hovered_) {
         // The hovered cell's outline: its range bin x beam.
-        const double dr = grid.bin_m, r0 = s.range_min_m + hovered_->bin * dr;
+        const double dr = grid.bin_m, r0 = grid.bin_near_edge_m(hovered_->bin);
         const double a0 = grid.column_azimuth_deg(hovered_->beam),
                      a1 = grid.column_azimuth_deg(hovered_->beam + 1);
         const double da = a0 - a1;
@@ -282,7 +282,7 @@ void SonarPanel::draw_polar_overlay(const Rect& r, const RenderResult& shown) {
     for (double a : layout_.bearing_deg)
         dl->AddLine(ImVec2(x_of(a), r.y), ImVec2(x_of(a), r.y + r.h), kGridColor);
     if (hovered_) {
-        const double dr = grid.bin_m, r0 = s.range_min_m + hovered_->bin * dr;
+        const double dr = grid.bin_m, r0 = grid.bin_near_edge_m(hovered_->bin);
         const double a0 = grid.column_azimuth_deg(hovered_->beam),
                      a1 = grid.column_azimuth_deg(hovered_->beam + 1);
         dl->AddRect(ImVec2(x_of(a0) - 1, y_of(r0 + dr) - 1), ImVec2(x_of(a1) + 1, y_of(r0) + 1), kHoverColor);

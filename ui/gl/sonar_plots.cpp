@@ -143,7 +143,7 @@ void SonarPanel::draw_ascan(const Rect& r, const RenderResult& shown) {
         text_at(dl, ImVec2(X(rr), p.y + p.h + 2), kLabelColor, buf, 0.5f, 0.0f);
     }
     // The curve, broken where nothing echoes.
-    const double dr = shown.frame->grid().bin_m;
+    const SonarGrid& grid = shown.frame->grid();
     std::vector<ImVec2> run;
     auto flush = [&] {
         if (run.size() >= 2)
@@ -158,7 +158,7 @@ void SonarPanel::draw_ascan(const Rect& r, const RenderResult& shown) {
             flush();
             continue;
         }
-        run.push_back(ImVec2(X(s.range_min_m + (k + 0.5) * dr), Y(lv[k])));
+        run.push_back(ImVec2(X(grid.bin_centre_m(int(k))), Y(lv[k])));
     }
     flush();
     if (hovered_)

@@ -167,8 +167,8 @@ PointInImage locate_world_point(const SonarParams& s, const SectorLayout& L, con
 std::vector<glm::vec3> echoing_points(const TraceResult& hits, const SceneDesc& s, int bin, int beam) {
     std::vector<glm::vec3> out;
     if (beam < 0 || beam >= hits.beams || size_t(beam) >= hits.cells.size()) return out;
-    const double dr = sonar_grid(s.sonar)->bin_m;
-    const double r0 = s.sonar.range_min_m + bin * dr, r1 = r0 + dr;
+    const std::shared_ptr<const SonarGrid> grid = sonar_grid(s.sonar);
+    const double r0 = grid->bin_near_edge_m(bin), r1 = grid->bin_near_edge_m(bin + 1);
     for (const Cell& c : hits.cells[size_t(beam)])
         if (cell_fraction_in(c, s.sampling.binning, r0, r1) > 0) out.push_back(c.point_m);
     return out;
