@@ -3,7 +3,7 @@
 // with sources.
 #include "commands.hpp"
 
-#include "core/devices/devices.hpp"
+#include "core/scene/devices.hpp"
 #include "core/scene/params.hpp"
 #include "core/base/errors.hpp"
 

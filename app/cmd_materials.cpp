@@ -4,7 +4,7 @@
 #include "commands.hpp"
 
 #include "core/base/errors.hpp"
-#include "core/materials/materials.hpp"
+#include "core/scene/materials.hpp"
 #include "core/scene/params.hpp"
 
 #include <cstdio>

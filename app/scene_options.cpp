@@ -11,7 +11,7 @@ void add_scene_options(CLI::App& cmd, SceneOptions& o) {
 
 } // namespace sonarsim::app
 
-#include "core/devices/device_overrides.hpp"
+#include "core/scene/device_overrides.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/scene_io.hpp"
 #include "load.hpp"

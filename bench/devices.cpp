@@ -19,7 +19,7 @@
 #include "bench/terrain.hpp"
 #include "core/analysis/reference.hpp"
 #include "core/data/pose.hpp"
-#include "core/devices/devices.hpp"
+#include "core/scene/devices.hpp"
 #include "core/io/output.hpp"
 #include "core/pipeline/simulator.hpp"
 #include "core/sampling/acquisition.hpp"

@@ -6,7 +6,7 @@ set(SONARSIM_CORE_FLOORS
     "data"                    # plain data: the scene description, pose, trajectory, hits, polar image
     "meshfile"                # mesh files: the format table and its readers
     "grid"                    # the sonar's grid: beams, bins, beam tables, beam patterns
-    "scene devices materials" # the parameter table, scene files, device and material presets
+    "scene"                   # the parameter table, scene files, device and material presets
     "geometry"                # the scene's meshes in Embree
     "display"                 # display ranges, the fan image
     "shading"                 # the sonar equation over the hits

@@ -1,4 +1,4 @@
-// Files compiled into the library (core/devices/embed_devices.cmake writes, per folder of assets, an array of
+// Files compiled into the library (core/base/embed_files.cmake writes, per folder of assets, an array of
 // {file name, text} pairs and its count): the presets read from them, by name, and their names alone.
 #pragma once
 #include <algorithm>

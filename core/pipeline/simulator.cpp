@@ -2,8 +2,8 @@
 
 #include "core/data/pose.hpp"
 #include "core/base/scratch_pool.hpp"
-#include "core/devices/device_overrides.hpp"
-#include "core/devices/devices.hpp"
+#include "core/scene/device_overrides.hpp"
+#include "core/scene/devices.hpp"
 #include "core/sampling/acquisition.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/shading/physics.hpp"

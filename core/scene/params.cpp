@@ -3,7 +3,7 @@
 #include "core/scene/params.hpp"
 
 #include "core/base/errors.hpp"
-#include "core/materials/materials.hpp"
+#include "core/scene/materials.hpp"
 #include "core/scene/param_rows.hpp"
 
 namespace sonarsim {

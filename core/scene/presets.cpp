@@ -1,9 +1,9 @@
 // The group keys: sonar.device applies a device preset's values (the keys whose rows say preset_may_set,
-// checked when the preset is loaded, devices/devices.cpp), sensor.model sets each effect switch to its
+// checked when the preset is loaded, scene/devices.cpp), sensor.model sets each effect switch to its
 // ideal or device value.
 #include "core/scene/params.hpp"
 
-#include "core/devices/devices.hpp"
+#include "core/scene/devices.hpp"
 
 #include <algorithm>
 

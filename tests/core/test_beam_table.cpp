@@ -2,7 +2,7 @@
 // rendered image, its metadata and its fan carry.
 #include "core/base/errors.hpp"
 #include "core/grid/beam_tables.hpp"
-#include "core/devices/devices.hpp"
+#include "core/scene/devices.hpp"
 #include "core/pipeline/simulator.hpp"
 #include "core/scene/params.hpp"
 #include "core/grid/sonar_grid.hpp"

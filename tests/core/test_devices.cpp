@@ -1,6 +1,6 @@
 // Device presets (assets/devices/*.json): each parses, sets only parameter-table keys with valid values and
 // sources, applies through sonar.device, and renders a visible image of a floor with the device sensor.
-#include "core/devices/devices.hpp"
+#include "core/scene/devices.hpp"
 #include "core/scene/sampling_scheme.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/file_io.hpp"

@@ -2,7 +2,7 @@
 // docs/model.md documents, applies before a surface's explicit keys, rejects unknown names, and a floor of
 // sand renders brighter than one of mud by the GSAB law's difference at each bin's incidence.
 #include "core/base/errors.hpp"
-#include "core/materials/materials.hpp"
+#include "core/scene/materials.hpp"
 #include "core/pipeline/simulator.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/sampling_scheme.hpp"

@@ -5,7 +5,7 @@
 #include "ui/model/bindings.hpp"
 #include "ui/model/scene_files.hpp"
 
-#include "core/devices/devices.hpp"
+#include "core/scene/devices.hpp"
 #include "core/meshfile/mesh_formats.hpp"
 
 #include <filesystem>

@@ -1,7 +1,7 @@
 // The material's rows of the parameter table: the preset, GSAB backscatter (nu, q, mu, h), the mirror's
 // loss, and the seabed texture. Every surface has them: seafloor.material.*, objects.N.material.*,
 // water.surface_material.*.
-#include "core/materials/materials.hpp"
+#include "core/scene/materials.hpp"
 #include "core/scene/param_rows.hpp"
 
 namespace sonarsim::rows {

@@ -3,7 +3,7 @@
 #include "core/scene/param_rows.hpp"
 
 #include "core/grid/beam_tables.hpp"
-#include "core/devices/devices.hpp"
+#include "core/scene/devices.hpp"
 
 namespace sonarsim::rows {
 

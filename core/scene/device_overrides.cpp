@@ -1,6 +1,6 @@
-#include "core/devices/device_overrides.hpp"
+#include "core/scene/device_overrides.hpp"
 
-#include "core/devices/devices.hpp"
+#include "core/scene/devices.hpp"
 #include "core/scene/params.hpp"
 
 namespace sonarsim {

@@ -1,4 +1,4 @@
-// Device presets: assets/devices/NAME.json, embedded in the library at build time (embed_devices.cmake), so
+// Device presets: assets/devices/NAME.json, embedded in the library at build time (embed_files.cmake), so
 // the executable, the tests and the Python module find them wherever they run.
 #pragma once
 #include <nlohmann/json.hpp>
