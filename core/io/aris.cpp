@@ -165,12 +165,7 @@ SceneDesc on_aris_samples(const SceneDesc& s, const std::string& origin, std::st
     if (bins_are_samples(s.sonar, tm)) return s;
     SceneDesc out = s;
     out.sonar = on_samples(s.sonar, tm);
-    auto num = [](double v, int digits) {
-        std::ostringstream o;
-        o.precision(digits);
-        o << v;
-        return o.str();
-    };
+    auto num = significant_text;
     note = "the range grid is the ARIS samples': " + std::to_string(tm.samples) + " bins of " +
            num(tm.sample_m * 1e3, 4) + " mm from " + num(out.sonar.range_min_m, 6) + " to " +
            num(out.sonar.range_max_m, 6) + " m (asked: " + std::to_string(s.sonar.range_bins) + " from " +

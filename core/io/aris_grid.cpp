@@ -9,13 +9,17 @@
 #include <sstream>
 
 namespace sonarsim {
-namespace {
-
-std::string num(double v, int digits = 4) {
+std::string significant_text(double v, int digits) {
     std::ostringstream o;
     o.precision(digits);
     o << v;
     return o.str();
+}
+
+namespace {
+
+std::string num(double v, int digits = 4) {
+    return significant_text(v, digits);
 }
 
 std::string us(double v) {

@@ -44,6 +44,9 @@ struct ArisTiming {
 /// sensor.gain_db, the nearest whole dB in 0-24 (`adjusted` says so when that differs).
 ArisTiming aris_timing(const SceneDesc& scene, const ArisLimits& limits, const std::string& origin);
 
+/// `v` to `digits` significant digits, as the ARIS writer's messages quote values.
+std::string significant_text(double v, int digits);
+
 /// True when the sonar's range bins are the device's samples of `timing`: one bin per sample, each centred
 /// on its sample's range (to 1e-6 of a sample).
 bool bins_are_samples(const SonarParams& sonar, const ArisTiming& timing);

@@ -122,11 +122,10 @@ Labels place_labels(const PanelContent& c, const SectorLayout& sector, float x, 
             Rect box = box_beyond(p, {-std::sin(ar), -std::cos(ar)}, tw, th, gap);
             if (std::abs(a) >= 45 && (box.x < x || box.x + box.w > x + w)) {
                 const float bx = std::clamp(float(p.x) - tw / 2, x, x + w - tw);
-                // Its lower edge above the arc over the box's whole width (highest at its inner end).
+                // Its lower edge above the arc over the box's whole width: the arc is highest at the box's
+                // point nearest the boresight.
                 const double inner =
-                    std::clamp(std::min(std::abs(bx - fan.apex.x), std::abs(bx + tw - fan.apex.x)) *
-                                   (bx <= fan.apex.x && bx + tw >= fan.apex.x ? 0.0 : 1.0),
-                               0.0, R);
+                    std::min(R, std::max({0.0, double(bx) - fan.apex.x, fan.apex.x - double(bx + tw)}));
                 const double arc_y = fan.apex.y - std::sqrt(R * R - inner * inner);
                 box = {bx, float(arc_y) - gap - th, tw, th};
             }
