@@ -110,7 +110,7 @@ Row measure(SceneDesc s, const std::string& device, int repeats) {
     std::shared_ptr<const Frame> f;
     row.warm_ms = warm_ms(sim, s, repeats, &f);
     row.rays = f->hits().rays_traced;
-    if (f->hits().error_estimate.valid) row.est_rel_l1 = f->hits().error_estimate.rel_l1;
+    if (f->error_estimate.valid) row.est_rel_l1 = f->error_estimate.rel_l1;
     const Interval iv = device_interval(device, s);
     row.interval_ms = iv.ms, row.interval_how = iv.how;
 

@@ -58,7 +58,7 @@ int run_multipath_bench(const std::string& repo, int repeats, const std::vector<
                 std::sort(ms.begin(), ms.end());
                 const double med = ms[ms.size() / 2];
                 if (bounces == 0) direct_ms = med;
-                const auto& est = f->hits().error_estimate;
+                const auto& est = f->error_estimate;
                 std::string errors = "        -         -         -";
                 if (scheme == SamplingScheme::Adaptive) {
                     status_line(c.name + ", bounces " + std::to_string(bounces) + ": reference");

@@ -30,7 +30,7 @@ int run_warm_bench(const std::vector<std::string>& scenes, int repeats,
         const auto& hits = f->hits();
         const double floor = floor_ms(s, hits.rays_traced, repeats);
         status_line("");
-        const auto& e = hits.error_estimate;
+        const auto& e = f->error_estimate;
         std::printf("| %s | %llu | %.2f | %.2f | %.2f | %s | %s |\n", file.c_str(),
                     (unsigned long long)hits.rays_traced, warm, floor, warm / floor,
                     e.valid ? std::to_string(100 * e.rel_l1).substr(0, 5).c_str() : "-",

@@ -148,7 +148,7 @@ int run_worker(const WorkerOptions& o) {
                     st.label());
         const Timed t = time_setting(s, budget_ms, max_repeats);
         const Frame& first = *t.first;
-        const auto& e = first.hits().error_estimate;
+        const auto& e = first.error_estimate;
         const std::uint64_t rays = first.hits().rays_traced;
         json floor = nullptr;
         if (st.sampling.scheme == SamplingScheme::Adaptive) {

@@ -1,5 +1,7 @@
 #include "core/analysis/study.hpp"
 
+#include "core/shading/estimate.hpp"
+
 #include "core/base/errors.hpp"
 #include "core/data/pose.hpp"
 #include "core/grid/beam_tables.hpp"
@@ -25,6 +27,7 @@ SceneDesc with_sampling(SceneDesc s, const Sampling& m) {
 PolarImage render_raw(const SceneGeometry& g, const SceneDesc& s, TraceResult* hits = nullptr) {
     TraceResult t = trace(g, s);
     PolarImage img = t.shaded ? *t.shaded->image : shade(t, s);
+    if (t.halves) t.error_estimate = estimate_error(t, s);
     if (hits) *hits = std::move(t);
     return img;
 }

@@ -35,6 +35,8 @@ struct Cell {
     /// d ln(echo per metre of range) / d range across the elevation footprint [1/m]: the cell's echo is
     /// spread over its footprint with this linear trend (footprint.hpp); 0: evenly.
     float spread_slope_per_m = 0;
+    /// Jittered placement: which of the stratum's two independent rays this is (0 or 1); 0 otherwise.
+    std::uint8_t half = 0;
 };
 
 /// An echo that reached a scatterer by way of specular reflections (multipath.cpp), on the beam it arrives
@@ -67,6 +69,14 @@ struct TraceResult {
     std::vector<std::vector<GhostCell>> ghosts;
     std::uint64_t rays_traced = 0;
     std::uint64_t multipath_rays = 0; ///< continuation and shadow rays of the multipath ghosts
+    /// Jittered placement: the cells (and ghosts) form two independent estimates of the image (Cell::half),
+    /// from which shading estimates the sampling error (estimate_error).
+    bool halves = false;
+    /// Jittered placement, on every estimate_stride-th traced beam (the others empty): the same rays' cells
+    /// with each pair of elevation strata merged into one (footprint and centre of the pair), from which
+    /// shading estimates the footprint's bias.
+    std::vector<std::vector<Cell>> coarse_cells;
+    int estimate_stride = 1;
     /// Set when the tracer already ran the accumulation pass on its cells with the scene it was given
     /// (adaptive does, to estimate its error): the image channel and those TraceControl::channels asked for.
     std::shared_ptr<const Accumulation> shaded;
@@ -82,6 +92,8 @@ struct TraceResult {
         /// Fast: the part of rel_l1 that its azimuth probe saw and the sampler did not refine (one ray column
         /// per beam across the beam's width; strict refines it); included in rel_l1 and the quantiles.
         double azimuth_rel_l1 = 0;
+        /// Jittered: rel_l1's two terms summed apart: the halves' difference and the footprint's bias.
+        double variance_rel_l1 = 0, footprint_rel_l1 = 0;
         /// Whether both of the sampler's targets are met: median |dB| <= tolerance_db and rel L1 <=
         /// tolerance_rel_l1.
         bool meets(const SamplingParams& p) const {

@@ -78,7 +78,7 @@ struct WaterParams {
 
 enum class NormalSource { Mesh, Paper };
 /// Where rays go: the regular grid (trace.cpp), or the grid refined where the error needs it (adaptive.cpp).
-enum class RayPlacement { Grid, Adaptive };
+enum class RayPlacement { Grid, Adaptive, Jittered };
 /// Where a ray's echo goes: the bin of its range, or spread over its cell's range footprint (shade.cpp).
 enum class EchoBinning { Point, Footprint };
 /// How the adaptive sampler estimates its error (adaptive_estimate.cpp, docs/model.md): fast counts every
@@ -86,7 +86,7 @@ enum class EchoBinning { Point, Footprint };
 /// strict tells smooth cells (second order) from edges and measures that azimuth error with a probe.
 enum class ErrorEstimate { Fast, Strict };
 /// The named combinations of placement and binning (sampling.scheme; see scene/sampling_scheme.hpp).
-enum class SamplingScheme { Uniform, Spread, Adaptive };
+enum class SamplingScheme { Uniform, Spread, Adaptive, Jittered };
 
 struct SamplingParams {
     int elevation_rays = 101; ///< adaptive: rays of the base grid; grid: all rays (paper: 281)

@@ -8,6 +8,7 @@
 #include "core/scene/scene_io.hpp"
 #include "core/shading/physics.hpp"
 #include "core/sensor/sensor.hpp"
+#include "core/shading/estimate.hpp"
 #include "core/shading/shade.hpp"
 
 #include <algorithm>
@@ -101,6 +102,7 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
         rays_traced_ += t.rays_traced + t.multipath_rays;
         pass = std::move(t.shaded); // the tracer ran the pass on its cells with this very scene
         next.hits_ptr = std::make_shared<const TraceResult>(std::move(t));
+        next.error_estimate = next.hits_ptr->error_estimate;
     }
     if (!retrace && dirty_ == Stage::Place) next.placement_stale = true; // a preview's re-shade
     if (!pass && c.any()) {
@@ -116,6 +118,7 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
         if (c.path_orders) next.path_order_db = pass->path_order_db;
     }
     if (reshade) next.alpha_db_per_m = shade_constants(scene_).alpha_db_per_m;
+    if (reshade && next.hits_ptr->halves) next.error_estimate = estimate_error(*next.hits_ptr, scene_);
     if (from <= Stage::Sensor) {
         const auto t0 = std::chrono::steady_clock::now();
         next.polar_ptr = sensor_is_ideal(scene_)
@@ -171,8 +174,18 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
                         "each (ping, range slab) traced from the pose at its receive time; range = half the "
                         "two-way path from the transmit position"}};
     }
-    const auto& est = f.hits().error_estimate;
-    if (est.valid)
+    const auto& est = f.error_estimate;
+    if (est.valid && f.hits().halves)
+        j["sampling_error_estimate"] = {
+            {"rel_l1", est.rel_l1},
+            {"median_abs_db", est.median_abs_db},
+            {"p95_abs_db", est.p95_abs_db},
+            {"variance_rel_l1", est.variance_rel_l1},
+            {"footprint_rel_l1", est.footprint_rel_l1},
+            {"tolerance_met", est.meets(s.sampling)},
+            {"method", "per bin: the two independent halves' difference / 2 (variance) and the change when "
+                       "every footprint doubles (the footprint's bias), added in quadrature"}};
+    else if (est.valid)
         j["sampling_error_estimate"] = {
             {"rel_l1", est.rel_l1},
             {"median_abs_db", est.median_abs_db},

@@ -35,6 +35,9 @@ struct Frame {
     std::shared_ptr<const StrongestContribution> strongest_ptr;
     std::vector<double> path_order_db; ///< with multipath (sampling.bounces > 0): echo per path order [dB]
     DisplayParams display;             ///< the display range it is shown with (display.auto)
+    /// The sampler's error estimate of the ideal image: the tracer's (adaptive), or, for hits in two
+    /// halves (jittered), made from the hits with this frame's shading (estimate_error).
+    TraceResult::ErrorEstimate error_estimate;
     double alpha_db_per_m = 0;
     /// Each stage's time in making this frame; 0 where the frame shares the stage's result with an earlier
     /// one.

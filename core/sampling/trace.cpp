@@ -111,6 +111,7 @@ TraceResult trace(const SceneGeometry& g, const SceneDesc& s, const TraceControl
     const auto t0 = std::chrono::steady_clock::now();
     TraceResult out = moving(s.sonar)                                  ? trace_moving(g, s, control)
                       : s.sampling.placement == RayPlacement::Adaptive ? trace_adaptive(g, s, control)
+                      : s.sampling.placement == RayPlacement::Jittered ? trace_jittered(g, s, control)
                                                                        : trace_uniform(g, s, control);
     out.trace_ms = ms_since(t0);
     return out;

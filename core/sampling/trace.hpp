@@ -20,4 +20,10 @@ TraceResult trace_uniform(const SceneGeometry& geometry, const SceneDesc& scene,
 TraceResult trace_adaptive(const SceneGeometry& geometry, const SceneDesc& scene,
                            const TraceControl& control = {});
 
+/// Jittered: per beam azimuth_rays x elevation_rays strata of two rays each, placed independently inside
+/// their stratum by a seeded hash (the same scene traces the same rays); the two sets (Cell::half) are two
+/// independent estimates of the image, from which shading estimates the error (jittered.cpp).
+TraceResult trace_jittered(const SceneGeometry& geometry, const SceneDesc& scene,
+                           const TraceControl& control = {});
+
 } // namespace sonarsim

@@ -38,12 +38,11 @@ const Angle& half_angle(double de) {
 }
 
 Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, const Angle& a_lo,
-               const Angle& a_hi, const Angle& e_lo, const Angle& e_hi) {
+               const Angle& a_hi, const Angle& e_lo, const Angle& e_hi, const std::pair<Angle, Angle>* centre) {
     const glm::dvec3 d = f.dir(a, e), p = f.origin + h.t * d;
-    const double r = h.t;
     Cell c;
     c.point_m = glm::vec3(p);
-    c.range_m = float(r);
+    c.range_m = float(h.t);
     c.cos_incidence = float(std::min(1.0, std::abs(glm::dot(h.normal, d))));
     c.solid_angle_sr = float(e.c * (e_hi.rad - e_lo.rad) * (a_hi.rad - a_lo.rad) * f.elevation_weight(e.rad));
     c.azimuth_rad = float(a.rad), c.azimuth_width_rad = float(a_hi.rad - a_lo.rad);
@@ -60,10 +59,16 @@ Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, 
         const double t = num / den;
         return (den != 0 && t > 0 && std::isfinite(t)) ? t : -1;
     };
-    const double re0 = edge_range(a, e_lo);
-    const double re1 = edge_range(a, e_hi);
-    const double ra0 = edge_range(a_lo, e);
-    const double ra1 = edge_range(a_hi, e);
+    // Off-centre ray: the edges through the cell's centre lines, about the range at its centre.
+    const double r_centre = centre ? edge_range(centre->first, centre->second) : -1;
+    const bool centred = r_centre > 0;
+    const Angle& fa = centred ? centre->first : a;
+    const Angle& fe = centred ? centre->second : e;
+    const double r = centred ? r_centre : h.t;
+    const double re0 = edge_range(fa, e_lo);
+    const double re1 = edge_range(fa, e_hi);
+    const double ra0 = edge_range(a_lo, fe);
+    const double ra1 = edge_range(a_hi, fe);
     // An edge that does not meet the plane (beyond its horizon): mirror the other edge about r. An edge ray
     // close to the plane's horizon meets it far away (the range grows as 1 / (n.d), without bound): the
     // facet does not reach that far, and the echo spread there would land in bins no surface crosses (a
@@ -77,7 +82,9 @@ Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, 
         return float(r + std::clamp(x - r, -lim, lim));
     };
     c.range_e_lo_m = edge(re0, re1), c.range_e_hi_m = edge(re1, re0);
-    c.range_a_lo_m = edge(ra0, ra1), c.range_a_hi_m = edge(ra1, ra0);
+    // The azimuth edges count from range_m (footprint_of): shifted by the ray's range from the centre's.
+    const double shift = h.t - r;
+    c.range_a_lo_m = float(edge(ra0, ra1) + shift), c.range_a_hi_m = float(edge(ra1, ra0) + shift);
     c.material = h.material;
     c.elevation_index = 0;
     return c;

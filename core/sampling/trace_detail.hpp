@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 
 namespace sonarsim::detail {
 
@@ -69,7 +70,10 @@ std::optional<Hit> first_hit(const SceneGeometry& g, const SceneDesc& s, const g
 /// The cell [a_lo, a_hi] x [e_lo, e_hi] around the ray (a, e) that hit `h`: range, incidence (h.normal: the
 /// shading normal), solid angle (weighted by the elevation pattern) and the range footprint at the cell's
 /// edges on the plane of the face hit (h.face_normal).
+/// `centre`: the cell's centre direction (azimuth, elevation) when the ray is not at it (jittered): the
+/// footprint is then the whole cell's on that plane, wherever in the cell the ray fell.
 Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, const Angle& a_lo,
-               const Angle& a_hi, const Angle& e_lo, const Angle& e_hi);
+               const Angle& a_hi, const Angle& e_lo, const Angle& e_hi,
+               const std::pair<Angle, Angle>* centre = nullptr);
 
 } // namespace sonarsim::detail

@@ -17,10 +17,11 @@ struct NamedSampling {
 
 /// In SamplingScheme order. Adaptive placement with point binning has no name: it is rejected
 /// (validate_scene), since the adaptive sampler's criteria and error estimate assume footprint binning.
-inline constexpr std::array<NamedSampling, 3> kSamplingSchemes = {{
+inline constexpr std::array<NamedSampling, 4> kSamplingSchemes = {{
     {SamplingScheme::Uniform, "uniform", RayPlacement::Grid, EchoBinning::Point},
     {SamplingScheme::Spread, "spread", RayPlacement::Grid, EchoBinning::Footprint},
     {SamplingScheme::Adaptive, "adaptive", RayPlacement::Adaptive, EchoBinning::Footprint},
+    {SamplingScheme::Jittered, "jittered", RayPlacement::Jittered, EchoBinning::Footprint},
 }};
 
 inline const char* scheme_name(SamplingScheme s) {

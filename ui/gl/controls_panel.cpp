@@ -336,7 +336,7 @@ void stats_section(Session& session, const ControlsUi& ui) {
         ImGui::TextDisabled("%llu rays  kept %s MiB", static_cast<unsigned long long>(f.hits().rays_traced),
                             mib_text(m.mesh_bytes + m.kept_bytes).c_str());
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("Kept between images: %s", to_string(m).c_str());
-        estimate_line(s, f.hits().error_estimate);
+        estimate_line(s, f.error_estimate);
     } else {
         ImGui::SameLine();
         ImGui::TextDisabled("  image: rendering...");

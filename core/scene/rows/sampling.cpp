@@ -70,7 +70,7 @@ std::vector<ParamSpec> sampling_rows() {
 std::vector<ParamSpec> sampling_input_rows() {
     return {
         enumeration<RayPlacement>(
-            "sampling.placement", {"grid", "adaptive"}, Stage::Trace,
+            "sampling.placement", {"grid", "adaptive", "jittered"}, Stage::Trace,
             "Where rays go: grid: elevation_rays x azimuth_rays per beam; adaptive: that "
             "grid refined until sampling.tolerance_db and tolerance_rel_l1 are met (needs footprint binning)",
             [](S s) -> RayPlacement& { return s.sampling.placement; }),
