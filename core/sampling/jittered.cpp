@@ -61,24 +61,24 @@ TraceResult trace_jittered(const SceneGeometry& g, const SceneDesc& s, const Tra
     std::vector<char> sampled(static_cast<size_t>(N), 0);
     for (int i = 0, seen = 0; i < N; ++i)
         if (control.traces(i)) sampled[size_t(i)] = seen++ % out.estimate_stride == 0;
-    std::vector<Angle> e_pair_mid(static_cast<size_t>(M));
-    for (int j = 0; j < M; ++j) {
-        const int lo = j & ~1, hi = std::min(M, lo + 2); // rows [lo, hi) merge (the last alone when M is odd)
-        e_pair_mid[size_t(j)] = Angle(phi / 2 - 0.5 * (lo + hi) * de);
-    }
+    // Each ray's cell: the half of its stratum (in elevation) it falls in; the antithetic pair's two rays
+    // fall in opposite halves. Edges of the halves, and their centres.
+    std::vector<Angle> e_sub_edge(size_t(2) * M + 1), e_sub_mid(size_t(2) * M);
+    for (int j = 0; j <= 2 * M; ++j) e_sub_edge[size_t(j)] = Angle(phi / 2 - j * de / 2);
+    for (int j = 0; j < 2 * M; ++j) e_sub_mid[size_t(j)] = Angle(phi / 2 - (j + 0.5) * de / 2);
     tbb::parallel_for(0, N, [&](int i) {
         if (control.cancelled() || !control.traces(i)) return;
         auto& cells = out.cells[size_t(i)];
         cells.reserve(size_t(4) * K * M);
-        std::vector<std::pair<Angle, Angle>> centre(static_cast<size_t>(M)), pair_centre(centre);
+        std::vector<std::pair<Angle, Angle>> centre(static_cast<size_t>(M)), sub_centre(size_t(2) * M);
         auto* coarse = sampled[size_t(i)] ? &out.coarse_cells[size_t(i)] : nullptr;
         if (coarse) coarse->reserve(size_t(4) * K * M);
         const double a_beam_lo = grid.beam_starboard_edge_rad(i), da = grid.beam_width_rad(i) / K;
         for (int k = 0; k < K; ++k) {
             const double a_lo_rad = a_beam_lo + (K - k - 1) * da; // column 0 is the port-most
             const Angle a_lo(a_lo_rad), a_hi(a_lo_rad + da), a_c(a_lo_rad + da / 2);
-            for (int j = 0; j < M; ++j)
-                centre[size_t(j)] = {a_c, e_mid[size_t(j)]}, pair_centre[size_t(j)] = {a_c, e_pair_mid[size_t(j)]};
+            for (int j = 0; j < M; ++j) centre[size_t(j)] = {a_c, e_mid[size_t(j)]};
+            for (int j = 0; j < 2 * M; ++j) sub_centre[size_t(j)] = {a_c, e_sub_mid[size_t(j)]};
             for (int j = 0; j < M; ++j) {
                 for (int ray = 0; ray < 4; ++ray) {
                     // Each half an antithetic pair (mirrored about the stratum's centre: second order on a
@@ -90,9 +90,10 @@ TraceResult trace_jittered(const SceneGeometry& g, const SceneDesc& s, const Tra
                     const glm::dvec3 d = frame.dir(a, e);
                     const auto h = detail::first_hit(g, s, frame.origin, d, frame.t_max);
                     if (!h) continue;
-                    Cell c = detail::make_cell(frame, *h, a, e, a_lo, a_hi, e_edge[size_t(j) + 1],
-                                               e_edge[size_t(j)], &centre[size_t(j)]);
-                    c.solid_angle_sr *= 0.25f; // four rays per stratum
+                    const int sub = 2 * j + (ue < 0.5 ? 0 : 1); // top half first
+                    Cell c = detail::make_cell(frame, *h, a, e, a_lo, a_hi, e_sub_edge[size_t(sub) + 1],
+                                               e_sub_edge[size_t(sub)], &sub_centre[size_t(sub)]);
+                    c.solid_angle_sr *= 0.5f; // each half of the stratum holds one ray of each pair
                     c.azimuth_rad = float(a_lo_rad + da / 2); // the stratum's centre: its azimuth extent
                     c.elevation_index = std::uint32_t(k * M + j);
                     c.half = std::uint8_t(half);
@@ -105,11 +106,10 @@ TraceResult trace_jittered(const SceneGeometry& g, const SceneDesc& s, const Tra
                             gs[n].cell.solid_angle_sr *= 0.25f, gs[n].cell.half = std::uint8_t(half);
                     }
                     cells.push_back(c);
-                    if (coarse) {
-                        const int lo = j & ~1, hi = std::min(M, lo + 2);
-                        Cell m = detail::make_cell(frame, *h, a, e, a_lo, a_hi, e_edge[size_t(hi)],
-                                                   e_edge[size_t(lo)], &pair_centre[size_t(j)]);
-                        m.solid_angle_sr = c.solid_angle_sr, m.azimuth_rad = c.azimuth_rad, m.half = c.half;
+                    if (coarse) { // the same ray with the whole stratum as its cell
+                        Cell m = detail::make_cell(frame, *h, a, e, a_lo, a_hi, e_edge[size_t(j) + 1],
+                                                   e_edge[size_t(j)], &centre[size_t(j)]);
+                        m.solid_angle_sr *= 0.25f, m.azimuth_rad = c.azimuth_rad, m.half = c.half;
                         coarse->push_back(m);
                     }
                 }
