@@ -71,7 +71,7 @@ int run_study(const StudyOptions& o) {
                 "p95_dB", "holes", "est_L1_%");
     // One series per scheme (kSamplingSchemes order, the index of r.sampling.scheme), then the scene's own.
     const std::array<std::array<unsigned char, 3>, kSamplingSchemes.size()> colours = {
-        {{214, 39, 40}, {31, 119, 180}, {44, 160, 44}}};
+        {{214, 39, 40}, {31, 119, 180}, {44, 160, 44}, {148, 103, 189}}};
     std::vector<Series> series;
     for (const NamedSampling& n : kSamplingSchemes)
         series.push_back({std::string(n.name) + (n.scheme == SamplingScheme::Uniform ? " (paper)" : ""),
@@ -94,7 +94,8 @@ int run_study(const StudyOptions& o) {
             << r.error.echoing_ref << "," << (r.estimate.valid ? r.estimate.rel_l1 : -1) << ","
             << (r.estimate.valid ? r.estimate.median_abs_db : -1) << "\n";
         const double y = std::max(100 * r.error.rel_l1, 1e-6);
-        series[is_default ? 3 : size_t(r.sampling.scheme)].points.emplace_back(r.time_ms, y);
+        series[is_default ? kSamplingSchemes.size() : size_t(r.sampling.scheme)].points.emplace_back(
+            r.time_ms, y);
     }
     const std::string title =
         "sonarsim study: " + (o.scene.scene_file.empty() ? "default scene" : o.scene.scene_file) +

@@ -171,11 +171,12 @@ StudyRow measure(const SceneGeometry& g, const SceneDesc& scene, const Sampling&
 
 std::vector<Sampling> default_ladder(bool quick) {
     using S = SamplingScheme;
-    std::vector<Sampling> v = {{S::Uniform, 281, 1},   {S::Uniform, 1000, 1}, {S::Uniform, 3000, 2},
-                               {S::Uniform, 10000, 4}, {S::Spread, 31, 1},    {S::Spread, 101, 1},
-                               {S::Spread, 281, 1},    {S::Spread, 1000, 2},  {S::Spread, 3000, 4},
-                               {S::Adaptive, 11, 1},   {S::Adaptive, 31, 1},  {S::Adaptive, 101, 1},
-                               {S::Adaptive, 281, 1},  {S::Adaptive, 1000, 2}};
+    std::vector<Sampling> v = {{S::Uniform, 281, 1},   {S::Uniform, 1000, 1},  {S::Uniform, 3000, 2},
+                               {S::Uniform, 10000, 4}, {S::Spread, 31, 1},     {S::Spread, 101, 1},
+                               {S::Spread, 281, 1},    {S::Spread, 1000, 2},   {S::Spread, 3000, 4},
+                               {S::Adaptive, 11, 1},   {S::Adaptive, 31, 1},   {S::Adaptive, 101, 1},
+                               {S::Adaptive, 281, 1},  {S::Adaptive, 1000, 2}, {S::Jittered, 25, 1},
+                               {S::Jittered, 75, 1},   {S::Jittered, 250, 2}};
     if (quick)
         v.erase(std::remove_if(
                     v.begin(), v.end(),

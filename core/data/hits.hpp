@@ -72,11 +72,10 @@ struct TraceResult {
     /// Jittered placement: the cells (and ghosts) form two independent estimates of the image (Cell::half),
     /// from which shading estimates the sampling error (estimate_error).
     bool halves = false;
-    /// Jittered placement, on every estimate_stride-th traced beam (the others empty): the same rays' cells
-    /// with each pair of elevation strata merged into one (footprint and centre of the pair), from which
-    /// shading estimates the footprint's bias.
-    std::vector<std::vector<Cell>> coarse_cells;
-    int estimate_stride = 1;
+    /// Jittered placement, on every few traced beams (the estimate's samples) (the others empty): the same
+    /// rays' cells with each ray's whole stratum as its cell, from which shading estimates the footprint's
+    /// bias.
+    std::vector<std::vector<Cell>> stratum_cells;
     /// Set when the tracer already ran the accumulation pass on its cells with the scene it was given
     /// (adaptive does, to estimate its error): the image channel and those TraceControl::channels asked for.
     std::shared_ptr<const Accumulation> shaded;

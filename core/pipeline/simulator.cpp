@@ -118,7 +118,11 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
         if (c.path_orders) next.path_order_db = pass->path_order_db;
     }
     if (reshade) next.alpha_db_per_m = shade_constants(scene_).alpha_db_per_m;
-    if (reshade && next.hits_ptr->halves) next.error_estimate = estimate_error(*next.hits_ptr, scene_);
+    if (reshade && next.hits_ptr->halves) { // jittered: the estimate from the hits, with this shading
+        const auto t0 = std::chrono::steady_clock::now();
+        next.error_estimate = estimate_error(*next.hits_ptr, scene_);
+        next.shade_ms += ms_since(t0);
+    }
     if (from <= Stage::Sensor) {
         const auto t0 = std::chrono::steady_clock::now();
         next.polar_ptr = sensor_is_ideal(scene_)
@@ -183,8 +187,10 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
             {"variance_rel_l1", est.variance_rel_l1},
             {"footprint_rel_l1", est.footprint_rel_l1},
             {"tolerance_met", est.meets(s.sampling)},
-            {"method", "per bin: the two independent halves' difference / 2 (variance) and the change when "
-                       "every footprint doubles (the footprint's bias), added in quadrature"}};
+            {"method",
+             "per bin on every few beams: half the difference of the two independent halves "
+             "(variance_rel_l1) and a third of the change when each ray's cell is its whole stratum "
+             "instead of its half (footprint_rel_l1, second order), added in quadrature"}};
     else if (est.valid)
         j["sampling_error_estimate"] = {
             {"rel_l1", est.rel_l1},

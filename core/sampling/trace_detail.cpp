@@ -38,7 +38,8 @@ const Angle& half_angle(double de) {
 }
 
 Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, const Angle& a_lo,
-               const Angle& a_hi, const Angle& e_lo, const Angle& e_hi, const std::pair<Angle, Angle>* centre) {
+               const Angle& a_hi, const Angle& e_lo, const Angle& e_hi,
+               const std::pair<Angle, Angle>* centre) {
     const glm::dvec3 d = f.dir(a, e), p = f.origin + h.t * d;
     Cell c;
     c.point_m = glm::vec3(p);
@@ -59,32 +60,44 @@ Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, 
         const double t = num / den;
         return (den != 0 && t > 0 && std::isfinite(t)) ? t : -1;
     };
-    // Off-centre ray: the edges through the cell's centre lines, about the range at its centre.
-    const double r_centre = centre ? edge_range(centre->first, centre->second) : -1;
-    const bool centred = r_centre > 0;
-    const Angle& fa = centred ? centre->first : a;
-    const Angle& fe = centred ? centre->second : e;
-    const double r = centred ? r_centre : h.t;
-    const double re0 = edge_range(fa, e_lo);
-    const double re1 = edge_range(fa, e_hi);
-    const double ra0 = edge_range(a_lo, fe);
-    const double ra1 = edge_range(a_hi, fe);
     // An edge that does not meet the plane (beyond its horizon): mirror the other edge about r. An edge ray
     // close to the plane's horizon meets it far away (the range grows as 1 / (n.d), without bound): the
     // facet does not reach that far, and the echo spread there would land in bins no surface crosses (a
     // cell 7 m away at grazing incidence spread from 4 to 19 m). Such an edge keeps at most kMaxAsymmetry
     // times the other edge's offset from r (on a plane away from its horizon the two differ by a few %).
     constexpr double kMaxAsymmetry = 2;
-    auto edge = [r](double x, double other) {
-        if (!(x > 0)) return float(other > 0 ? 2 * r - other : r);
-        if (!(other > 0)) return float(x);
-        const double lim = kMaxAsymmetry * std::abs(other - r);
-        return float(r + std::clamp(x - r, -lim, lim));
+    // The footprint's four edges [m] through the lines of the cell at (fa, fe), about range r there.
+    struct Edges {
+        double e_lo, e_hi, a_lo, a_hi;
     };
-    c.range_e_lo_m = edge(re0, re1), c.range_e_hi_m = edge(re1, re0);
-    // The azimuth edges count from range_m (footprint_of): shifted by the ray's range from the centre's.
-    const double shift = h.t - r;
-    c.range_a_lo_m = float(edge(ra0, ra1) + shift), c.range_a_hi_m = float(edge(ra1, ra0) + shift);
+    auto edges = [&](const Angle& fa, const Angle& fe, double r) {
+        auto edge = [r](double x, double other) {
+            if (!(x > 0)) return other > 0 ? 2 * r - other : r;
+            if (!(other > 0)) return x;
+            const double lim = kMaxAsymmetry * std::abs(other - r);
+            return r + std::clamp(x - r, -lim, lim);
+        };
+        const double re0 = edge_range(fa, e_lo), re1 = edge_range(fa, e_hi);
+        const double ra0 = edge_range(a_lo, fe), ra1 = edge_range(a_hi, fe);
+        return Edges{edge(re0, re1), edge(re1, re0), edge(ra0, ra1), edge(ra1, ra0)};
+    };
+    Edges x = edges(a, e, h.t);
+    // An off-centre ray (jittered) stands for the whole cell: its footprint is taken through the cell's
+    // centre lines, about the range at the centre (the azimuth edges count from range_m, the ray's range,
+    // so they shift by its offset), when that footprint covers the ray's own range; it does not on a plane
+    // seen nearly edge-on, whose centre line meets it far from the ray (the ray's own footprint then).
+    if (centre) {
+        const double r_c = edge_range(centre->first, centre->second);
+        if (r_c > 0) {
+            const Edges y = edges(centre->first, centre->second, r_c);
+            const double lo = std::min(y.e_lo, y.e_hi) + std::min(y.a_lo, y.a_hi) - r_c;
+            const double hi = std::max(y.e_lo, y.e_hi) + std::max(y.a_lo, y.a_hi) - r_c;
+            const double slack = 1e-6 * h.t;
+            if (h.t >= lo - slack && h.t <= hi + slack) x = y, x.a_lo += h.t - r_c, x.a_hi += h.t - r_c;
+        }
+    }
+    c.range_e_lo_m = float(x.e_lo), c.range_e_hi_m = float(x.e_hi);
+    c.range_a_lo_m = float(x.a_lo), c.range_a_hi_m = float(x.a_hi);
     c.material = h.material;
     c.elevation_index = 0;
     return c;

@@ -53,9 +53,10 @@ void validate_scene(const SceneDesc& s, const std::string& file, const std::vect
                              " does not divide sonar.beams (" + std::to_string(s.sonar.beams) +
                              "): each ping fires every P-th beam");
     if (s.sampling.placement == RayPlacement::Jittered && s.sampling.binning == EchoBinning::Point)
-        throw InputError(file, "sampling.binning",
-                         "jittered placement needs \"footprint\" binning (its error estimate measures the "
-                         "footprint's bias): use sampling.scheme \"jittered\", or \"uniform\" for point binning");
+        throw InputError(
+            file, "sampling.binning",
+            "jittered placement needs \"footprint\" binning (its error estimate measures the "
+            "footprint's bias): use sampling.scheme \"jittered\", or \"uniform\" for point binning");
     if (s.sampling.placement == RayPlacement::Adaptive && s.sampling.binning == EchoBinning::Point)
         throw InputError(file, "sampling.binning",
                          "adaptive placement needs \"footprint\" binning (its refinement and error estimate "
@@ -65,11 +66,14 @@ void validate_scene(const SceneDesc& s, const std::string& file, const std::vect
         throw InputError(file, "sampling.normals",
                          "\"paper\" normals need the regular ray grid: use sampling.scheme \"uniform\" or "
                          "\"spread\" with them");
-    const double rays = double(s.sonar.beams) * s.sampling.azimuth_rays * s.sampling.elevation_rays;
+    const double rays = double(s.sonar.beams) * s.sampling.azimuth_rays * s.sampling.elevation_rays *
+                        (s.sampling.placement == RayPlacement::Jittered ? 4 : 1);
     if (rays > kMaxRaysPerImage)
-        throw InputError(file, "sampling.elevation_rays",
-                         "beams x azimuth_rays x elevation_rays = " + number_text(rays) +
-                             " exceeds the limit of " + number_text(kMaxRaysPerImage) + " rays per image");
+        throw InputError(
+            file, "sampling.elevation_rays",
+            std::string(s.sampling.placement == RayPlacement::Jittered ? "4 (jittered) x " : "") +
+                "beams x azimuth_rays x elevation_rays = " + number_text(rays) + " exceeds the limit of " +
+                number_text(kMaxRaysPerImage) + " rays per image");
     // Ranges are carried in single precision; a bin narrower than 1 um resolves nothing.
     const double bin_m = (s.sonar.range_max_m - s.sonar.range_min_m) / s.sonar.range_bins;
     if (!(bin_m >= kMinRangeBinM))

@@ -280,6 +280,17 @@ void material_section(Session& session, ControlsUi& ui) {
 }
 
 void estimate_tooltip(const SceneDesc& s, const TraceResult::ErrorEstimate& est) {
+    if (s.sampling.placement == RayPlacement::Jittered) {
+        ImGui::SetTooltip(
+            "The jittered grid's estimate of this image's error: rel L1 of the linear image and "
+            "median |dB| over echoing bins,\nagainst sampling.tolerance_rel_l1 (%.2f %%) and "
+            "tolerance_db (%.3f dB): its two independent halves' difference (%.2f %%) and\nits "
+            "footprint's bias (%.2f %%), added in quadrature bin by bin (docs/model.md). The grid "
+            "does not refine: more rays lower it.",
+            100 * s.sampling.tolerance_rel_l1, s.sampling.tolerance_db, 100 * est.variance_rel_l1,
+            100 * est.footprint_rel_l1);
+        return;
+    }
     ImGui::SetTooltip("The sampler's estimate of this image's error: rel L1 of the linear image and median "
                       "|dB| over echoing bins,\nagainst sampling.tolerance_rel_l1 (%.2f %%) and tolerance_db "
                       "(%.3f dB); %.2f %% of it is one ray column's error across a beam's\nwidth, which "
@@ -288,8 +299,8 @@ void estimate_tooltip(const SceneDesc& s, const TraceResult::ErrorEstimate& est)
                       100 * s.sampling.tolerance_rel_l1, s.sampling.tolerance_db, 100 * est.azimuth_rel_l1);
 }
 
-/// The adaptive sampler's estimate of the shown image's error, against its tolerances (none for a grid or a
-/// preview).
+/// The sampler's estimate of the shown image's error (adaptive, jittered), against its tolerances (none for
+/// a plain grid or a preview).
 void estimate_line(const SceneDesc& s, const TraceResult::ErrorEstimate& est) {
     if (!est.valid) return;
     const bool met = est.meets(s.sampling);

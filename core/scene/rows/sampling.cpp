@@ -8,7 +8,8 @@ namespace sonarsim::rows {
 
 std::vector<ParamSpec> sampling_rows() {
     std::vector<ParamSpec> t;
-    t.push_back(integer("sampling.elevation_rays", 1, 1000000, Stage::Trace, "Elevation rays M per beam",
+    t.push_back(integer("sampling.elevation_rays", 1, 1000000, Stage::Trace,
+                        "Elevation rays M per beam (jittered: M strata of four rays)",
                         [](S s) -> int& { return s.sampling.elevation_rays; })
                     .with_log_slider(1, 2000));
     t.push_back(
@@ -23,7 +24,8 @@ std::vector<ParamSpec> sampling_rows() {
     ParamSpec scheme =
         blank<ParamSpec>("sampling.scheme", "", ParamType::Enum, Stage::Trace,
                          "Names of sampling.placement + sampling.binning: uniform = grid + point "
-                         "(the paper), spread = grid + footprint, adaptive = adaptive + footprint");
+                         "(the paper), spread = grid + footprint, adaptive = adaptive + footprint, jittered "
+                         "= jittered + footprint");
     for (const NamedSampling& n : kSamplingSchemes) scheme.choices.push_back(n.name);
     scheme.get = [](const SceneDesc& s) {
         const auto named = scheme_of(s.sampling);
@@ -72,7 +74,10 @@ std::vector<ParamSpec> sampling_input_rows() {
         enumeration<RayPlacement>(
             "sampling.placement", {"grid", "adaptive", "jittered"}, Stage::Trace,
             "Where rays go: grid: elevation_rays x azimuth_rays per beam; adaptive: that "
-            "grid refined until sampling.tolerance_db and tolerance_rel_l1 are met (needs footprint binning)",
+            "grid refined until sampling.tolerance_db and tolerance_rel_l1 are met (needs footprint "
+            "binning); "
+            "jittered: that many strata of four rays, two independent antithetic pairs at seeded random "
+            "points, whose difference estimates the image's error (needs footprint binning; no refinement)",
             [](S s) -> RayPlacement& { return s.sampling.placement; }),
         enumeration<EchoBinning>(
             "sampling.binning", {"point", "footprint"}, Stage::Trace,
