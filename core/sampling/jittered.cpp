@@ -45,10 +45,7 @@ TraceResult trace_jittered(const SceneGeometry& g, const SceneDesc& s, const Tra
     const detail::RayFrame frame(s);
     const SonarGrid& grid = *frame.grid;
     const double phi = frame.elevation_weight.traced_fov_rad(), de = phi / M;
-    std::vector<Angle> e_edge(static_cast<size_t>(M) + 1);
-    for (int j = 0; j <= M; ++j) e_edge[size_t(j)] = Angle(phi / 2 - j * de);
-    std::vector<Angle> e_mid(static_cast<size_t>(M));
-    for (int j = 0; j < M; ++j) e_mid[size_t(j)] = Angle(phi / 2 - (j + 0.5) * de);
+    const std::vector<Angle> e_edge = detail::even_angles(phi, M), e_mid = detail::even_angles(phi, M, true);
 
     TraceResult out;
     out.beams = N;
@@ -66,9 +63,8 @@ TraceResult trace_jittered(const SceneGeometry& g, const SceneDesc& s, const Tra
         if (control.traces(i)) sampled[size_t(i)] = seen++ % stride == 0;
     // Each ray's cell: the half of its stratum (in elevation) it falls in; the antithetic pair's two rays
     // fall in opposite halves. Edges of the halves, and their centres.
-    std::vector<Angle> e_sub_edge(size_t(2) * M + 1), e_sub_mid(size_t(2) * M);
-    for (int j = 0; j <= 2 * M; ++j) e_sub_edge[size_t(j)] = Angle(phi / 2 - j * de / 2);
-    for (int j = 0; j < 2 * M; ++j) e_sub_mid[size_t(j)] = Angle(phi / 2 - (j + 0.5) * de / 2);
+    const std::vector<Angle> e_sub_edge = detail::even_angles(phi, 2 * M),
+                             e_sub_mid = detail::even_angles(phi, 2 * M, true);
     tbb::parallel_for(0, N, [&](int i) {
         if (control.cancelled() || !control.traces(i)) return;
         auto& cells = out.cells[size_t(i)];

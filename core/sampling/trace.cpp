@@ -51,12 +51,10 @@ TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s, const Trac
     const int N = s.sonar.beams, K = s.sampling.azimuth_rays, M = s.sampling.elevation_rays;
     const detail::RayFrame frame(s);
     const SonarGrid& grid = *frame.grid;
-    const double phi = frame.elevation_weight.traced_fov_rad(), de = phi / M;
+    const double phi = frame.elevation_weight.traced_fov_rad();
 
     // Elevation centres and edges are shared by all beams.
-    std::vector<Angle> e_mid(static_cast<size_t>(M)), e_edge(static_cast<size_t>(M) + 1);
-    for (int j = 0; j < M; ++j) e_mid[size_t(j)] = Angle(phi / 2 - (j + 0.5) * de);
-    for (int j = 0; j <= M; ++j) e_edge[size_t(j)] = Angle(phi / 2 - j * de);
+    const std::vector<Angle> e_mid = detail::even_angles(phi, M, true), e_edge = detail::even_angles(phi, M);
 
     // Paper normals need each ray's neighbours across beams, so they need the full grid first (hit points
     // relative to the sonar).

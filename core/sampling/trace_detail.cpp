@@ -33,6 +33,13 @@ std::optional<Hit> first_hit(const SceneGeometry& g, const SceneDesc& s, const g
     return out;
 }
 
+std::vector<Angle> even_angles(double phi, int n, bool centres) {
+    const double d = phi / n, offset = centres ? 0.5 : 0.0;
+    std::vector<Angle> out(size_t(n) + (centres ? 0 : 1));
+    for (size_t j = 0; j < out.size(); ++j) out[j] = Angle(phi / 2 - (double(j) + offset) * d);
+    return out;
+}
+
 const Angle& half_angle(double de) {
     return recent_value<8>(de, [](double w) { return Angle(w / 2); });
 }

@@ -10,6 +10,7 @@
 #include <limits>
 #include <optional>
 #include <utility>
+#include <vector>
 
 namespace sonarsim::detail {
 
@@ -59,6 +60,9 @@ inline double plane_range_near(const glm::dvec3& o, const glm::dvec3& p, const g
     const double t = num / den;
     return t > 0 ? t : -1;
 }
+
+/// The n + 1 edges of n even cells over [-phi / 2, phi / 2] [rad], top down (`centres`: their n centres).
+std::vector<Angle> even_angles(double phi, int n, bool centres = false);
 
 /// Angle(de / 2), from a small per-thread cache: the adaptive sampler's cells come in a few widths.
 const Angle& half_angle(double de);
