@@ -19,6 +19,7 @@
 #include "bench/terrain.hpp"
 #include "core/analysis/reference.hpp"
 #include "core/data/pose.hpp"
+#include "core/grid/sonar_grid.hpp"
 #include "core/scene/devices.hpp"
 #include "core/io/output.hpp"
 #include "core/pipeline/simulator.hpp"
@@ -76,8 +77,7 @@ SceneDesc terrain_case(const std::string& mesh, const std::string& device) {
     o.scale = {k, k, kz};
     s.objects = {o};
     s.sonar.pose.orientation_deg = {0, kPitchDeg, 0};
-    const double r_mid = 0.5 * (s.sonar.range_min_m + s.sonar.range_max_m);
-    place(s, {0, 0, kz * terrain_height_m(0, 0)}, r_mid);
+    place(s, {0, 0, kz * terrain_height_m(0, 0)}, sonar_grid(s.sonar)->window_middle_m());
     // Keep the sonar at least a metre above the ground below it.
     auto& z = s.sonar.pose.position_m[2];
     z = std::max(z,
@@ -92,7 +92,7 @@ SceneDesc wreck_case(const std::string& repo, const std::string& device) {
     // The scene sets its own sonar; the preset's values go over them, as a user's `--set sonar.device` does.
     apply_setting(s, "sonar.device", device, "bench");
     apply_setting(s, "sensor.model", "device", "bench");
-    place(s, aim, 0.5 * (s.sonar.range_min_m + s.sonar.range_max_m));
+    place(s, aim, sonar_grid(s.sonar)->window_middle_m());
     return s;
 }
 

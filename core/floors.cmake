@@ -61,7 +61,11 @@ function(sonarsim_check_floors root)
   endif()
 endfunction()
 
-# As a script (the build's sonarsim_floors target): cmake -DROOT=<repository> -P floors.cmake
+include(${CMAKE_CURRENT_LIST_DIR}/grid_owner.cmake)
+
+# As a script (the build's sonarsim_floors target): cmake -DROOT=<repository> -P floors.cmake; the grid's
+# ownership of the sonar's geometry is checked with the floors.
 if(CMAKE_SCRIPT_MODE_FILE)
   sonarsim_check_floors(${ROOT})
+  sonarsim_check_grid_owner(${ROOT})
 endif()

@@ -5,6 +5,7 @@
 #include "core/base/file_io.hpp"
 #include "core/data/pose.hpp"
 #include "core/display/image.hpp"
+#include "core/grid/sonar_grid.hpp"
 #include "core/scene/scene_io.hpp"
 
 #include <algorithm>
@@ -102,7 +103,7 @@ FanGeometry fan_geometry_from_metadata(const std::string& png_path, int height) 
     g.azimuth_fov_deg = s.azimuth_fov_deg, g.range_min_m = s.range_min_m, g.range_max_m = s.range_max_m;
     g.lo_db = j["display_range_db"].at(0), g.hi_db = j["display_range_db"].at(1);
     g.beams = s.beams, g.bins = s.range_bins;
-    if (!layout.grid().uniform()) g.beam_azimuths_deg = layout.grid().beam_azimuths_deg();
+    g.beam_table = s.beam_table;
     return g;
 }
 
@@ -129,12 +130,13 @@ PolarImage load_fan_png(const std::string& path, const std::string& spec) {
     PolarImage out;
     out.bins = g.bins, out.beams = g.beams;
     out.level_db.resize(size_t(g.bins) * size_t(g.beams));
-    const double dr = (g.range_max_m - g.range_min_m) / g.bins, da = g.azimuth_fov_deg / g.beams;
+    SonarParams sonar; // the image's polar grid: its bins' and beams' centres
+    sonar.beams = g.beams, sonar.range_bins = g.bins, sonar.azimuth_fov_deg = g.azimuth_fov_deg;
+    sonar.range_min_m = g.range_min_m, sonar.range_max_m = g.range_max_m, sonar.beam_table = g.beam_table;
+    const std::shared_ptr<const SonarGrid> grid = sonar_grid(sonar);
     for (int k = 0; k < g.bins; ++k)
         for (int i = 0; i < g.beams; ++i) {
-            const double r = g.range_min_m + (k + 0.5) * dr,
-                         a = deg2rad(g.beam_azimuths_deg.empty() ? g.azimuth_fov_deg / 2 - (i + 0.5) * da
-                                                                 : g.beam_azimuths_deg[size_t(i)]);
+            const double r = grid->bin_centre_m(k), a = deg2rad(grid->beam_azimuth_deg(i));
             // Continuous pixel coordinates, then the four pixel centres around them.
             const double x = g.apex_x_px - r * std::sin(a) * g.px_per_m - 0.5;
             const double y = g.apex_y_px - r * std::cos(a) * g.px_per_m - 0.5;

@@ -17,9 +17,9 @@ struct FanGeometry {
     double azimuth_fov_deg = 0, range_min_m = 0, range_max_m = 0;
     double lo_db = 0, hi_db = 0;
     int beams = 0, bins = 0; ///< the polar grid the fan is sampled onto
-    /// Each beam's centre [deg], port-most first (a beam table's, from render's metadata); empty: the beams
-    /// evenly over azimuth_fov_deg.
-    std::vector<double> beam_azimuths_deg;
+    /// The beams' table (render's metadata names it; a table's fan need not be symmetric), or "uniform": the
+    /// beams evenly over azimuth_fov_deg.
+    std::string beam_table = "uniform";
 };
 
 /// "apex_x_px,apex_y_px,px_per_m,azimuth_fov_deg,range_min_m,range_max_m,lo_db,hi_db,beams,bins"; throws

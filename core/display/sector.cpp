@@ -83,7 +83,7 @@ void SectorLayout::polar_to_pixel(double r, double a_deg, double& px, double& py
 }
 
 void SectorLayout::polar_to_index(double r, double a_deg, double& bin, double& beam) const {
-    bin = (r - grid_->range_min_m) / grid_->bin_m - 0.5;
+    bin = grid_->bin_position(r) - 0.5;
     beam = grid_->beam_index_of_azimuth_deg(a_deg);
 }
 

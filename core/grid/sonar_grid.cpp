@@ -10,9 +10,10 @@ namespace sonarsim {
 
 SonarGrid::SonarGrid(const SonarParams& s)
     : beams(s.beams), bins(s.range_bins), range_min_m(s.range_min_m), range_max_m(s.range_max_m),
-      bin_m((s.range_max_m - s.range_min_m) / s.range_bins), fov_deg(s.azimuth_fov_deg),
+      bin_m(range_bin_m(s)), fov_deg(s.azimuth_fov_deg),
       fov_rad(s.azimuth_fov_deg * 3.14159265358979323846 / 180), spacing_rad(fov_rad / s.beams),
-      fan_half_rad(s.azimuth_fov_deg / 2 * 3.14159265358979323846 / 180) {
+      fan_half_rad(s.azimuth_fov_deg / 2 * 3.14159265358979323846 / 180),
+      elevation_fov_deg(s.elevation_fov_deg) {
     if (s.beam_table == kUniformBeams) return;
     if (const std::string problem = beam_table_problem(s); !problem.empty())
         throw InputError("", "sonar.beam_table", problem);
@@ -97,11 +98,11 @@ double SonarGrid::fan_pixels_unbounded() const {
 }
 
 std::shared_ptr<const SonarGrid> sonar_grid(const SonarParams& s) {
-    using Key = std::tuple<int, int, double, double, double, std::string>;
+    using Key = std::tuple<int, int, double, double, double, double, std::string>;
     static SharedRegistry<Key, SonarGrid> registry;
-    return registry.get(
-        Key{s.beams, s.range_bins, s.range_min_m, s.range_max_m, s.azimuth_fov_deg, s.beam_table},
-        [&] { return std::make_shared<const SonarGrid>(s); });
+    return registry.get(Key{s.beams, s.range_bins, s.range_min_m, s.range_max_m, s.azimuth_fov_deg,
+                            s.elevation_fov_deg, s.beam_table},
+                        [&] { return std::make_shared<const SonarGrid>(s); });
 }
 
 } // namespace sonarsim

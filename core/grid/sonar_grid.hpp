@@ -26,6 +26,15 @@ struct FanLayout {
     double y0_m = 0;     ///< forward distance of the bottom row's lower edge: r_min cos(half the fan)
 };
 
+/// The range window r_max - r_min [m] and a range bin's width [m] of a sonar, for what needs them before a
+/// grid exists (input validation); a grid has them as window_m() and bin_m.
+inline double range_window_m(const SonarParams& s) {
+    return s.range_max_m - s.range_min_m;
+}
+inline double range_bin_m(const SonarParams& s) {
+    return range_window_m(s) / s.range_bins;
+}
+
 class SonarGrid {
   public:
     /// Throws InputError (key sonar.beam_table) for an unknown table or one of another beam count.
@@ -36,8 +45,18 @@ class SonarGrid {
     double bin_m;   ///< width of a range bin [m]
     double fov_deg; ///< azimuth field of view Theta: port edge of beam 0 - starboard edge of beam N-1 [deg]
     double fov_rad; ///< Theta [rad]
-    double spacing_rad;  ///< Theta / N [rad]: the mean beam width
-    double fan_half_rad; ///< half the fan's opening [rad]: the widest |azimuth| of any beam edge
+    double spacing_rad;       ///< Theta / N [rad]: the mean beam width
+    double fan_half_rad;      ///< half the fan's opening [rad]: the widest |azimuth| of any beam edge
+    double elevation_fov_deg; ///< the elevation aperture [deg], centred on the sonar's axis
+
+    /// r_max - r_min [m].
+    double window_m() const { return range_max_m - range_min_m; }
+    /// The middle of the range window [m].
+    double window_middle_m() const { return 0.5 * (range_min_m + range_max_m); }
+    /// Half the elevation aperture [deg]: the beam's upper edge (its lower is the negative).
+    double elevation_half_deg() const { return elevation_fov_deg / 2; }
+    /// True when elevation e [deg] lies in the aperture.
+    bool in_elevation_deg(double e_deg) const { return std::abs(e_deg) <= elevation_half_deg() + 1e-9; }
 
     /// The table the beams come from, or null when they are evenly spaced.
     const BeamTable* table() const { return table_; }
@@ -134,6 +153,11 @@ class SonarGrid {
     double bin_centre_m(int b) const { return range_min_m + (b + 0.5) * bin_m; }
     /// Near edge of range bin b [m] (b = bins: the far edge of the last).
     double bin_near_edge_m(int b) const { return range_min_m + b * bin_m; }
+    /// Range at continuous bin coordinate u [m] (0: the near edge of bin 0; bins: the far edge).
+    double range_at_bin_m(double u) const { return range_min_m + u * bin_m; }
+    /// Continuous bin coordinate of range r, unclamped (the inverse of range_at_bin_m; its floor is r's
+    /// bin when inside the window).
+    double bin_position(double r_m) const { return (r_m - range_min_m) / bin_m; }
     /// The bin holding range r, clamped to the window (callers check inside() first).
     int bin_of(double r_m) const {
         return std::clamp(int(std::floor((r_m - range_min_m) / bin_m)), 0, bins - 1);

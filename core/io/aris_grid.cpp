@@ -1,6 +1,7 @@
 #include "core/io/aris_grid.hpp"
 
 #include "core/base/errors.hpp"
+#include "core/grid/sonar_grid.hpp"
 #include "core/shading/physics.hpp" // sound_speed_m_s
 
 #include <algorithm>
@@ -32,8 +33,8 @@ ArisTiming aris_timing(const SceneDesc& s, const ArisLimits& lim, const std::str
     const SonarParams& sonar = s.sonar;
     ArisTiming t;
     t.sound_speed_m_s = float(sound_speed_m_s(s.water.temperature_c, s.water.depth_m));
-    const double c = double(t.sound_speed_m_s), window = sonar.range_max_m - sonar.range_min_m;
-    const double bin = window / sonar.range_bins, to_us = 2e6 / c; // metres of range to us of travel
+    const double c = double(t.sound_speed_m_s), window = range_window_m(sonar);
+    const double bin = range_bin_m(sonar), to_us = 2e6 / c; // metres of range to us of travel
     const std::string sys = lim.system;
 
     const double sp = std::round(bin * to_us), sp_max = lim.sample_period_max_us;
@@ -46,7 +47,7 @@ ArisTiming aris_timing(const SceneDesc& s, const ArisLimits& lim, const std::str
                              std::to_string(long(std::floor(window * to_us / 3.5))) + " range bins");
     t.sample_period_us = std::uint32_t(sp);
 
-    const double first = sonar.range_min_m + bin / 2; // the first bin's centre
+    const double first = sonar_grid(sonar)->bin_centre_m(0);
     const double ssd = std::round(first * to_us);
     const double ssd_max =
         std::min(double(lim.sample_start_delay_max_us), std::floor(lim.window_start_max_m * to_us));
@@ -117,14 +118,16 @@ ArisTiming aris_timing(const SceneDesc& s, const ArisLimits& lim, const std::str
 }
 
 bool bins_are_samples(const SonarParams& sonar, const ArisTiming& t) {
-    const double bin = (sonar.range_max_m - sonar.range_min_m) / sonar.range_bins, tol = 1e-6 * t.sample_m;
-    return sonar.range_bins == int(t.samples) && std::abs(bin - t.sample_m) * t.samples <= tol &&
-           std::abs(sonar.range_min_m + bin / 2 - t.window_start_m) <= tol;
+    const std::shared_ptr<const SonarGrid> grid = sonar_grid(sonar);
+    const double tol = 1e-6 * t.sample_m;
+    return sonar.range_bins == int(t.samples) && std::abs(grid->bin_m - t.sample_m) * t.samples <= tol &&
+           std::abs(grid->bin_centre_m(0) - t.window_start_m) <= tol;
 }
 
 SonarParams on_samples(SonarParams sonar, const ArisTiming& t) {
-    sonar.range_min_m = t.window_start_m - t.sample_m / 2;
-    sonar.range_max_m = sonar.range_min_m + t.samples * t.sample_m;
+    const double near_m = t.window_start_m - t.sample_m / 2;
+    sonar.range_min_m = near_m;
+    sonar.range_max_m = near_m + t.samples * t.sample_m;
     sonar.range_bins = int(t.samples);
     return sonar;
 }
@@ -135,10 +138,12 @@ PolarImage aris_resample(const PolarImage& img, const SonarParams& sonar, const 
     out.beams = img.beams;
     out.bins = int(t.samples);
     out.level_db.assign(size_t(out.bins) * size_t(out.beams), -std::numeric_limits<float>::infinity());
-    const double bin = (sonar.range_max_m - sonar.range_min_m) / img.bins;
+    SonarParams of_image = sonar; // the image's own bins
+    of_image.range_bins = img.bins;
+    const std::shared_ptr<const SonarGrid> grid = sonar_grid(of_image);
     for (int j = 0; j < out.bins; ++j) {
         const double r = t.window_start_m + j * t.sample_m;
-        const double u = std::clamp((r - sonar.range_min_m) / bin - 0.5, 0.0, double(img.bins - 1));
+        const double u = std::clamp(grid->bin_position(r) - 0.5, 0.0, double(img.bins - 1));
         const int i0 = std::min(int(std::floor(u)), std::max(0, img.bins - 2));
         const int i1 = std::min(i0 + 1, img.bins - 1);
         const double f = u - i0;

@@ -16,7 +16,7 @@ double norm(const Vec3d& v) {
 
 /// Duration of the receive window of one ping [s].
 double window_s(const SonarParams& s, double c) {
-    return 2 * (s.range_max_m - s.range_min_m) / c;
+    return 2 * range_window_m(s) / c;
 }
 
 /// Slabs per ping: the pose may change by at most a quarter of a bin and a quarter of the narrowest beam
@@ -24,8 +24,8 @@ double window_s(const SonarParams& s, double c) {
 int slabs(const SonarParams& s, double c) {
     if (!moving(s)) return 1;
     const double T = window_s(s, c);
-    const double bin_m = (s.range_max_m - s.range_min_m) / s.range_bins;
-    const double beam_rad = sonar_grid(s)->narrowest_beam_rad();
+    const std::shared_ptr<const SonarGrid> grid = sonar_grid(s);
+    const double bin_m = grid->bin_m, beam_rad = grid->narrowest_beam_rad();
     const double need =
         std::max(2 * norm(s.velocity_mps) * T / bin_m, 2 * deg2rad(norm(s.angular_rate_dps)) * T / beam_rad);
     return std::clamp(int(std::ceil(need)), 1, std::min(kMaxMotionSlabs, s.range_bins));
@@ -77,7 +77,7 @@ Pose pose_at(const SonarParams& s, double t) {
 std::vector<AcquisitionSlot> acquisition_slots(const SonarParams& s, double c) {
     const bool move = moving(s);
     const int P = move ? s.pings_per_frame : 1, S = slabs(s, c), K = s.range_bins;
-    const double bin_m = (s.range_max_m - s.range_min_m) / K;
+    const std::shared_ptr<const SonarGrid> grid = sonar_grid(s);
     std::vector<AcquisitionSlot> out;
     for (int k = 0; k < P; ++k)
         for (int j = 0; j < S; ++j) {
@@ -86,7 +86,7 @@ std::vector<AcquisitionSlot> acquisition_slots(const SonarParams& s, double c) {
             a.bin_begin = int(std::lround(double(j) * K / S));
             a.bin_end = int(std::lround(double(j + 1) * K / S));
             a.t_tx_s = move ? k * ping_interval_s(s, c) : 0;
-            const double r_mid = s.range_min_m + 0.5 * (a.bin_begin + a.bin_end) * bin_m;
+            const double r_mid = grid->range_at_bin_m(0.5 * (a.bin_begin + a.bin_end));
             a.t_rx_s = move ? a.t_tx_s + 2 * r_mid / c : 0;
             out.push_back(a);
         }

@@ -56,7 +56,7 @@ Beams trace_base_grid(const Sampler& sp, int M0, Beams* carried) {
 /// The base grid's echo per bin of one beam, for the criteria's significance test: each cell's echo spread
 /// evenly over its range footprint (a cheap stand-in for shading the base cells), summed relative to the
 /// beam's peak; written to out[0, range_bins).
-void base_echo(const SceneDesc& s, double bin_m, const std::vector<Column>& cols, float* out) {
+void base_echo(const SceneDesc& s, const SonarGrid& grid, const std::vector<Column>& cols, float* out) {
     const int K = s.sonar.range_bins;
     double peak = -std::numeric_limits<double>::infinity();
     for (const auto& c : cols)
@@ -71,8 +71,7 @@ void base_echo(const SceneDesc& s, double bin_m, const std::vector<Column>& cols
             const double e =
                 fast::exp2_nonpositive(kLog2_10Over10 * (n.density_db - peak)) * n.angle.c * n.de * c.da;
             const double r0 = n.hit->t - 0.5 * n.footprint_m, r1 = n.hit->t + 0.5 * n.footprint_m;
-            const double b0 = std::floor((r0 - s.sonar.range_min_m) / bin_m);
-            const double b1 = std::floor((r1 - s.sonar.range_min_m) / bin_m);
+            const double b0 = std::floor(grid.bin_position(r0)), b1 = std::floor(grid.bin_position(r1));
             if (b1 < 0 || b0 >= K) continue;
             const int lo = int(std::max(0.0, b0)), hi = int(std::min(double(K - 1), b1));
             const double share = e / (hi - lo + 1);
@@ -98,7 +97,7 @@ void set_base_image(Sampler& sp, const Beams& beams, bool rows_kept = false) {
     } else {
         base_db.assign(size_t(N) * size_t(K), none);
         tbb::parallel_for(0, N, [&](int i) {
-            base_echo(s, sp.criteria.bin_m(), beams[size_t(i)], base_db.data() + size_t(i) * size_t(K));
+            base_echo(s, *sp.frame.grid, beams[size_t(i)], base_db.data() + size_t(i) * size_t(K));
         });
     }
     double peak = -std::numeric_limits<double>::infinity(), cells = 0;

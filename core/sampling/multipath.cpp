@@ -182,10 +182,9 @@ std::uint64_t Multipath::emit(const RayFrame& image, const Hit& hit, int k, cons
 bool Multipath::negligible(const GhostCell& g, int beam_lo, int beam_hi, double r_lo_m, double r_hi_m) const {
     if (!cull_.echo_db || cull_.echo_db->empty()) return false;
     const int K = s_.sonar.range_bins;
-    const double bin_m = f_.grid->bin_m;
-    const double b0 = std::max(0.0, std::floor((r_lo_m - s_.sonar.range_min_m) / bin_m) - cull_.margin_bins);
-    const double b1 =
-        std::min(double(K - 1), std::floor((r_hi_m - s_.sonar.range_min_m) / bin_m) + cull_.margin_bins);
+    const SonarGrid& grid = *f_.grid;
+    const double b0 = std::max(0.0, std::floor(grid.bin_position(r_lo_m)) - cull_.margin_bins);
+    const double b1 = std::min(double(K - 1), std::floor(grid.bin_position(r_hi_m)) + cull_.margin_bins);
     beam_lo = std::max(0, beam_lo - cull_.margin_beams);
     beam_hi = std::min(s_.sonar.beams - 1, beam_hi + cull_.margin_beams);
     if (!(b0 <= b1) || (b1 - b0 + 1) * (beam_hi - beam_lo + 1) > 256) return false; // none, or too many

@@ -139,7 +139,7 @@ bool RefineCriteria::may_be_significant(const Node& n, const Column& c) const {
     if (base_db.empty()) return true;
     if (!n.hit) return false;
     if (!(n.footprint_m < INFINITY)) return true; // an edge-on face (footprint inf or NaN): the full test
-    const double b = std::floor((n.hit->t - s_.sonar.range_min_m) / bin_m_);
+    const double b = std::floor(frame_.grid->bin_position(n.hit->t));
     if (!(b >= 0 && b < s_.sonar.range_bins)) return false;
     const double bin_db = base_db[size_t(c.beam) * size_t(s_.sonar.range_bins) + size_t(b)];
     // significant_at's level at f = 1/2, from the echo per metre set_width keeps: density + 10 log10(c de /
@@ -166,7 +166,7 @@ bool RefineCriteria::significant_at(double density_db, double r, double footprin
                                     const Column& c, double f, bool shared) const {
     if (base_db.empty()) return true;
     if (!(f > 0)) return false;
-    const double b = std::floor((r - s_.sonar.range_min_m) / bin_m_);
+    const double b = std::floor(frame_.grid->bin_position(r));
     if (!(b >= 0 && b < s_.sonar.range_bins)) return false; // outside the window: no bin to spoil
     const double bin_db = base_db[size_t(c.beam) * size_t(s_.sonar.range_bins) + size_t(b)]; // may be -inf
     const double error_db =

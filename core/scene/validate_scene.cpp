@@ -75,7 +75,7 @@ void validate_scene(const SceneDesc& s, const std::string& file, const std::vect
                 "beams x azimuth_rays x elevation_rays = " + number_text(rays) + " exceeds the limit of " +
                 number_text(kMaxRaysPerImage) + " rays per image");
     // Ranges are carried in single precision; a bin narrower than 1 um resolves nothing.
-    const double bin_m = (s.sonar.range_max_m - s.sonar.range_min_m) / s.sonar.range_bins;
+    const double bin_m = range_bin_m(s.sonar);
     if (!(bin_m >= kMinRangeBinM))
         throw InputError(file, "sonar.range_bins",
                          "range bins of " + number_text(bin_m) +
@@ -100,11 +100,11 @@ void validate_scene(const SceneDesc& s, const std::string& file, const std::vect
             file, "sensor.elevation_beamwidth_deg",
             "the elevation pattern would be traced over " + number_text(rad2deg(elevation.traced_fov_rad())) +
                 " deg; it must stay below 180 deg (gaussian: 3.16 x, sinc: 4.5 x the -3 dB width)");
-    if (s.sensor.range_resolution_m > (s.sonar.range_max_m - s.sonar.range_min_m) / 4)
+    if (s.sensor.range_resolution_m > range_window_m(s.sonar) / 4)
         throw InputError(file, "sensor.range_resolution_m",
                          "value " + number_text(s.sensor.range_resolution_m) +
                              " m is coarser than a quarter of the range window; allowed: [0, " +
-                             number_text((s.sonar.range_max_m - s.sonar.range_min_m) / 4) + "] m");
+                             number_text(range_window_m(s.sonar) / 4) + "] m");
     if (const auto& h = s.water.surface_height_m) {
         if (!(s.sonar.pose.position_m[2] < *h))
             throw InputError(file, "water.surface_height_m",

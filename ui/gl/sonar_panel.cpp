@@ -3,6 +3,7 @@
 #include "ui/gl/sonar_panel.hpp"
 
 #include "ui/model/image_views.hpp"
+#include "core/display/polar_layout.hpp"
 #include "ui/gl/sonar_panel_style.hpp"
 #include "ui/model/measure.hpp"
 
@@ -163,9 +164,9 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
         const PointInImage p = locate_world_point(s, SL, *marker);
         ImVec2 q;
         if (polar) {
-            q = ImVec2(L.image.x + float(f.grid().column_of_azimuth_deg(p.azimuth_deg) / s.beams) * L.image.w,
-                       L.image.y +
-                           float((s.range_max_m - p.range_m) / (s.range_max_m - s.range_min_m)) * L.image.h);
+            const PolarLayout PL(f.grid());
+            q = ImVec2(L.image.x + float(PL.u_of_azimuth_deg(p.azimuth_deg)) * L.image.w,
+                       L.image.y + float(PL.v_of_range_m(p.range_m)) * L.image.h);
         } else {
             q = ImVec2(L.image.x + float(p.px / f.sector().width) * L.image.w,
                        L.image.y + float(p.py / f.sector().height) * L.image.h);
@@ -179,9 +180,9 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
         char buf[160];
         std::snprintf(buf, sizeof buf, "3D point: r %.2f m  az %+.1f  el %+.1f deg%s", p.range_m,
                       p.azimuth_deg, p.elevation_deg,
-                      p.in_view                                             ? ""
-                      : std::abs(p.elevation_deg) > s.elevation_fov_deg / 2 ? " (el out of beam)"
-                                                                            : " (out of view)");
+                      p.in_view                                     ? ""
+                      : !f.grid().in_elevation_deg(p.elevation_deg) ? " (el out of beam)"
+                                                                    : " (out of view)");
         ImGui::SetCursorScreenPos(ImVec2(area.x + 8 * scale, L.readout.y));
         ImGui::PushTextWrapPos(area.w - 8 * scale); // window-local
         ImGui::TextColored(ImVec4(1, 0.5f, 0.5f, 1), "%s", buf);
@@ -270,22 +271,20 @@ void SonarPanel::draw_labels() {
 }
 
 void SonarPanel::draw_polar_overlay(const Rect& r, const RenderResult& shown) {
-    const SonarParams& s = shown.scene.sonar;
     ImDrawList* dl = ImGui::GetWindowDrawList();
-    auto y_of = [&](double range) {
-        return r.y + float((s.range_max_m - range) / (s.range_max_m - s.range_min_m)) * r.h;
-    };
     const SonarGrid& grid = shown.frame->grid();
-    auto x_of = [&](double az) { return r.x + float(grid.column_of_azimuth_deg(az) / grid.beams) * r.w; };
+    const PolarLayout PL(grid);
+    auto y_of = [&](double range) { return r.y + float(PL.v_of_range_m(range)) * r.h; };
+    auto x_of = [&](double az) { return r.x + float(PL.u_of_azimuth_deg(az)) * r.w; };
     for (double rr : layout_.range_m)
         dl->AddLine(ImVec2(r.x, y_of(rr)), ImVec2(r.x + r.w, y_of(rr)), kGridColor);
     for (double a : layout_.bearing_deg)
         dl->AddLine(ImVec2(x_of(a), r.y), ImVec2(x_of(a), r.y + r.h), kGridColor);
     if (hovered_) {
-        const double dr = grid.bin_m, r0 = grid.bin_near_edge_m(hovered_->bin);
+        const double r0 = grid.bin_near_edge_m(hovered_->bin), r1 = grid.bin_near_edge_m(hovered_->bin + 1);
         const double a0 = grid.column_azimuth_deg(hovered_->beam),
                      a1 = grid.column_azimuth_deg(hovered_->beam + 1);
-        dl->AddRect(ImVec2(x_of(a0) - 1, y_of(r0 + dr) - 1), ImVec2(x_of(a1) + 1, y_of(r0) + 1), kHoverColor);
+        dl->AddRect(ImVec2(x_of(a0) - 1, y_of(r1) - 1), ImVec2(x_of(a1) + 1, y_of(r0) + 1), kHoverColor);
     }
 }
 

@@ -3,6 +3,7 @@
 #include "ui/gl/sonar_panel.hpp"
 
 #include "ui/model/image_views.hpp"
+#include "core/display/polar_layout.hpp"
 #include "ui/model/measure.hpp"
 #include "ui/gl/sonar_panel_style.hpp"
 
@@ -25,10 +26,10 @@ std::optional<ImagePlace> SonarPanel::place_at(const Rect& r, const RenderResult
 }
 
 ImVec2 SonarPanel::screen_of(const Rect& r, const RenderResult& shown, double range, double az) const {
-    const SonarParams& s = shown.scene.sonar;
-    if (polar)
-        return ImVec2(r.x + float(shown.frame->grid().column_of_azimuth_deg(az) / s.beams) * r.w,
-                      r.y + float((s.range_max_m - range) / (s.range_max_m - s.range_min_m)) * r.h);
+    if (polar) {
+        const PolarLayout PL(shown.frame->grid());
+        return ImVec2(r.x + float(PL.u_of_azimuth_deg(az)) * r.w, r.y + float(PL.v_of_range_m(range)) * r.h);
+    }
     const Image8& fan = shown.frame->sector();
     double px = 0, py = 0;
     SectorLayout(shown.frame->grid_ptr, fan.height).polar_to_pixel(range, az, px, py);
@@ -92,7 +93,6 @@ void SonarPanel::draw_colorbar(const DisplayParams& d) {
 }
 
 void SonarPanel::draw_ascan(const Rect& r, const RenderResult& shown) {
-    const SonarParams& s = shown.scene.sonar;
     const DisplayParams& d = shown.frame->display;
     const PolarImage& img = shown.frame->polar();
     if (ascan_beam_ >= 0 && ascan_beams_ != img.beams) {
@@ -123,9 +123,9 @@ void SonarPanel::draw_ascan(const Rect& r, const RenderResult& shown) {
         if (std::isfinite(v)) lo = std::min(lo, double(v)), hi = std::max(hi, double(v));
     const double ystep = nice_step(hi - lo, 4);
     lo = std::floor(lo / ystep) * ystep, hi = std::ceil(hi / ystep) * ystep;
-    auto X = [&](double range) {
-        return p.x + float((range - s.range_min_m) / (s.range_max_m - s.range_min_m)) * p.w;
-    };
+    const SonarGrid& grid = shown.frame->grid();
+    const PolarLayout PL(grid);
+    auto X = [&](double range) { return p.x + float(1 - PL.v_of_range_m(range)) * p.w; };
     auto Y = [&](double db) { return p.y + float((hi - db) / (hi - lo)) * p.h; };
     // Display window lo..hi as a band.
     dl->AddRectFilled(ImVec2(p.x, Y(std::max(d.lo_db, d.hi_db))),
@@ -135,15 +135,14 @@ void SonarPanel::draw_ascan(const Rect& r, const RenderResult& shown) {
         std::snprintf(buf, sizeof buf, "%g", v);
         text_at(dl, ImVec2(p.x - 4, Y(v)), kLabelColor, buf, 1.0f, 0.5f);
     }
-    const double rstep = nice_step(s.range_max_m - s.range_min_m, 6);
-    for (double rr = std::ceil(s.range_min_m / rstep - 1e-9) * rstep; rr <= s.range_max_m + 1e-9;
+    const double rstep = nice_step(grid.window_m(), 6);
+    for (double rr = std::ceil(grid.range_min_m / rstep - 1e-9) * rstep; rr <= grid.range_max_m + 1e-9;
          rr += rstep) {
         dl->AddLine(ImVec2(X(rr), p.y), ImVec2(X(rr), p.y + p.h), IM_COL32(255, 255, 255, 30));
         std::snprintf(buf, sizeof buf, "%g", rr);
         text_at(dl, ImVec2(X(rr), p.y + p.h + 2), kLabelColor, buf, 0.5f, 0.0f);
     }
     // The curve, broken where nothing echoes.
-    const SonarGrid& grid = shown.frame->grid();
     std::vector<ImVec2> run;
     auto flush = [&] {
         if (run.size() >= 2)

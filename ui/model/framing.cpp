@@ -51,7 +51,7 @@ OrbitCamera default_camera(const SceneDesc& scene, const std::vector<Box3>& obje
     const SonarGrid& grid = *grid_ptr;
     for (double a : {grid.starboard_edge_deg(), 0.0, grid.port_edge_deg()})
         for (double e : {-1.0, 1.0}) {
-            glm::dvec3 p = sonar_point(s, s.range_max_m, a, e * s.elevation_fov_deg / 2);
+            glm::dvec3 p = sonar_point(s, s.range_max_m, a, e * grid.elevation_half_deg());
             if (scene.seafloor && p.z < scene.seafloor->height_m) continue; // the floor patch stands for it
             pts.push_back(p);
         }

@@ -1,6 +1,7 @@
 #include "ui/model/panel_layout.hpp"
 
 #include "ui/model/image_views.hpp"
+#include "core/display/polar_layout.hpp"
 
 #include "core/data/pose.hpp"
 
@@ -69,7 +70,7 @@ Labels place_labels(const PanelContent& c, const SectorLayout& sector, float x, 
     const float th = t.line_h, gap = kGap;
     const SonarGrid& grid = sector.grid();
     const double port = grid.port_edge_deg(), starboard = grid.starboard_edge_deg();
-    const double astep = nice_step(s.azimuth_fov_deg, 6), rstep = nice_step(s.range_max_m - s.range_min_m, 5);
+    const double astep = nice_step(grid.fov_deg, 6), rstep = nice_step(grid.window_m(), 5);
     // Bearings: 0 first, then from the edges inwards (the extremes matter most), each where it fits.
     std::vector<double> angles;
     for (double a = std::floor(port / astep + 1e-9) * astep; a >= starboard - 1e-9; a -= astep)
@@ -82,10 +83,9 @@ Labels place_labels(const PanelContent& c, const SectorLayout& sector, float x, 
     for (double r = std::ceil(s.range_min_m / rstep - 1e-9) * rstep; r <= s.range_max_m + 1e-9; r += rstep)
         if (r > 0) rings.push_back(r);
     if (c.polar) {
-        auto x_of = [&](double a) { return x + float(grid.column_of_azimuth_deg(a) / grid.beams) * w; };
-        auto y_of = [&](double r) {
-            return y + float((s.range_max_m - r) / (s.range_max_m - s.range_min_m)) * h;
-        };
+        const PolarLayout PL(grid);
+        auto x_of = [&](double a) { return x + float(PL.u_of_azimuth_deg(a)) * w; };
+        auto y_of = [&](double r) { return y + float(PL.v_of_range_m(r)) * h; };
         auto none = [](float, float) { return false; };
         const Rect img{x, y, w, h};
         for (double a : angles) {

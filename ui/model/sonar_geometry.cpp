@@ -21,7 +21,7 @@ FrustumShell frustum_shell(const SonarParams& s, int na, int ne) {
         sonar_grid(s); // held: the registry keeps only what someone holds
     const SonarGrid& grid = *grid_ptr;
     const double r0 = s.range_min_m, r1 = s.range_max_m, pa = grid.port_edge_deg(),
-                 sa = grid.starboard_edge_deg(), he = s.elevation_fov_deg / 2;
+                 sa = grid.starboard_edge_deg(), he = grid.elevation_half_deg();
     auto az = [&](int i) { return pa - (pa - sa) * i / na; };
     auto el = [&](int j) { return he - 2 * he * j / ne; };
     auto P = [&](double r, double a, double e) { return glm::vec3(sonar_point(s, r, a, e)); };
@@ -71,7 +71,7 @@ std::vector<glm::vec3> floor_footprint(const SonarParams& s, double z0, int step
     const std::shared_ptr<const SonarGrid> grid_ptr =
         sonar_grid(s); // held: the registry keeps only what someone holds
     const SonarGrid& grid = *grid_ptr;
-    const double pa = grid.port_edge_deg(), sa = grid.starboard_edge_deg(), he = s.elevation_fov_deg / 2;
+    const double pa = grid.port_edge_deg(), sa = grid.starboard_edge_deg(), he = grid.elevation_half_deg();
     // Floor hit of the ray (a, e) when its range lies in the window.
     auto hit = [&](double a, double e) -> std::optional<glm::vec3> {
         const glm::dvec3 d = R * sonar_direction(deg2rad(a), deg2rad(e));
@@ -123,7 +123,7 @@ std::vector<glm::dvec3> elevation_arc(const SonarParams& s, double r, double a_d
     n = std::max(2, n);
     std::vector<glm::dvec3> pts;
     pts.reserve(size_t(n));
-    const double he = s.elevation_fov_deg / 2;
+    const double he = sonar_grid(s)->elevation_half_deg();
     for (int j = 0; j < n; ++j) pts.push_back(sonar_point(s, r, a_deg, he - 2 * he * j / (n - 1)));
     return pts;
 }
@@ -160,7 +160,7 @@ PointInImage locate_world_point(const SonarParams& s, const SectorLayout& L, con
     out.range_m = q.range_m, out.azimuth_deg = q.azimuth_deg, out.elevation_deg = q.elevation_deg;
     L.polar_to_pixel(q.range_m, q.azimuth_deg, out.px, out.py);
     out.in_view = polar_to_cell(s, q.range_m, q.azimuth_deg, out.bin, out.beam) &&
-                  std::abs(q.elevation_deg) <= s.elevation_fov_deg / 2 + 1e-9;
+                  L.grid().in_elevation_deg(q.elevation_deg);
     return out;
 }
 
