@@ -41,7 +41,7 @@ void Viewer::script_input(int index) {
     for (size_t i = script_pos_; i < script_.size() && script_[i].frame <= index; ++i) {
         const ScriptStep& st = script_[i];
         if (st.command == "move_to") {
-            const auto& rects = controls_item_rects();
+            const auto& rects = ui_.widgets.item_rects;
             const auto it = rects.find(st.args[0]);
             if (it == rects.end())
                 throw InputError(opt_.script, "line " + std::to_string(st.line),

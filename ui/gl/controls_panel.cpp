@@ -28,27 +28,20 @@ void help_tooltip(const ValueSpec& spec) {
 
 /// Shift held while a slider is dragged: the value moves kFineDrag as far per pixel, from where it was
 /// when Shift went down.
-struct FineDrag {
-    ImGuiID id = 0;
-    double base = 0;
-    float mouse_x0 = 0;
-};
-FineDrag g_fine;
-
-bool fine_drag(const SliderRange& r, double current, double& value) {
+bool fine_drag(ControlsWidgets& w, const SliderRange& r, double current, double& value) {
     const ImGuiIO& io = ImGui::GetIO();
     const ImGuiID id = ImGui::GetItemID();
     if (!ImGui::IsItemActive() || !io.KeyShift) {
-        if (g_fine.id == id) g_fine.id = 0;
+        if (w.fine_id == id) w.fine_id = 0;
         return false;
     }
-    if (g_fine.id != id) g_fine = {id, current, io.MousePos.x};
+    if (w.fine_id != id) w.fine_id = id, w.fine_base = current, w.fine_mouse_x0 = io.MousePos.x;
     const float width = std::max(1.0f, ImGui::GetItemRectSize().x);
-    const double t = double(io.MousePos.x - g_fine.mouse_x0) / width * kFineDrag;
+    const double t = double(io.MousePos.x - w.fine_mouse_x0) / width * kFineDrag;
     if (r.logarithmic && r.lo > 0)
-        value = g_fine.base * std::pow(r.hi / r.lo, t);
+        value = w.fine_base * std::pow(r.hi / r.lo, t);
     else
-        value = g_fine.base + t * (r.hi - r.lo);
+        value = w.fine_base + t * (r.hi - r.lo);
     value = std::clamp(value, r.lo, r.hi);
     return value != current;
 }
@@ -61,19 +54,14 @@ void same_line_if_fits(const char* next) {
     if (right <= ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x) ImGui::SameLine();
 }
 
-std::map<std::string, Rect> g_item_rects;
-
-void remember_rect(const std::string& key) {
+void remember_rect(ControlsWidgets& w, const std::string& key) {
     const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
-    g_item_rects[key] = {a.x, a.y, b.x - a.x, b.y - a.y};
+    w.item_rects[key] = {a.x, a.y, b.x - a.x, b.y - a.y};
 }
 
-/// Labels go beside the fields when the widest fits beside a field of half the panel, else above them.
-bool g_labels_above = false;
-
 /// The label of a field: beside it (returned as the widget label) or drawn above it now.
-std::string field_label(const std::string& text, const std::string& key) {
-    if (!g_labels_above) return text + "##" + key;
+std::string field_label(const ControlsWidgets& w, const std::string& text, const std::string& key) {
+    if (!w.labels_above) return text + "##" + key;
     ImGui::TextUnformatted(text.c_str());
     ImGui::SetNextItemWidth(-1);
     return "##" + key;
@@ -89,18 +77,18 @@ float widest_label() {
 }
 
 /// One slider for a number or integer spec. Returns true with `value` set when edited.
-bool slider(const ValueSpec& spec, double current, double& value) {
+bool slider(ControlsWidgets& w, const ValueSpec& spec, double current, double& value) {
     const SliderRange r = spec.slider_range();
-    const std::string label = field_label(spec.label_text(), spec.key);
+    const std::string label = field_label(w, spec.label_text(), spec.key);
     ImGuiSliderFlags flags = r.logarithmic ? ImGuiSliderFlags_Logarithmic : 0;
     bool changed = false;
     if (spec.type == ParamType::Integer) {
         int v = int(current), lo = int(r.lo), hi = int(r.hi);
         changed = ImGui::SliderScalar(label.c_str(), ImGuiDataType_S32, &v, &lo, &hi, "%d", flags);
         value = v;
-        if (fine_drag(r, current, value))
+        if (fine_drag(w, r, current, value))
             value = std::round(value), changed = value != current;
-        else if (g_fine.id == ImGui::GetItemID())
+        else if (w.fine_id == ImGui::GetItemID())
             changed = false;
     } else {
         double v = current;
@@ -109,9 +97,9 @@ bool slider(const ValueSpec& spec, double current, double& value) {
         changed = ImGui::SliderScalar(label.c_str(), ImGuiDataType_Double, &v, &r.lo, &r.hi, fmt,
                                       flags | ImGuiSliderFlags_NoRoundToFormat);
         value = v;
-        if (fine_drag(r, current, value)) changed = true;
+        if (fine_drag(w, r, current, value)) changed = true;
     }
-    remember_rect(spec.key);
+    remember_rect(w, spec.key);
     help_tooltip(spec);
     return changed;
 }
@@ -123,9 +111,22 @@ double optional_default(const SceneDesc& s, const ParamSpec& p) {
     return std::max(p.min, 0.0);
 }
 
-bool drag3(const ValueSpec& spec, Vec3d& v);
+/// A Vec3 row as three dragged numbers under its label; bounds from the row's slider range. Returns true
+/// with `v` set when edited.
+bool drag3(const ValueSpec& spec, Vec3d& v) {
+    const SliderRange r = spec.slider_range();
+    const bool degrees = spec.unit == "deg";
+    ImGui::TextUnformatted(spec.label_text().c_str());
+    ImGui::SetNextItemWidth(-1);
+    const bool changed = ImGui::DragScalarN(("##" + spec.key).c_str(), ImGuiDataType_Double, v.data(), 3,
+                                            degrees ? 0.2f : 0.005f, &r.lo, &r.hi, degrees ? "%.2f" : "%.3f");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s\n%s: %s\nDrag, or Ctrl+click to type a value", spec.help.c_str(),
+                          spec.key.c_str(), allowed_text(spec).c_str());
+    return changed;
+}
 
-void section_params(Session& session, Section section) {
+void section_params(ControlsWidgets& w, Session& session, Section section) {
     for (const ParamSpec& p : scene_params()) {
         if (p.section != section) continue;
         const json cur = p.get(session.scene());
@@ -136,7 +137,7 @@ void section_params(Session& session, Section section) {
         }
         if (p.type == ParamType::Enum) {
             const std::string now = cur.get<std::string>();
-            const std::string label = field_label(p.label_text(), p.key);
+            const std::string label = field_label(w, p.label_text(), p.key);
             if (ImGui::BeginCombo(label.c_str(), now.c_str())) {
                 for (auto& c : p.choices)
                     if (ImGui::Selectable(c.c_str(), c == now)) session.set(p.key, c);
@@ -159,24 +160,9 @@ void section_params(Session& session, Section section) {
             if (cur.is_null()) continue;
         }
         double v = 0;
-        if (slider(p, cur.get<double>(), v))
+        if (slider(w, p, cur.get<double>(), v))
             session.set(p.key, p.type == ParamType::Integer ? json(int(v)) : json(v));
     }
-}
-
-/// A Vec3 row as three dragged numbers under its label; bounds from the row's slider range. Returns true
-/// with `v` set when edited.
-bool drag3(const ValueSpec& spec, Vec3d& v) {
-    const SliderRange r = spec.slider_range();
-    const bool degrees = spec.unit == "deg";
-    ImGui::TextUnformatted(spec.label_text().c_str());
-    ImGui::SetNextItemWidth(-1);
-    const bool changed = ImGui::DragScalarN(("##" + spec.key).c_str(), ImGuiDataType_Double, v.data(), 3,
-                                            degrees ? 0.2f : 0.005f, &r.lo, &r.hi, degrees ? "%.2f" : "%.3f");
-    if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("%s\n%s: %s\nDrag, or Ctrl+click to type a value", spec.help.c_str(),
-                          spec.key.c_str(), allowed_text(spec).c_str());
-    return changed;
 }
 
 void pose_section(Session& session) {
@@ -210,7 +196,8 @@ void material_section(Session& session, ControlsUi& ui) {
         if (i < 0) return std::string("seafloor");
         return object_label(s, size_t(i));
     };
-    if (ImGui::BeginCombo(field_label("surface", "surface").c_str(), name(ui.selected).c_str())) {
+    ControlsWidgets& w = ui.widgets;
+    if (ImGui::BeginCombo(field_label(w, "surface", "surface").c_str(), name(ui.selected).c_str())) {
         if (s.seafloor && ImGui::Selectable("seafloor", ui.selected == kSeafloorPart))
             ui.selected = kSeafloorPart;
         if (water && ImGui::Selectable("water surface", ui.selected == kSurfacePart))
@@ -236,7 +223,8 @@ void material_section(Session& session, ControlsUi& ui) {
     const Material& m = *material_of(s, ui.selected);
     const std::string prefix = material_prefix(ui.selected);
     const ValueSpec& preset = material_preset_param(); // a combo box of the presets' names
-    if (ImGui::BeginCombo(field_label(preset.label_text(), prefix + preset.key).c_str(), m.preset.c_str())) {
+    if (ImGui::BeginCombo(field_label(w, preset.label_text(), prefix + preset.key).c_str(),
+                          m.preset.c_str())) {
         for (auto& c : preset.choices)
             if (ImGui::Selectable(c.c_str(), c == m.preset)) session.set(prefix + preset.key, c);
         ImGui::EndCombo();
@@ -253,7 +241,7 @@ void material_section(Session& session, ControlsUi& ui) {
                 session.set(prefix + spec.key, on ? json(3.0) : json(nullptr));
             help_tooltip(spec);
         }
-        if ((present || !spec.optional) && slider(spec, m.*(spec.field), v))
+        if ((present || !spec.optional) && slider(w, spec, m.*(spec.field), v))
             session.set(prefix + spec.key, v);
         ImGui::PopID();
     }
@@ -268,7 +256,7 @@ void material_section(Session& session, ControlsUi& ui) {
                 if (drag3(p, v)) session.set(key + p.key, v);
                 if (p.key == "scale" && ImGui::IsItemHovered())
                     ImGui::SetTooltip("In 3D: Alt+drag the object scales it");
-            } else if (double v = 0; slider(p, cur.get<double>(), v)) {
+            } else if (double v = 0; slider(w, p, cur.get<double>(), v)) {
                 session.set(key + p.key, v);
             }
         }
@@ -381,10 +369,6 @@ float footer_height(const Session& session, float width) {
 
 } // namespace
 
-const std::map<std::string, Rect>& controls_item_rects() {
-    return g_item_rects;
-}
-
 void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, TrajectoryUi& trajectory) {
     ImGui::SetNextWindowPos(ImVec2(area.x, area.y));
     ImGui::SetNextWindowSize(ImVec2(area.w, area.h));
@@ -397,8 +381,9 @@ void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, Tra
     ImGui::BeginChild("##sections", ImVec2(0, -fh), false);
     const float avail = ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ScrollbarSize,
                 label_w = widest_label();
-    g_labels_above = label_w > 0.5f * avail;
-    ImGui::PushItemWidth(g_labels_above ? -1.0f : -label_w);
+    ControlsWidgets& w = ui.widgets;
+    w.labels_above = label_w > 0.5f * avail;
+    ImGui::PushItemWidth(w.labels_above ? -1.0f : -label_w);
     stats_section(session, ui);
     const std::string snapshot = "Snapshot (" + shortcut_text(KeyAction::Snapshot) + ")"; // the bindings' key
     if (is_paper_fig9_scene(session.scene())) {
@@ -413,12 +398,12 @@ void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, Tra
     const ImGuiTreeNodeFlags open = ImGuiTreeNodeFlags_DefaultOpen;
     if (ImGui::CollapsingHeader(section_title(Section::Pose), open)) pose_section(session);
     for (Section sec : {Section::Sonar, Section::Water})
-        if (ImGui::CollapsingHeader(section_title(sec), open)) section_params(session, sec);
+        if (ImGui::CollapsingHeader(section_title(sec), open)) section_params(w, session, sec);
     if (ImGui::CollapsingHeader(section_title(Section::Material), open)) material_section(session, ui);
     if (ImGui::CollapsingHeader(section_title(Section::Display), open))
-        section_params(session, Section::Display);
+        section_params(w, session, Section::Display);
     for (Section sec : {Section::Sensor, Section::Sampling, Section::Motion})
-        if (ImGui::CollapsingHeader(section_title(sec))) section_params(session, sec);
+        if (ImGui::CollapsingHeader(section_title(sec))) section_params(w, session, sec);
     if (ImGui::CollapsingHeader("Trajectory"))
         if (auto p = trajectory.draw(session)) session.edit([&](SceneDesc& s) { s.sonar.pose = *p; });
     if (ImGui::CollapsingHeader("Files")) {
@@ -439,7 +424,7 @@ void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, Tra
         ImGui::Checkbox("show traced hits", &ui.show_hits);
         if (ImGui::Button(("Reset camera (" + shortcut_text(KeyAction::ResetCamera) + ")").c_str()))
             ui.want_reset_camera = true;
-        ImGui::SliderFloat(field_label("UI scale", "uiscale").c_str(), &ui.ui_scale, 0.75f, 2.5f, "%.2f");
+        ImGui::SliderFloat(field_label(w, "UI scale", "uiscale").c_str(), &ui.ui_scale, 0.75f, 2.5f, "%.2f");
     }
     ImGui::PopItemWidth();
     ImGui::EndChild();

@@ -12,6 +12,19 @@
 
 namespace sonarsim::ui {
 
+/// What the panel's widgets keep from one frame to the next.
+struct ControlsWidgets {
+    /// Shift held while a slider is dragged: that slider (an ImGuiID; 0: none), its value and the mouse's x
+    /// when Shift went down.
+    unsigned fine_id = 0;
+    double fine_base = 0;
+    float fine_mouse_x0 = 0;
+    /// Where each parameter's widget was drawn last frame (key -> window px), for `--script move_to`.
+    std::map<std::string, Rect> item_rects;
+    /// Labels go beside the fields when the widest fits beside a field of half the panel, else above them.
+    bool labels_above = false;
+};
+
 struct ControlsUi {
     int selected = kNothingSelected; ///< the part whose material is edited (scene_parts.hpp): an object,
                                      ///< kSeafloorPart, kSurfacePart
@@ -24,10 +37,8 @@ struct ControlsUi {
     bool want_reset_camera = false;
     float ui_scale = 1.0f;          ///< the user's UI scale, times the monitor's content scale
     bool annotated_snapshot = true; ///< snapshots also write PREFIX_annotated.png (the panel as on screen)
+    ControlsWidgets widgets;
 };
-
-/// Where each parameter's widget was drawn last frame (key -> window px), for `--script move_to`.
-const std::map<std::string, Rect>& controls_item_rects();
 
 /// The panel: its sections scroll; errors and status stay visible in a footer below them.
 void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, TrajectoryUi& trajectory);
