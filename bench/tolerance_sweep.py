@@ -9,7 +9,7 @@ For each scene: a dense reference (placement grid, spread, ELEVATIONxAZIMUTH ray
 tolerance_db). Per pair it prints the rays, the measured rel L1 and median |dB| against the reference, the
 sampler's estimates of both (metadata `sampling_error_estimate`), and their ratios estimate / measured: an
 honest estimate is at or above 1. The bench scenes `bench/run.sh` writes are in build/bench/scenes/.
-docs/accuracy-and-speed.md ("The estimate at loose tolerances") shows its numbers for the bench scenes.
+bench/NOTEBOOK.md ("The estimate at loose tolerances") shows its numbers for the bench scenes.
 """
 import argparse
 import json

@@ -24,7 +24,7 @@ constexpr int kMaxPasses = 3;         // base grids a group may have: elevation_
 /// gaussian traced to -30 dB, 3.16 x its -3 dB width) 0.90 x the rays of an even grid, the wide sonars'
 /// wrecks 0.55-0.77 x, every estimate still at or above its error. Sparser tails (0.33, or B^0.5) left ARIS
 /// wrecks past 1 % rel L1; the other settings tried left an estimate below its error on some row
-/// (docs/accuracy-and-speed.md).
+/// (bench/NOTEBOOK.md).
 constexpr double kTailDensity = 0.45;
 constexpr double kPatternExponent = 0.25;
 /// Before refining, a pass sends the groups with the largest shares of its base grid's own estimated error
@@ -36,7 +36,7 @@ constexpr double kSkipFactor = 1;
 /// share: refinement closes most of it, so it is a weaker reason for a denser grid. Strict counts it in
 /// full. At 1/2 or 1/3 the wide sonars' wrecks (Gemini, Oculus M750d LF) stayed coarser with estimates 4-7 %
 /// below their measured error; at 2/3 every device row is as honest as with the full count
-/// (docs/accuracy-and-speed.md).
+/// (bench/NOTEBOOK.md).
 constexpr double kRefinableShare = 2.0 / 3;
 /// Cells whose errors may add up in one bin: a pair is worth refining when its possible error exceeds
 /// 1 / kErrorsPerBin of what the tolerance allows the bin.
@@ -56,7 +56,7 @@ constexpr int kFastProbeEvery = 9;
 /// and at every kWideEstimateStride-th of images with kWideBeams or more (64 sample beams at least): the
 /// Oculus-class bench scene (512 beams) 8 % faster for the same error (0.565 %), 1.4 % fewer rays, its
 /// estimate 0.78 -> 0.76 %; every 512- and 768-beam device row still estimated at or above its error. At 256
-/// beams it moved Monterey's loose-tolerance estimate past 3x its error (docs/accuracy-and-speed.md).
+/// beams it moved Monterey's loose-tolerance estimate past 3x its error (bench/NOTEBOOK.md).
 constexpr int kEstimateStride = 4;
 constexpr int kWideEstimateStride = 8;
 constexpr int kWideBeams = 512;

@@ -357,7 +357,7 @@ TEST_CASE("an image of 512 beams, estimated on every 8th beam, says at least its
     CHECK(e.rel_l1 < s.sampling.tolerance_rel_l1);
     CHECK(t.error_estimate.rel_l1 >= e.rel_l1);
     // Overstated 3.5x here with every 4th beam as with every 8th (0.645 and 0.624 % for 0.18 %): the azimuth
-    // probe's lone cells on smooth bathymetry (docs/accuracy-and-speed.md, "Why fast's probe overstates").
+    // probe's lone cells on smooth bathymetry (bench/NOTEBOOK.md, "Why fast's probe overstates").
     CHECK(t.error_estimate.rel_l1 <= 4 * e.rel_l1);
 }
 

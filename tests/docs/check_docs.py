@@ -96,7 +96,7 @@ LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)\)")
 
 def check_links(repo):
     files = [repo / "README.md", *sorted((repo / "docs").glob("*.md")),
-             *[repo / p for p in ("core/ARCHITECTURE.md", "bench/README.md", "tests/fuzz/README.md",
+             *[repo / p for p in ("core/ARCHITECTURE.md", "bench/README.md", "bench/NOTEBOOK.md", "tests/fuzz/README.md",
                                   "assets/meshes/SOURCES.md") if (repo / p).exists()]]
     bad = []
     for f in files:
