@@ -78,8 +78,9 @@ SceneDesc beam_subscene(const SceneDesc& scene, int first, int last) {
 
 PolarImage render_in_chunks(const SceneGeometry& g, const SceneDesc& scene, const Sampling& m, int per_chunk,
                             const Progress& progress, std::uint64_t* rays) {
-    if (kSamplingSchemes[size_t(m.scheme)].placement == RayPlacement::Adaptive)
-        throw std::invalid_argument("render_in_chunks: adaptive sampling compares neighbouring beams");
+    if (!placement_spec(kSamplingSchemes[size_t(m.scheme)].placement).chunks)
+        throw std::invalid_argument("render_in_chunks: " + std::string(scheme_name(m.scheme)) +
+                                    " sampling compares neighbouring beams");
     const SceneDesc s = with_sampling(scene, m);
     const int N = s.sonar.beams, K = s.sonar.range_bins;
     if (per_chunk <= 0) {

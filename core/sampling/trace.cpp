@@ -107,10 +107,22 @@ TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s, const Trac
 
 TraceResult trace(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control) {
     const auto t0 = std::chrono::steady_clock::now();
-    TraceResult out = moving(s.sonar)                                  ? trace_moving(g, s, control)
-                      : s.sampling.placement == RayPlacement::Adaptive ? trace_adaptive(g, s, control)
-                      : s.sampling.placement == RayPlacement::Jittered ? trace_jittered(g, s, control)
-                                                                       : trace_uniform(g, s, control);
+    TraceResult out;
+    if (moving(s.sonar)) {
+        out = trace_moving(g, s, control);
+    } else {
+        switch (s.sampling.placement) { // one case per row of kRayPlacements
+        case RayPlacement::Grid:
+            out = trace_uniform(g, s, control);
+            break;
+        case RayPlacement::Adaptive:
+            out = trace_adaptive(g, s, control);
+            break;
+        case RayPlacement::Jittered:
+            out = trace_jittered(g, s, control);
+            break;
+        }
+    }
     out.trace_ms = ms_since(t0);
     return out;
 }

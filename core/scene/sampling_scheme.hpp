@@ -1,5 +1,6 @@
-// The sampling schemes: names for the combinations of ray placement and echo binning (sampling.scheme).
-// The one list of them, for the parameter table, the study and the benchmarks.
+// The ray placements and the sampling schemes (names for the combinations of ray placement and echo
+// binning, sampling.scheme): the one list of each, for the parameter table, validation, invalidation, the
+// study and the benchmarks. A placement's tracer is its case in trace() (sampling/trace.cpp).
 #pragma once
 #include "core/data/scene.hpp"
 
@@ -8,6 +9,34 @@
 
 namespace sonarsim {
 
+/// What the rest of the program needs to know of a ray placement.
+struct PlacementSpec {
+    RayPlacement placement;
+    const char* name;
+    const char* help;           ///< for sampling.placement's description
+    const char* binning_reason; ///< why it needs footprint binning (null: it takes point binning too)
+    bool regular_grid;          ///< a regular ray grid, on which "paper" normals (neighbour differences) work
+    bool placed_by_shading;     ///< where its rays go depends on shading values (their rows then re-place)
+    bool chunks;                ///< its beams can be traced a chunk at a time (a beam needs no neighbour)
+};
+
+/// In RayPlacement order.
+inline constexpr std::array<PlacementSpec, 3> kRayPlacements = {{
+    {RayPlacement::Grid, "grid", "elevation_rays x azimuth_rays per beam", nullptr, true, false, true},
+    {RayPlacement::Adaptive, "adaptive",
+     "that grid refined until sampling.tolerance_db and tolerance_rel_l1 are met",
+     "its refinement and error estimate assume each cell's echo spread over its range footprint", false, true,
+     false},
+    {RayPlacement::Jittered, "jittered",
+     "that many strata of four rays, two independent antithetic pairs at seeded random points, whose "
+     "difference estimates the image's error (no refinement)",
+     "its error estimate measures the footprint's bias", false, false, true},
+}};
+
+inline const PlacementSpec& placement_spec(RayPlacement p) {
+    return kRayPlacements[size_t(p)];
+}
+
 struct NamedSampling {
     SamplingScheme scheme;
     const char* name;
@@ -15,8 +44,8 @@ struct NamedSampling {
     EchoBinning binning;
 };
 
-/// In SamplingScheme order. Adaptive placement with point binning has no name: it is rejected
-/// (validate_scene), since the adaptive sampler's criteria and error estimate assume footprint binning.
+/// In SamplingScheme order. A placement that needs footprint binning has no name with point binning: the
+/// combination is rejected (validate_scene).
 inline constexpr std::array<NamedSampling, 4> kSamplingSchemes = {{
     {SamplingScheme::Uniform, "uniform", RayPlacement::Grid, EchoBinning::Point},
     {SamplingScheme::Spread, "spread", RayPlacement::Grid, EchoBinning::Footprint},

@@ -2,6 +2,7 @@
 // rows that steer the sampler, a mirror appearing or disappearing re-traces), and the earliest stage at
 // which two scenes differ.
 #include "core/scene/params.hpp"
+#include "core/scene/sampling_scheme.hpp"
 #include "core/scene/scene_parts.hpp"
 
 #include <algorithm>
@@ -10,7 +11,7 @@
 namespace sonarsim {
 
 Stage ValueSpec::effective_stage(const SceneDesc& scene) const {
-    return steers_sampler && scene.sampling.placement == RayPlacement::Adaptive
+    return steers_sampler && placement_spec(scene.sampling.placement).placed_by_shading
                ? std::min(stage, Stage::Place)
                : stage;
 }

@@ -2,6 +2,7 @@
 // and fan sizes, the elevation pattern's extent, the water surface above the sonar and the floor, display
 // and export ranges.
 #include "core/scene/params.hpp"
+#include "core/scene/sampling_scheme.hpp"
 
 #include "core/base/errors.hpp"
 #include "core/data/pose.hpp"
@@ -52,17 +53,14 @@ void validate_scene(const SceneDesc& s, const std::string& file, const std::vect
                          "value " + std::to_string(s.sonar.pings_per_frame) +
                              " does not divide sonar.beams (" + std::to_string(s.sonar.beams) +
                              "): each ping fires every P-th beam");
-    if (s.sampling.placement == RayPlacement::Jittered && s.sampling.binning == EchoBinning::Point)
-        throw InputError(
-            file, "sampling.binning",
-            "jittered placement needs \"footprint\" binning (its error estimate measures the "
-            "footprint's bias): use sampling.scheme \"jittered\", or \"uniform\" for point binning");
-    if (s.sampling.placement == RayPlacement::Adaptive && s.sampling.binning == EchoBinning::Point)
+    const PlacementSpec& placement = placement_spec(s.sampling.placement);
+    if (placement.binning_reason && s.sampling.binning == EchoBinning::Point)
         throw InputError(file, "sampling.binning",
-                         "adaptive placement needs \"footprint\" binning (its refinement and error estimate "
-                         "assume each cell's echo spread over its range footprint): use sampling.placement "
-                         "\"grid\" with \"point\" binning (sampling.scheme \"uniform\")");
-    if (s.sampling.normals == NormalSource::Paper && s.sampling.placement != RayPlacement::Grid)
+                         std::string(placement.name) + " placement needs \"footprint\" binning (" +
+                             placement.binning_reason +
+                             "): use sampling.placement \"grid\" with \"point\" binning (sampling.scheme "
+                             "\"uniform\")");
+    if (s.sampling.normals == NormalSource::Paper && !placement.regular_grid)
         throw InputError(file, "sampling.normals",
                          "\"paper\" normals need the regular ray grid: use sampling.scheme \"uniform\" or "
                          "\"spread\" with them");

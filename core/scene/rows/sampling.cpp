@@ -6,6 +6,24 @@
 
 namespace sonarsim::rows {
 
+namespace {
+
+std::vector<std::string> placement_names() {
+    std::vector<std::string> out;
+    for (const PlacementSpec& p : kRayPlacements) out.push_back(p.name);
+    return out;
+}
+
+std::string placement_help() {
+    std::string out = "Where rays go: ";
+    for (const PlacementSpec& p : kRayPlacements)
+        out += std::string(&p == &kRayPlacements.front() ? "" : "; ") + p.name + ": " + p.help +
+               (p.binning_reason ? " (needs footprint binning)" : "");
+    return out;
+}
+
+} // namespace
+
 std::vector<ParamSpec> sampling_rows() {
     std::vector<ParamSpec> t;
     t.push_back(integer("sampling.elevation_rays", 1, 1000000, Stage::Trace,
@@ -71,14 +89,8 @@ std::vector<ParamSpec> sampling_rows() {
 /// name of their combination, so that every existing scene's metadata stays as it was.
 std::vector<ParamSpec> sampling_input_rows() {
     return {
-        enumeration<RayPlacement>(
-            "sampling.placement", {"grid", "adaptive", "jittered"}, Stage::Trace,
-            "Where rays go: grid: elevation_rays x azimuth_rays per beam; adaptive: that "
-            "grid refined until sampling.tolerance_db and tolerance_rel_l1 are met (needs footprint "
-            "binning); "
-            "jittered: that many strata of four rays, two independent antithetic pairs at seeded random "
-            "points, whose difference estimates the image's error (needs footprint binning; no refinement)",
-            [](S s) -> RayPlacement& { return s.sampling.placement; }),
+        enumeration<RayPlacement>("sampling.placement", placement_names(), Stage::Trace, placement_help(),
+                                  [](S s) -> RayPlacement& { return s.sampling.placement; }),
         enumeration<EchoBinning>(
             "sampling.binning", {"point", "footprint"}, Stage::Trace,
             "Where a ray's echo goes: point: the bin of its range (the paper); footprint: "
