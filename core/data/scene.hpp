@@ -127,7 +127,7 @@ enum class Speckle { Off, Rayleigh, K };
 enum class Tvg { Off, Log20, Log30, Log40 };
 
 /// The sensor stage: what a device does to the ideal echo image (sensor.cpp). Every effect off is the ideal
-/// sensor. Formulas and sources: docs/model.md (The sensor), core/ARCHITECTURE.md.
+/// sensor. Formulas and sources: docs/model.md (The sensor), core/sensor/README.md.
 struct SensorParams {
     SensorModel model = SensorModel::Ideal;
     AzimuthWindow azimuth_window = AzimuthWindow::None;

@@ -1,5 +1,5 @@
 // Adaptive sampling: refine where the integrand of SONAR_MODEL.md is not smooth and the error that leaves
-// in the image is significant against the tolerance; leave the rest coarse (see core/ARCHITECTURE.md).
+// in the image is significant against the tolerance; leave the rest coarse (see core/sampling/README.md).
 // This file holds the passes. The image's traced beams form groups (every kEstimateStride-th beam of a wide
 // image is a group's sample, whose error is estimated). A pass traces some groups at one base grid and
 // refines them (adaptive_pass.cpp); a group whose base grid alone misses the tolerances by a large share is

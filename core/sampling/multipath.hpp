@@ -2,7 +2,7 @@
 // first hit on a mirror (the water surface, or a material with reflection_db) the specular continuation is
 // traced, up to sampling.bounces reflections. Each scatterer it meets echoes back along the mirrored path
 // (a double path: monostatic backscatter seen from the image sonar) and, where it sees the sonar directly,
-// along the two mixed paths (one leg by the mirrors, one direct). See core/ARCHITECTURE.md, "Multipath".
+// along the two mixed paths (one leg by the mirrors, one direct). See core/sampling/README.md, "Multipath".
 #pragma once
 #include "core/sampling/trace_detail.hpp"
 #include "core/shading/physics.hpp"

@@ -1,4 +1,4 @@
-// Adaptive sampling: the refinement criteria (see refine_criteria.hpp and core/ARCHITECTURE.md).
+// Adaptive sampling: the refinement criteria (see refine_criteria.hpp and core/sampling/README.md).
 #include "core/sampling/refine_criteria.hpp"
 
 #include "core/base/recent_values.hpp"

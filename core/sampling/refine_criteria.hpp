@@ -1,6 +1,6 @@
 // Adaptive sampling: when a pair of neighbouring cells, or one cell alone, must be split. Pure decisions on
 // the cells' fields (hits, levels, footprints) against the scene's tolerance and the base grid's image: no
-// ray is traced here (see core/ARCHITECTURE.md, "Adaptive sampling").
+// ray is traced here (see core/sampling/README.md, "Adaptive sampling").
 #pragma once
 #include "core/sampling/adaptive_node.hpp"
 #include "core/shading/physics.hpp"

@@ -5,7 +5,7 @@
   check_docs.py SONARSIM REPO devices                 docs/devices.md holds `sonarsim devices --markdown`
   check_docs.py SONARSIM REPO materials               docs/model.md holds `sonarsim materials --markdown`
   check_docs.py SONARSIM REPO links                   every relative link and image in README.md, docs/*.md,
-                                                      core/ARCHITECTURE.md and the other READMEs names an
+                                                      core/ARCHITECTURE.md, core/*/README.md and the other READMEs names an
                                                       existing file; none points at ../shared/reference
 Exit status 0 when current, 1 with a message (and the command that fixes it) otherwise.
 """
@@ -95,7 +95,7 @@ LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)\)")
 
 
 def check_links(repo):
-    files = [repo / "README.md", *sorted((repo / "docs").glob("*.md")),
+    files = [repo / "README.md", *sorted((repo / "docs").glob("*.md")), *sorted((repo / "core").glob("*/README.md")),
              *[repo / p for p in ("core/ARCHITECTURE.md", "bench/README.md", "bench/NOTEBOOK.md", "tests/fuzz/README.md",
                                   "assets/meshes/SOURCES.md") if (repo / p).exists()]]
     bad = []
