@@ -110,10 +110,14 @@ TraceResult trace_moving(const SceneGeometry& g, const SceneDesc& s, const Trace
             return cell.range_m >= lo && cell.range_m < hi;
         };
         if (!r.ghosts.empty() && out.ghosts.empty()) out.ghosts.resize(size_t(N));
+        if (r.halves && out.stratum_cells.empty()) out.halves = true, out.stratum_cells.resize(size_t(N));
         for (int i = 0; i < N; ++i) {
             if (ping_of_beam(s.sonar, i) != slot.ping) continue;
             for (Cell& cell : r.cells[size_t(i)])
                 if (keep(cell)) out.cells[size_t(i)].push_back(cell);
+            if (size_t(i) < r.stratum_cells.size()) // jittered: the estimate's cells, kept alike
+                for (Cell& cell : r.stratum_cells[size_t(i)])
+                    if (keep(cell)) out.stratum_cells[size_t(i)].push_back(cell);
             if (size_t(i) < r.ghosts.size())
                 for (GhostCell& gc : r.ghosts[size_t(i)])
                     if (keep(gc.cell)) out.ghosts[size_t(i)].push_back(gc);

@@ -118,3 +118,14 @@ TEST_CASE("jittered: point binning and paper normals are rejected with the key n
     s.sampling.normals = NormalSource::Paper;
     CHECK_THROWS_WITH(validate_scene(s, "x.json"), Catch::Contains("sampling.normals"));
 }
+
+TEST_CASE("jittered: a sonar moving during its frame keeps its halves and its estimate", "[jittered]") {
+    SceneDesc s = jittered_cube(41);
+    s.sonar.velocity_mps = {2.0, 0.0, 0.0};
+    Simulator sim(s);
+    const auto f = sim.render();
+    REQUIRE(f->hits().halves);
+    REQUIRE(f->error_estimate.valid);
+    CHECK(f->error_estimate.rel_l1 > 0);
+    CHECK(f->error_estimate.rel_l1 < 0.2);
+}
