@@ -179,41 +179,39 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
                         "two-way path from the transmit position"}};
     }
     const auto& est = f.error_estimate;
-    if (est.valid && f.hits().halves)
-        j["sampling_error_estimate"] = {
-            {"rel_l1", est.rel_l1},
-            {"median_abs_db", est.median_abs_db},
-            {"p95_abs_db", est.p95_abs_db},
-            {"variance_rel_l1", est.variance_rel_l1},
-            {"footprint_rel_l1", est.footprint_rel_l1},
-            {"tolerance_met", est.meets(s.sampling)},
-            {"method",
-             "per bin on every few beams: half the difference of the two independent halves "
-             "(variance_rel_l1) and a third of the change when each ray's cell is its whole stratum "
-             "instead of its half (footprint_rel_l1, second order), added in quadrature"}};
-    else if (est.valid)
-        j["sampling_error_estimate"] = {
-            {"rel_l1", est.rel_l1},
-            {"median_abs_db", est.median_abs_db},
-            {"p95_abs_db", est.p95_abs_db},
-            {"passes", est.passes},
-            {"budget_reached", est.budget_reached},
-            {"max_rays", s.sampling.max_rays},
-            {"tolerance_met", est.meets(s.sampling)},
-            {"azimuth_rel_l1", est.azimuth_rel_l1},
-            {"method", std::string("the difference to the same cells one refinement level coarser (bins "
-                                   "echoing in both), half of it where merged cells straddle an edge and an "
-                                   "eighth on one smooth surface, plus an azimuth probe (three ray columns "
-                                   "against one); ") +
-                           (est.strict ? "strict: refined in azimuth where the probe finds the larger share"
-                                       : "fast: the probe's share is reported (azimuth_rel_l1, included in "
-                                         "rel_l1), not refined; sampling.estimate strict refines it")},
+    json estimate = nullptr;
+    if (est.valid) {
+        estimate = {{"rel_l1", est.rel_l1},
+                    {"median_abs_db", est.median_abs_db},
+                    {"p95_abs_db", est.p95_abs_db},
+                    {"tolerance_met", est.meets(s.sampling)}};
+        if (f.hits().halves) { // jittered
+            estimate["variance_rel_l1"] = est.variance_rel_l1;
+            estimate["footprint_rel_l1"] = est.footprint_rel_l1;
+            estimate["method"] = "per bin on every few beams: half the difference of the two independent "
+                                 "halves (variance_rel_l1) and a third of the change when each ray's cell is "
+                                 "its whole stratum instead of its half (footprint_rel_l1, second order), "
+                                 "added in quadrature";
+        } else { // adaptive
+            estimate["passes"] = est.passes;
+            estimate["budget_reached"] = est.budget_reached;
+            estimate["max_rays"] = s.sampling.max_rays;
+            estimate["azimuth_rel_l1"] = est.azimuth_rel_l1;
+            estimate["method"] =
+                std::string(
+                    "the difference to the same cells one refinement level coarser (bins echoing in "
+                    "both), half of it where merged cells straddle an edge and an eighth on one smooth "
+                    "surface, plus an azimuth probe (three ray columns against one); ") +
+                (est.strict ? "strict: refined in azimuth where the probe finds the larger share"
+                            : "fast: the probe's share is reported (azimuth_rel_l1, included in rel_l1), not "
+                              "refined; sampling.estimate strict refines it");
             // What it cannot see, said where the number is read (docs/accuracy-and-speed.md measures it).
-            {"not_seen", est.strict
-                             ? "the azimuth probe samples every third cell of a sampled beam's columns"
-                             : "the azimuth probe samples every ninth cell of a sampled beam's columns"}};
-    else
-        j["sampling_error_estimate"] = nullptr;
+            estimate["not_seen"] =
+                est.strict ? "the azimuth probe samples every third cell of a sampled beam's columns"
+                           : "the azimuth probe samples every ninth cell of a sampled beam's columns";
+        }
+    }
+    j["sampling_error_estimate"] = estimate;
     j["time_ms"] = {{"trace", f.trace_ms},
                     {"shade", f.shade_ms},
                     {"sensor", f.sensor_ms},

@@ -38,6 +38,20 @@ SceneDesc jittered_cube(int elevation_rays, int azimuth_rays = 1) {
     return s;
 }
 
+/// Renders s and checks that its estimate lies within [low, 1.6] x its error against `ref`.
+void check_estimate(const char* name, const SceneDesc& s, const std::vector<double>& ref, double low) {
+    Simulator sim(s);
+    const auto f = sim.render();
+    const double err = relative_l1(echo_intensity(f->polar(), s.sonar.noise_level_db), ref);
+    const auto& e = f->error_estimate;
+    REQUIRE(e.valid);
+    std::printf("jittered %s %d x %d: measured rel L1 %.4f %%, estimated %.4f %% (ratio %.2f)\n", name,
+                s.sampling.elevation_rays, s.sampling.azimuth_rays, 100 * err, 100 * e.rel_l1,
+                e.rel_l1 / err);
+    CHECK(e.rel_l1 > low * err);
+    CHECK(e.rel_l1 < 1.6 * err);
+}
+
 } // namespace
 
 TEST_CASE("jittered: the same scene traces the same rays, four per stratum", "[jittered]") {
@@ -78,16 +92,7 @@ TEST_CASE("jittered: the estimate tracks the floor's error against the semi-anal
           "[jittered][floor]") {
     for (int M : {25, 75}) {
         const SceneDesc s = jittered_floor(M);
-        const std::vector<double> ref = floor_reference_intensity(s);
-        Simulator sim(s);
-        const auto f = sim.render();
-        const double err = relative_l1(echo_intensity(f->polar(), s.sonar.noise_level_db), ref);
-        const auto& e = f->error_estimate;
-        REQUIRE(e.valid);
-        std::printf("jittered floor %d x 1: measured rel L1 %.4f %%, estimated %.4f %% (ratio %.2f)\n", M,
-                    100 * err, 100 * e.rel_l1, e.rel_l1 / err);
-        CHECK(e.rel_l1 > 0.7 * err);
-        CHECK(e.rel_l1 < 1.6 * err);
+        check_estimate("floor", s, floor_reference_intensity(s), 0.7);
     }
 }
 
@@ -96,18 +101,7 @@ TEST_CASE("jittered: the estimate tracks a cube's error against a dense spread g
     set_scheme(dense.sampling, SamplingScheme::Spread);
     Simulator d(dense);
     const std::vector<double> ref = echo_intensity(d.render()->polar(), dense.sonar.noise_level_db);
-    for (int M : {25, 75}) {
-        const SceneDesc s = jittered_cube(M);
-        Simulator sim(s);
-        const auto f = sim.render();
-        const double err = relative_l1(echo_intensity(f->polar(), s.sonar.noise_level_db), ref);
-        const auto& e = f->error_estimate;
-        REQUIRE(e.valid);
-        std::printf("jittered cube %d x 1: measured rel L1 %.4f %%, estimated %.4f %% (ratio %.2f)\n", M,
-                    100 * err, 100 * e.rel_l1, e.rel_l1 / err);
-        CHECK(e.rel_l1 > 0.6 * err);
-        CHECK(e.rel_l1 < 1.6 * err);
-    }
+    for (int M : {25, 75}) check_estimate("cube", jittered_cube(M), ref, 0.6);
 }
 
 TEST_CASE("jittered: point binning and paper normals are rejected with the key named", "[jittered]") {
