@@ -1,6 +1,7 @@
 #include "core/sampling/motion_trace.hpp"
 
 #include "core/data/pose.hpp"
+#include "core/grid/sonar_grid.hpp"
 #include "core/sampling/acquisition.hpp"
 #include "core/shading/accumulate.hpp"
 #include "core/shading/physics.hpp"
@@ -75,7 +76,7 @@ TraceResult trace_moving(const SceneGeometry& g, const SceneDesc& s, const Trace
     const double c = sound_speed_m_s(s.water.temperature_c, s.water.depth_m);
     const auto slots = acquisition_slots(s.sonar, c);
     const int N = s.sonar.beams, K = s.sonar.range_bins;
-    const double r0 = s.sonar.range_min_m, bin_m = (s.sonar.range_max_m - r0) / K;
+    const std::shared_ptr<const SonarGrid> grid = sonar_grid(s.sonar);
     constexpr double kInf = std::numeric_limits<double>::infinity();
 
     TraceResult out;
@@ -88,8 +89,8 @@ TraceResult trace_moving(const SceneGeometry& g, const SceneDesc& s, const Trace
         SceneDesc sub = s;
         sub.sonar.pose = pose_at(s.sonar, slot.t_rx_s);
         sub.sonar.velocity_mps = {0, 0, 0}, sub.sonar.angular_rate_dps = {0, 0, 0};
-        sub.sonar.range_min_m = r0 + slot.bin_begin * bin_m;
-        sub.sonar.range_max_m = slot.bin_end == K ? s.sonar.range_max_m : r0 + slot.bin_end * bin_m;
+        sub.sonar.range_min_m = grid->range_at_bin_m(slot.bin_begin);
+        sub.sonar.range_max_m = slot.bin_end == K ? s.sonar.range_max_m : grid->range_at_bin_m(slot.bin_end);
         sub.sonar.range_bins = slot.bin_end - slot.bin_begin;
         sub.sampling.max_rays = std::max(1000, int(s.sampling.max_rays / std::int64_t(slots.size())));
         // Only this ping's beams (every P-th): the others are fired by other pings, from other poses.
