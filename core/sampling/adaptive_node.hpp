@@ -20,11 +20,9 @@ constexpr int kAzimuthLevels = 3; // columns split in three locally: down to 1/2
 constexpr int kEdgeAzimuthLevels = 2; // ... and down to 1/9 where neighbouring columns see different surfaces
 constexpr int kMaxPasses = 3;         // base grids a group may have: elevation_rays x 1, 3, 9 (adaptive.cpp)
 /// A smooth elevation pattern's base grid (pattern_grid, refine_elevation.cpp): cells dense as
-/// max(kTailDensity, B^kPatternExponent) of the pattern B, in equal shares. Over the 24 device rows (a
-/// gaussian traced to -30 dB, 3.16 x its -3 dB width) 0.90 x the rays of an even grid, the wide sonars'
-/// wrecks 0.55-0.77 x, every estimate still at or above its error. Sparser tails (0.33, or B^0.5) left ARIS
-/// wrecks past 1 % rel L1; the other settings tried left an estimate below its error on some row
-/// (bench/NOTEBOOK.md).
+/// max(kTailDensity, B^kPatternExponent) of the pattern B, in equal shares: fewer rays in the pattern's
+/// tails, whose echo counts little, while every device row's estimate stays at or above its error (the
+/// settings measured: bench/NOTEBOOK.md).
 constexpr double kTailDensity = 0.45;
 constexpr double kPatternExponent = 0.25;
 /// Before refining, a pass sends the groups with the largest shares of its base grid's own estimated error
@@ -34,9 +32,7 @@ constexpr double kSkipFactor = 1;
 /// Past the first base grid, fast's bump decision counts the error of the triples that refinement will
 /// split (a pair discontinuous and significant against the base image, or a cell that splits alone) at this
 /// share: refinement closes most of it, so it is a weaker reason for a denser grid. Strict counts it in
-/// full. At 1/2 or 1/3 the wide sonars' wrecks (Gemini, Oculus M750d LF) stayed coarser with estimates 4-7 %
-/// below their measured error; at 2/3 every device row is as honest as with the full count
-/// (bench/NOTEBOOK.md).
+/// full. A smaller share leaves wide sonars' wrecks coarser than their estimate says (bench/NOTEBOOK.md).
 constexpr double kRefinableShare = 2.0 / 3;
 /// Cells whose errors may add up in one bin: a pair is worth refining when its possible error exceeds
 /// 1 / kErrorsPerBin of what the tolerance allows the bin.
@@ -53,10 +49,9 @@ constexpr double kCellShare = 1.0 / 32;
 constexpr int kProbeEvery = 3;
 constexpr int kFastProbeEvery = 9;
 /// The error estimate looks at every kEstimateStride-th beam of images with 8 x that many beams or more,
-/// and at every kWideEstimateStride-th of images with kWideBeams or more (64 sample beams at least): the
-/// Oculus-class bench scene (512 beams) 8 % faster for the same error (0.565 %), 1.4 % fewer rays, its
-/// estimate 0.78 -> 0.76 %; every 512- and 768-beam device row still estimated at or above its error. At 256
-/// beams it moved Monterey's loose-tolerance estimate past 3x its error (bench/NOTEBOOK.md).
+/// and at every kWideEstimateStride-th of images with kWideBeams or more (64 sample beams at least): wide
+/// images cost less to estimate for the same error, while narrower ones keep enough sample beams for the
+/// estimate to stay at or above the error (bench/NOTEBOOK.md).
 constexpr int kEstimateStride = 4;
 constexpr int kWideEstimateStride = 8;
 constexpr int kWideBeams = 512;

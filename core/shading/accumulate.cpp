@@ -20,10 +20,9 @@ namespace {
 constexpr double kNegInf = -std::numeric_limits<double>::infinity();
 /// A cell over several azimuth sub-columns (the sensor's beam forming) spreads each sub-column's share over
 /// that sub-column's own part of its range footprint when the footprint's azimuth extent exceeds this many
-/// range bins and its elevation extent; otherwise over the whole footprint. (Spreading over the whole
-/// smears the cell's edges by what the other sub-columns span: the beam-formed image of the wreck with one
-/// ray column per beam was 3.7 % off nine columns' instead of 2.3 %. Where the elevation extent is the
-/// larger, parts change that by 0.02 % for 2 % of a device image's time, so they are left out there.)
+/// range bins and its elevation extent; otherwise over the whole footprint. Spreading over the whole smears
+/// the cell's edges by what the other sub-columns span; where the elevation extent is the larger, the parts
+/// change the image too little for their cost (bench/NOTEBOOK.md).
 constexpr double kSubcolumnSpreadBins = 0.25;
 constexpr size_t kMaxSubcolumns = 8; ///< azimuth_subcolumns() at most
 
