@@ -53,9 +53,9 @@ class SectorResampler {
     SectorResampler(std::shared_ptr<const SonarGrid> grid, int height_px);
     SectorResampler(const SonarParams& sonar, int height_px)
         : SectorResampler(sonar_grid(sonar), height_px) {}
-    /// True when it was built for the same grid (the same image geometry).
+    /// True when it was built for a grid of the same image geometry (another elevation aperture keeps it).
     bool matches(const SonarGrid& grid, int height_px) const {
-        return &grid == grid_.get() && height_px == height_px_;
+        return height_px == height_px_ && (&grid == grid_.get() || grid.same_image(*grid_));
     }
     /// The RGB fan: per pixel inside it, the bilinear interpolation in (bin, beam) of the gray levels
     /// (gray_level) of its four nearest samples, rounded, through the colour map; kFanBackground outside.

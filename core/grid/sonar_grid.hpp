@@ -57,6 +57,12 @@ class SonarGrid {
     double elevation_half_deg() const { return elevation_fov_deg / 2; }
     /// True when elevation e [deg] lies in the aperture.
     bool in_elevation_deg(double e_deg) const { return std::abs(e_deg) <= elevation_half_deg() + 1e-9; }
+    /// True when `o` has the same beams and bins (it may differ in the elevation aperture alone): the image,
+    /// the fan and its resampling taps are the same.
+    bool same_image(const SonarGrid& o) const {
+        return beams == o.beams && bins == o.bins && range_min_m == o.range_min_m &&
+               range_max_m == o.range_max_m && fov_deg == o.fov_deg && table_ == o.table_;
+    }
 
     /// The table the beams come from, or null when they are evenly spaced.
     const BeamTable* table() const { return table_; }

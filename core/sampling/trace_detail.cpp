@@ -88,21 +88,22 @@ Cell make_cell(const RayFrame& f, const Hit& h, const Angle& a, const Angle& e, 
         const double ra0 = edge_range(a_lo, fe), ra1 = edge_range(a_hi, fe);
         return Edges{edge(re0, re1), edge(re1, re0), edge(ra0, ra1), edge(ra1, ra0)};
     };
-    Edges x = edges(a, e, h.t);
     // An off-centre ray (jittered) stands for the whole cell: its footprint is taken through the cell's
     // centre lines, about the range at the centre (the azimuth edges count from range_m, the ray's range,
     // so they shift by its offset), when that footprint covers the ray's own range; it does not on a plane
     // seen nearly edge-on, whose centre line meets it far from the ray (the ray's own footprint then).
-    if (centre) {
+    auto centred = [&](Edges& x) {
         const double r_c = edge_range(centre->first, centre->second);
-        if (r_c > 0) {
-            const Edges y = edges(centre->first, centre->second, r_c);
-            const double lo = std::min(y.e_lo, y.e_hi) + std::min(y.a_lo, y.a_hi) - r_c;
-            const double hi = std::max(y.e_lo, y.e_hi) + std::max(y.a_lo, y.a_hi) - r_c;
-            const double slack = 1e-6 * h.t;
-            if (h.t >= lo - slack && h.t <= hi + slack) x = y, x.a_lo += h.t - r_c, x.a_hi += h.t - r_c;
-        }
-    }
+        if (!(r_c > 0)) return false;
+        x = edges(centre->first, centre->second, r_c);
+        const double lo = std::min(x.e_lo, x.e_hi) + std::min(x.a_lo, x.a_hi) - r_c;
+        const double hi = std::max(x.e_lo, x.e_hi) + std::max(x.a_lo, x.a_hi) - r_c;
+        const double slack = 1e-6 * h.t;
+        x.a_lo += h.t - r_c, x.a_hi += h.t - r_c;
+        return h.t >= lo - slack && h.t <= hi + slack;
+    };
+    Edges x;
+    if (!centre || !centred(x)) x = edges(a, e, h.t);
     c.range_e_lo_m = float(x.e_lo), c.range_e_hi_m = float(x.e_hi);
     c.range_a_lo_m = float(x.a_lo), c.range_a_hi_m = float(x.a_hi);
     c.material = h.material;

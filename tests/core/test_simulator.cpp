@@ -299,3 +299,16 @@ TEST_CASE("the scratch pool keeps at most its byte budget and reports what it ke
     CHECK(m.kept_budget_bytes == scratch::kScratchPoolMaxBytes);
     CHECK(to_string(m).find("kept buffers 256 of 512 MiB") != std::string::npos);
 }
+
+TEST_CASE("a change of the elevation aperture alone keeps the fan's resampling taps", "[simulator]") {
+    SceneDesc s;
+    s.sampling.elevation_rays = 21;
+    Simulator sim(s);
+    const auto a = sim.render();
+    s.sonar.elevation_fov_deg = 10;
+    sim.set_scene(s);
+    const auto b = sim.render();
+    CHECK(a->grid_ptr != b->grid_ptr); // the grid holds the aperture
+    CHECK(b->grid().elevation_half_deg() == 5);
+    CHECK(a->sector_map_ptr == b->sector_map_ptr);
+}
