@@ -1,11 +1,14 @@
 // `sonarsim render`: one image of a scene, written as PNG, .npy and metadata JSON.
 #include "commands.hpp"
 #include "load.hpp"
+#include "status_line.hpp"
 
 #include "core/io/ground_truth_files.hpp"
 #include "core/base/errors.hpp"
 #include "core/shading/ground_truth.hpp"
 #include "core/io/output.hpp"
+#include "core/io/ping_output.hpp"
+#include "core/kinds/ping_series.hpp"
 #include "core/pipeline/memory_report.hpp"
 #include "core/pipeline/simulator.hpp"
 
@@ -80,8 +83,37 @@ void check_parent_dir(const std::string& path, const std::string& option) {
     }
 }
 
+/// A side-scan's waterfall or a scanning sonar's sweep: its pings traced one by one, progress on a terminal.
+int run_render_pings(const RenderOptions& o, const SceneDesc& scene) {
+    if (o.ground_truth)
+        throw InputError("--ground-truth", "",
+                         "not yet written for sonar.kind \"" + kind_name(scene.sonar.kind) +
+                             "\"; allowed: --ground-truth with sonar.kind imaging");
+    StatusLine status;
+    PingControl control;
+    control.progress = [&](int done, int all) {
+        if (done % 16 == 0 || done == all)
+            status.show("ping " + std::to_string(done) + " of " + std::to_string(all));
+    };
+    const PingSeries series = render_pings(scene, control);
+    status.clear();
+    write_ping_files(o.out, scene, series);
+    char timing[160];
+    std::snprintf(timing, sizeof timing, "%d pings x %d channel(s) x %d bins in %.0f ms (%.2f ms a ping), ",
+                  series.pings, series.channels, series.bins, series.trace_ms,
+                  series.trace_ms / series.pings);
+    std::cout << "wrote " << ping_outputs_text(o.out, scene) << "\n"
+              << timing << "rays " << series.rays_traced << ", ping interval " << series.ping_interval_s * 1e3
+              << " ms (" << series.pings * series.ping_interval_s << " s of sonar time)\n";
+    return 0;
+}
+
 int run_render(const RenderOptions& o) {
     const SceneDesc scene = load_scene_from_options(o.scene);
+    if (scene.sonar.kind != SonarKind::Imaging && !o.out.empty() && o.view3d.empty()) {
+        check_parent_dir(o.out, "--out");
+        return run_render_pings(o, scene);
+    }
     if (!o.out.empty()) check_parent_dir(o.out, "--out");
     if (!o.view3d.empty()) check_parent_dir(o.view3d, "--view3d");
     std::vector<std::pair<std::string, std::vector<std::uint8_t>>> extra;

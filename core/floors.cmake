@@ -13,6 +13,7 @@ set(SONARSIM_CORE_FLOORS
     "sensor"                  # what a device makes of the ideal image
     "sampling"                # where rays go: the tracers and the adaptive sampler
     "pipeline"                # the staged simulator
+    "kinds"                   # side-scan and scanning sonars: their pings and images
     "io"                      # files: PNG, NumPy, ARIS, MCAP
     "dataset analysis")       # batches and exports; study, compare, references
 

@@ -1,5 +1,7 @@
 #include "core/data/pose.hpp"
 
+#include <algorithm>
+
 namespace sonarsim {
 
 glm::dmat3 rotation_matrix(const Vec3d& o) {
@@ -12,6 +14,12 @@ glm::dmat3 rotation_matrix(const Vec3d& o) {
     m[0][1] = cp * sy, m[1][1] = cr * cy + sp * sr * sy, m[2][1] = -cy * sr + cr * sp * sy;
     m[0][2] = -sp, m[1][2] = cp * sr, m[2][2] = cp * cr;
     return m;
+}
+
+Vec3d orientation_of(const glm::dmat3& R) {
+    // glm: m[col][row].
+    return {rad2deg(std::atan2(R[1][2], R[2][2])), rad2deg(std::asin(std::clamp(-R[0][2], -1.0, 1.0))),
+            rad2deg(std::atan2(R[0][1], R[0][0]))};
 }
 
 Polar world_to_sonar_polar(const Pose& pose, const glm::dvec3& p) {

@@ -23,6 +23,10 @@ inline glm::dvec3 to_glm(const Vec3d& v) {
 /// R = Rz(yaw) Ry(pitch) Rx(roll) (paper eq. 12), angles [deg] as {roll, pitch, yaw}.
 glm::dmat3 rotation_matrix(const Vec3d& orientation_deg);
 
+/// Roll, pitch, yaw [deg] of a rotation R = Rz(yaw) Ry(pitch) Rx(roll) (the inverse of rotation_matrix;
+/// pitch in [-90, 90]).
+Vec3d orientation_of(const glm::dmat3& rotation);
+
 /// Unit direction of azimuth a, elevation e [rad] in the sonar frame: (cos e cos a, cos e sin a, sin e).
 inline glm::dvec3 sonar_direction(double azimuth_rad, double elevation_rad) {
     const double ce = std::cos(elevation_rad);

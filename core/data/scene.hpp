@@ -41,8 +41,17 @@ struct Pose {
 /// The paper's Fig. 9 pose 2 (the viewer's button; assets/scenes/fig9_pose2.json holds it, tested).
 inline const Pose kFig9Pose2{{0.84, 2.42, 0.90}, {6.88, 28.07, -41.25}};
 
+/// What kind of sonar (sonar.kind): a forward-looking imaging sonar's fan of beams; a side-scan sonar's two
+/// channels (port and starboard) pinging together; a mechanically scanned sonar's one beam stepped by its
+/// head.
+enum class SonarKind { Imaging, Sidescan, Scanning };
+/// The rows of a side-scan waterfall (sidescan.range): by slant range as recorded, or by ground range over a
+/// flat bottom at the altitude of each ping's first bottom return.
+enum class SidescanRange { Slant, Ground };
+
 struct SonarParams {
     std::string device = "none"; ///< device preset (assets/devices/NAME.json) its values came from
+    SonarKind kind = SonarKind::Imaging;
     Pose pose;
     double frequency_khz = 3000.0;
     double azimuth_fov_deg = 32.0;
@@ -64,6 +73,27 @@ struct SonarParams {
     int pings_per_frame = 1;
     /// `batch`: each frame's velocity and rates from its trajectory (the poses before and after it).
     bool motion_from_trajectory = false;
+};
+
+/// A side-scan sonar (sonar.kind "sidescan"): two transducers, port and starboard, each one beam
+/// sonar.azimuth_fov_deg wide along track and sonar.elevation_fov_deg wide across it, tilted down.
+struct SidescanParams {
+    double depression_deg = 20; ///< each transducer's axis below the horizontal [deg]
+    int pings = 200;            ///< pings of one waterfall (its rows)
+    SidescanRange range = SidescanRange::Slant;
+    double ping_overhead_ms = 0; ///< time between pings beyond the listening window 2 r_max / c [ms]
+    /// The first bottom return (the altitude of the ground-range correction): the first bin whose echo level
+    /// over the noise (L_EN) reaches this [dB]
+    double bottom_threshold_db = 10;
+};
+
+/// A mechanically scanned sonar (sonar.kind "scanning"): one beam turned by the head's motor in steps, one
+/// ping per step. Head angles from the sonar's x axis (forward) toward y (port).
+struct ScanningParams {
+    double sector_start_deg = -180; ///< the first step's head angle [deg]
+    double sector_end_deg = 180;    ///< the sweep ends at this head angle [deg]
+    double step_deg = 0.9;          ///< head angle between pings (Ping360: 1 gradian = 0.9 deg) [deg]
+    double step_overhead_ms = 25;   ///< time of a step beyond the listening window 2 r_max / c [ms]
 };
 
 struct WaterParams {
@@ -173,6 +203,8 @@ struct ObjectDesc {
 struct SceneDesc {
     std::string source_file; ///< where it was read from ("" for built-in / in-memory)
     SonarParams sonar;
+    SidescanParams sidescan;
+    ScanningParams scanning;
     WaterParams water;
     SamplingParams sampling;
     DisplayParams display;

@@ -7,18 +7,21 @@
 
 namespace sonarsim {
 
-DisplayParams effective_display(const PolarImage& img, const DisplayParams& d, const SonarGrid& grid) {
-    if (!d.auto_range) return d;
+namespace {
+
+/// The percentile range of `img`'s finite levels, row k's samples weighted by `row_weight(k)`.
+template <class Weight>
+DisplayParams percentile_display(const PolarImage& img, const DisplayParams& d, Weight row_weight) {
     float lo = std::numeric_limits<float>::infinity(), hi = -lo;
     for (float v : img.level_db)
         if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
-    if (!(lo <= hi) || img.bins != grid.bins) return d;
+    if (!(lo <= hi)) return d;
     constexpr int kBins = 4096;
     std::vector<double> hist(kBins, 0.0);
     const double width = std::max(double(hi) - lo, 1e-6) / kBins;
     double total = 0;
     for (int k = 0; k < img.bins; ++k) {
-        const double weight = grid.bin_centre_m(k); // the fan's area grows with range
+        const double weight = row_weight(k);
         for (int b = 0; b < img.beams; ++b)
             if (const float v = img.level_db[size_t(k) * img.beams + b]; std::isfinite(v)) {
                 hist[size_t(std::min(double(kBins - 1), (v - lo) / width))] += weight;
@@ -43,6 +46,19 @@ DisplayParams effective_display(const PolarImage& img, const DisplayParams& d, c
         out.lo_db = mid - 0.5, out.hi_db = mid + 0.5;
     }
     return out;
+}
+
+} // namespace
+
+DisplayParams effective_display(const PolarImage& img, const DisplayParams& d, const SonarGrid& grid) {
+    if (!d.auto_range || img.bins != grid.bins) return d;
+    // The fan's area grows with range.
+    return percentile_display(img, d, [&](int k) { return grid.bin_centre_m(k); });
+}
+
+DisplayParams effective_display(const PolarImage& img, const DisplayParams& d) {
+    if (!d.auto_range) return d;
+    return percentile_display(img, d, [](int) { return 1.0; });
 }
 
 } // namespace sonarsim

@@ -16,6 +16,9 @@ inline DisplayParams effective_display(const PolarImage& img, const DisplayParam
     return effective_display(img, display, *sonar_grid(sonar));
 }
 
+/// The same for an image whose every sample shows as one pixel (a side-scan waterfall, a scan's raw array).
+DisplayParams effective_display(const PolarImage& img, const DisplayParams& display);
+
 /// Widest automatic display range [dB]: a scene whose echoes stand 100 dB above its noise still shows the
 /// texture of its echoes (speckle spans about 20 dB).
 constexpr double kAutoDisplaySpanDb = 50;

@@ -66,9 +66,14 @@ double array_intensity(const std::vector<double>& w, double psi) {
 
 ElevationWeight::ElevationWeight(const SceneDesc& s)
     : kind_(s.sensor.elevation_pattern), phi3_rad_(deg2rad(elevation_beamwidth_deg(s))) {
-    traced_rad_ = kind_ == ElevationPattern::Flat       ? deg2rad(s.sonar.elevation_fov_deg)
-                  : kind_ == ElevationPattern::Gaussian ? 2 * kGaussianTracedWidths * phi3_rad_
-                                                        : 2 * kSincTracedWidths * phi3_rad_;
+    // A pattern's support stops at the transducer's face: what lies behind it (beyond 89.5 deg off the
+    // axis) is baffled, so a wide side-scan beam is traced over the front half-space only.
+    traced_rad_ =
+        kind_ == ElevationPattern::Flat
+            ? deg2rad(s.sonar.elevation_fov_deg)
+            : std::min(deg2rad(kMaxPatternTracedDeg),
+                       2 * (kind_ == ElevationPattern::Gaussian ? kGaussianTracedWidths : kSincTracedWidths) *
+                           phi3_rad_);
 }
 
 double ElevationWeight::operator()(double e) const {

@@ -15,13 +15,17 @@ namespace sonarsim {
 ///   sinc:     B = (sin x / x)^2 with x = 1.39156 * 2 e / phi3 (B = 1/2 at e = phi3 / 2), traced out to its
 ///             second null (|e| <= 2.258 phi3: the main lobe and the first sidelobe, -13.3 dB);
 ///   flat:     the hard aperture sonar.elevation_fov_deg, B = 1 inside.
+/// Widest elevation span a pattern is traced over [deg]: the front half-space of the transducer's face.
+constexpr double kMaxPatternTracedDeg = 179;
+
 class ElevationWeight {
   public:
     explicit ElevationWeight(const SceneDesc& scene);
     bool flat() const { return kind_ == ElevationPattern::Flat; }
     /// B_v at elevation e [rad] (1 for flat).
     double operator()(double e_rad) const;
-    /// Elevation span the rays cover [rad]: the aperture when flat, the pattern's traced support otherwise.
+    /// Elevation span the rays cover [rad]: the aperture when flat, the pattern's traced support otherwise
+    /// (at most kMaxPatternTracedDeg).
     double traced_fov_rad() const { return traced_rad_; }
 
   private:

@@ -1,6 +1,7 @@
 #include "core/pipeline/simulator.hpp"
 
 #include "core/data/pose.hpp"
+#include "core/base/errors.hpp"
 #include "core/base/scratch_pool.hpp"
 #include "core/scene/device_overrides.hpp"
 #include "core/scene/devices.hpp"
@@ -19,14 +20,29 @@
 #include <stdexcept>
 
 namespace sonarsim {
+namespace {
+
+/// The staged simulator forms an imaging sonar's fan; the other kinds' pings are traced by render_pings.
+const SceneDesc& imaging(const SceneDesc& scene) {
+    if (scene.sonar.kind != SonarKind::Imaging)
+        throw InputError(scene.source_file, "sonar.kind",
+                         "\"" + kind_name(scene.sonar.kind) +
+                             "\" is rendered ping by ping (sonarsim render); the viewer, "
+                             "batch and study take sonar.kind imaging");
+    return scene;
+}
+
+} // namespace
+
 Simulator::Simulator(const SceneDesc& scene)
-    : scene_(scene), geometry_(std::make_unique<SceneGeometry>(scene)) {}
+    : scene_(imaging(scene)), geometry_(std::make_unique<SceneGeometry>(scene)) {}
 
 void Simulator::set_scene(const SceneDesc& scene) {
-    set_scene(scene, changed_stage(scene_, scene));
+    set_scene(scene, changed_stage(scene_, imaging(scene)));
 }
 
 void Simulator::set_scene(const SceneDesc& scene, Stage s) {
+    imaging(scene);
     // Objects only moved, turned or scaled: new instance transforms, no mesh read and no BVH rebuilt.
     // Otherwise a new geometry from the mesh cache. Either may throw, keeping the old geometry.
     if (s == Stage::Geometry && !geometry_->update_transforms(scene))

@@ -67,10 +67,7 @@ Pose pose_at(const SonarParams& s, double t) {
     const glm::dvec3 p = to_glm(s.pose.position_m) + R0 * (to_glm(s.velocity_mps) * t);
     Pose out;
     out.position_m = {p.x, p.y, p.z};
-    // Back to roll, pitch, yaw of R = Rz(yaw) Ry(pitch) Rx(roll) (glm: m[col][row]).
-    out.orientation_deg = {rad2deg(std::atan2(R[1][2], R[2][2])),
-                           rad2deg(std::asin(std::clamp(-R[0][2], -1.0, 1.0))),
-                           rad2deg(std::atan2(R[0][1], R[0][0]))};
+    out.orientation_deg = orientation_of(R);
     return out;
 }
 

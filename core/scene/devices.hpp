@@ -21,6 +21,12 @@ struct DevicePreset {
     std::string title;               ///< e.g. "Sound Metrics ARIS Explorer 3000, high frequency"
     std::string file;                ///< "assets/devices/NAME.json", for error messages
     std::vector<DeviceValue> values; ///< in file order
+    /// sonar.kind's value in the preset ("imaging" when it sets none).
+    std::string kind() const {
+        for (auto& v : values)
+            if (v.key == "sonar.kind") return v.value.get<std::string>();
+        return "imaging";
+    }
 };
 
 /// Reads a preset from its text: `file` (".../NAME.json") names it in errors and gives its name. Every value

@@ -120,6 +120,7 @@ PartSpec<Part> part(std::string key, std::string unit, ParamType type, double lo
 // The rows of each table, in the order the table (and the docs) list them.
 std::vector<ParamSpec> sonar_rows();          ///< rows/sonar.cpp: the device, pose, fan, levels
 std::vector<ParamSpec> motion_rows();         ///< rows/sonar.cpp: motion during a frame, each its section
+std::vector<ParamSpec> kind_rows();           ///< rows/kinds.cpp: side-scan and scanning sonars
 std::vector<ParamSpec> water_rows();          ///< rows/water.cpp
 std::vector<ParamSpec> sampling_rows();       ///< rows/sampling.cpp
 std::vector<ParamSpec> sampling_input_rows(); ///< rows/sampling.cpp: read, not written (input_params)

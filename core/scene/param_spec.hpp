@@ -5,6 +5,7 @@
 #include "core/data/scene.hpp"
 
 #include <functional>
+#include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
@@ -34,6 +35,13 @@ struct SliderRange {
     bool logarithmic = false;
 };
 
+/// A kind of sonar as a bit of ValueSpec::kinds.
+constexpr unsigned kind_bit(SonarKind kind) {
+    return 1u << unsigned(kind);
+}
+constexpr unsigned kAllKinds =
+    kind_bit(SonarKind::Imaging) | kind_bit(SonarKind::Sidescan) | kind_bit(SonarKind::Scanning);
+
 /// Chainable setters of the columns, shared by every kind of row: `number(...).steers().preset()`.
 template <class Row> struct RowColumns {
     /// The adaptive sampler places its rays by this value (ValueSpec::steers_sampler).
@@ -55,6 +63,13 @@ template <class Row> struct RowColumns {
     }
     Row& in_section(Section s) {
         return set([&](Row& r) { r.section = s; });
+    }
+    /// Only these kinds of sonar use the value (ValueSpec::kinds); a scene of another kind may not set it.
+    Row& only_for(std::initializer_list<SonarKind> kinds) {
+        return set([&](Row& r) {
+            r.kinds = 0;
+            for (SonarKind k : kinds) r.kinds |= kind_bit(k);
+        });
     }
 
   private:
@@ -85,6 +100,10 @@ struct ValueSpec {
     Section section = Section::None; ///< in the viewer's controls
     std::string label;               ///< the viewer's short name ("f frequency"); empty: from the key
     SliderRange slider;              ///< lo == hi: the row's bounds
+    /// The kinds of sonar (sonar.kind) that use the value, as kind_bit()s: a scene of another kind keeps the
+    /// row's default, and setting it otherwise is an error (validate_scene).
+    unsigned kinds = kAllKinds;
+    bool used_by(SonarKind kind) const { return (kinds & kind_bit(kind)) != 0; }
     /// What a change of this value recomputes in `scene` (the scene after the change).
     Stage effective_stage(const SceneDesc& scene) const;
     /// "label [unit]": `label`, or the key's last part without its unit suffix ("range max [m]").

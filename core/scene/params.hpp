@@ -13,14 +13,20 @@
 
 namespace sonarsim {
 
-/// Keys that choose a group of other values: sonar.device (a preset's values) and sensor.model (the sensor's
-/// effects), in the order a scene applies them: before all its other keys, so that explicit keys override
-/// what they chose.
+/// Keys that choose a group of other values: sonar.device (a preset's values), sonar.kind (the rows of other
+/// kinds back to their defaults) and sensor.model (the sensor's effects), in the order a scene applies them:
+/// before all its other keys, so that explicit keys override what they chose.
 const std::vector<std::string>& group_keys();
 bool is_group_key(const std::string& key);
 
 /// After `key` (a group key) was set in `scene`: the values it chooses (a preset's, the sensor model's).
 void apply_group_key(SceneDesc& scene, const std::string& key);
+
+/// Sets every row the scene's kind (sonar.kind) does not use to its default: a device preset of a kind does
+/// so, and the viewer's kind selector.
+void reset_other_kinds_rows(SceneDesc& scene);
+/// "imaging", "sidescan", "scanning": the kind's name in sonar.kind.
+std::string kind_name(SonarKind kind);
 
 /// "sonar.frequency_khz, sonar.azimuth_fov_deg, ...": the keys a device preset may set (preset_may_set).
 std::string preset_keys_text();

@@ -1,6 +1,6 @@
 // The group keys: sonar.device applies a device preset's values (the keys whose rows say preset_may_set,
-// checked when the preset is loaded, scene/devices.cpp), sensor.model sets each effect switch to its
-// ideal or device value.
+// checked when the preset is loaded, scene/devices.cpp), sonar.kind returns the rows its kind does not use
+// to their defaults, sensor.model sets each effect switch to its ideal or device value.
 #include "core/scene/params.hpp"
 
 #include "core/scene/devices.hpp"
@@ -17,6 +17,7 @@ void apply_sensor_model(SceneDesc& scene) {
     const bool device = scene.sensor.model == SensorModel::Device;
     for (auto& p : scene_params()) {
         if (p.ideal_value.is_null() && p.device_value.is_null()) continue;
+        if (!p.used_by(scene.sonar.kind)) continue; // keeps its default
         json v = device ? p.device_value : p.ideal_value;
         if (device && preset)
             for (auto& dv : preset->values)
@@ -34,13 +35,14 @@ void apply_device(SceneDesc& scene) {
         const ParamSpec& p = *find_param(dv.key);
         if (p.ideal_value.is_null()) p.put(scene, validate_value(p, dv.value, preset->file, dv.key));
     }
+    reset_other_kinds_rows(scene); // a preset of another kind leaves none of the last kind's values
     if (scene.sensor.model == SensorModel::Device) apply_sensor_model(scene);
 }
 
 } // namespace
 
 const std::vector<std::string>& group_keys() {
-    static const std::vector<std::string> keys = {"sonar.device", "sensor.model"};
+    static const std::vector<std::string> keys = {"sonar.device", "sonar.kind", "sensor.model"};
     return keys;
 }
 
@@ -50,7 +52,18 @@ bool is_group_key(const std::string& key) {
 
 void apply_group_key(SceneDesc& scene, const std::string& key) {
     if (key == "sonar.device") apply_device(scene);
+    if (key == "sonar.kind") reset_other_kinds_rows(scene);
     if (key == "sensor.model") apply_sensor_model(scene);
+}
+
+void reset_other_kinds_rows(SceneDesc& scene) {
+    static const SceneDesc defaults;
+    for (auto& p : scene_params())
+        if (!p.used_by(scene.sonar.kind)) p.put(scene, p.get(defaults));
+}
+
+std::string kind_name(SonarKind kind) {
+    return find_param("sonar.kind")->choices.at(size_t(kind));
 }
 
 std::string preset_keys_text() {

@@ -260,6 +260,7 @@ SceneDesc load_scene(const std::string& path, const GroupOverrides& group_overri
 json scene_to_json(const SceneDesc& s) {
     json j = json::object();
     for (auto& p : scene_params()) {
+        if (!p.used_by(s.sonar.kind)) continue; // another kind's row: at its default, not written
         const size_t dot = p.key.find('.');
         j[p.key.substr(0, dot)][p.key.substr(dot + 1)] = p.get(s);
     }

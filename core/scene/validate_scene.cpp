@@ -35,6 +35,18 @@ void validate_scene(const SceneDesc& s, const std::string& file, const std::vect
                          name(lo_key) + " (" + number_text(lo) + ") must be below " + name(hi_key) + " (" +
                              number_text(hi) + ")");
     };
+    static const SceneDesc defaults;
+    for (auto& p : scene_params())
+        if (!p.used_by(s.sonar.kind) && p.get(s) != p.get(defaults)) {
+            std::string users;
+            for (SonarKind k : {SonarKind::Imaging, SonarKind::Sidescan, SonarKind::Scanning})
+                if (p.used_by(k)) users += (users.empty() ? "" : " or ") + kind_name(k);
+            throw InputError(file, p.key,
+                             "not used by sonar.kind \"" + kind_name(s.sonar.kind) +
+                                 "\"; allowed: leave it out, "
+                                 "or sonar.kind " +
+                                 users);
+        }
     if (const std::string problem = beam_table_problem(s.sonar); !problem.empty())
         throw InputError(file, "sonar.beam_table", problem);
     if (const BeamTable* t = find_beam_table(s.sonar.beam_table)) { // the table's fan, not another
@@ -92,12 +104,6 @@ void validate_scene(const SceneDesc& s, const std::string& file, const std::vect
                          "the sector image would have " + number_text(sector_px) + " pixels (limit " +
                              number_text(kMaxImageCells) +
                              "): range_min_m is too close to range_max_m for this field of view");
-    const ElevationWeight elevation(s);
-    if (!(rad2deg(elevation.traced_fov_rad()) < 180))
-        throw InputError(
-            file, "sensor.elevation_beamwidth_deg",
-            "the elevation pattern would be traced over " + number_text(rad2deg(elevation.traced_fov_rad())) +
-                " deg; it must stay below 180 deg (gaussian: 3.16 x, sinc: 4.5 x the -3 dB width)");
     if (s.sensor.range_resolution_m > range_window_m(s.sonar) / 4)
         throw InputError(file, "sensor.range_resolution_m",
                          "value " + number_text(s.sensor.range_resolution_m) +

@@ -135,13 +135,16 @@ TEST_CASE("devices: every preset value is a table key with a valid value and a s
 
 TEST_CASE("devices: the keys a preset may set are the device's, one column of the table", "[devices]") {
     // What a preset must leave to the scene: the pose and its motion, the choice of device and sensor, the
-    // seed, the sampler, the water, the exports.
+    // seed, the sampler, the water, the exports, a waterfall's length and range and a scan's sector. A
+    // preset names its kind.
     for (const ParamSpec& p : scene_params()) {
         INFO(p.key);
-        const bool scene_choice = is_group_key(p.key) || p.type == ParamType::Vec3 ||
-                                  p.key == "sonar.motion_from_trajectory" || p.key == "sensor.seed" ||
-                                  starts_with(p.key, "sampling.") || starts_with(p.key, "water.") ||
-                                  starts_with(p.key, "export.");
+        const bool scene_choice =
+            (is_group_key(p.key) && p.key != "sonar.kind") || p.type == ParamType::Vec3 ||
+            p.key == "sonar.motion_from_trajectory" || p.key == "sensor.seed" ||
+            starts_with(p.key, "sampling.") || starts_with(p.key, "water.") ||
+            starts_with(p.key, "export.") || p.key == "sidescan.pings" || p.key == "sidescan.range" ||
+            p.key == "sidescan.bottom_threshold_db" || starts_with(p.key, "scanning.sector_");
         CHECK(p.preset_may_set == !scene_choice);
     }
     for (const ParamSpec& p : input_params()) CHECK_FALSE(p.preset_may_set);

@@ -1,5 +1,7 @@
 #include "ui/gl/controls_panel.hpp"
 
+#include "core/scene/devices.hpp"
+
 #include "ui/model/bindings.hpp"
 #include "ui/model/interaction.hpp"
 #include "ui/model/scene_labels.hpp"
@@ -128,7 +130,7 @@ bool drag3(const ValueSpec& spec, Vec3d& v) {
 
 void section_params(ControlsWidgets& w, Session& session, Section section) {
     for (const ParamSpec& p : scene_params()) {
-        if (p.section != section) continue;
+        if (p.section != section || !p.used_by(session.scene().sonar.kind)) continue;
         const json cur = p.get(session.scene());
         if (p.type == ParamType::Vec3) {
             Vec3d v = cur.get<Vec3d>();
@@ -139,8 +141,12 @@ void section_params(ControlsWidgets& w, Session& session, Section section) {
             const std::string now = cur.get<std::string>();
             const std::string label = field_label(w, p.label_text(), p.key);
             if (ImGui::BeginCombo(label.c_str(), now.c_str())) {
-                for (auto& c : p.choices)
+                for (auto& c : p.choices) {
+                    // The viewer shows imaging sonars: the other kinds' presets render headless.
+                    const DevicePreset* preset = p.key == "sonar.device" ? find_device(c) : nullptr;
+                    if (preset && preset->kind() != "imaging") continue;
                     if (ImGui::Selectable(c.c_str(), c == now)) session.set(p.key, c);
+                }
                 ImGui::EndCombo();
             }
             help_tooltip(p);

@@ -19,23 +19,27 @@ std::vector<ParamSpec> sensor_rows() {
                                    "is a hard slice",
                                    [](S s) -> AzimuthWindow& { return s.sensor.azimuth_window; })
             .sensor_values("none", "hann")
-            .preset());
+            .preset()
+            .only_for({SonarKind::Imaging}));
     t.push_back(number("sensor.azimuth_beamwidth_deg", "deg", 0, 180, false, true, Stage::Shade,
                        "-3 dB width of the receive beam at broadside; 0: the beam spacing",
                        [](S s) -> double& { return s.sensor.azimuth_beamwidth_deg; })
                     .preset()
+                    .only_for({SonarKind::Imaging})
                     .with_slider(0, 5));
     t.push_back(number("sensor.taylor_sidelobe_db", "dB", -80, -13.3, false, false, Stage::Sensor,
                        "Design sidelobe level of the taylor window",
                        [](S s) -> double& { return s.sensor.taylor_sidelobe_db; })
                     .preset()
+                    .only_for({SonarKind::Imaging})
                     .with_slider(-60, -20));
     t.push_back(enumeration<Beamformer>("sensor.beamformer", {"lens", "array"}, Stage::Sensor,
                                         "lens: every beam has the broadside width (ARIS, DIDSON); array: a "
                                         "flat receive array, whose beams widen as 1 / cos(azimuth) off "
                                         "broadside",
                                         [](S s) -> Beamformer& { return s.sensor.beamformer; })
-                    .preset());
+                    .preset()
+                    .only_for({SonarKind::Imaging}));
     t.push_back(
         enumeration<ElevationPattern>(
             "sensor.elevation_pattern", {"flat", "gaussian", "sinc"}, Stage::Trace,

@@ -35,18 +35,23 @@ std::vector<ParamSpec> sonar_rows() {
                     .with_label("f frequency")
                     .with_log_slider(100, 5000));
     t.push_back(number("sonar.azimuth_fov_deg", "deg", 0, 180, true, true, Stage::Trace,
-                       "Azimuth field of view Theta", [](S s) -> double& { return s.sonar.azimuth_fov_deg; })
+                       "Azimuth field of view Theta (side-scan, scanning: the beam's horizontal width)",
+                       [](S s) -> double& { return s.sonar.azimuth_fov_deg; })
                     .preset()
                     .with_label("azimuth FOV")
                     .with_slider(2, 130));
-    t.push_back(number("sonar.elevation_fov_deg", "deg", 0, 180, true, true, Stage::Trace,
-                       "Elevation aperture Phi", [](S s) -> double& { return s.sonar.elevation_fov_deg; })
-                    .preset()
-                    .with_label("elevation FOV")
-                    .with_slider(1, 60));
+    t.push_back(
+        number(
+            "sonar.elevation_fov_deg", "deg", 0, 180, true, true, Stage::Trace,
+            "Elevation aperture Phi (side-scan: the beam's width across track; scanning: its vertical width)",
+            [](S s) -> double& { return s.sonar.elevation_fov_deg; })
+            .preset()
+            .with_label("elevation FOV")
+            .with_slider(1, 60));
     t.push_back(integer("sonar.beams", 1, 4096, Stage::Trace, "Number of beams N (eq. 10)",
                         [](S s) -> int& { return s.sonar.beams; })
                     .preset()
+                    .only_for({SonarKind::Imaging})
                     .with_log_slider(8, 512));
     ParamSpec table =
         blank<ParamSpec>("sonar.beam_table", "", ParamType::Enum, Stage::Trace,
@@ -57,7 +62,7 @@ std::vector<ParamSpec> sonar_rows() {
     for (const std::string& n : beam_table_names()) table.choices.push_back(n);
     table.get = [](const SceneDesc& s) { return json(s.sonar.beam_table); };
     table.put = [](SceneDesc& s, const json& v) { s.sonar.beam_table = v.get<std::string>(); };
-    t.push_back(table.preset().with_label("beam table"));
+    t.push_back(table.preset().only_for({SonarKind::Imaging}).with_label("beam table"));
     t.push_back(number("sonar.range_min_m", "m", 0, 1000, false, true, Stage::Trace,
                        "Start of the range window r_min", [](S s) -> double& { return s.sonar.range_min_m; })
                     .preset()
@@ -103,6 +108,7 @@ std::vector<ParamSpec> motion_rows() {
                         "follow each other every 2 r_max / c + 0.42 ms. Matters only with motion",
                         [](S s) -> int& { return s.sonar.pings_per_frame; })
                     .preset()
+                    .only_for({SonarKind::Imaging})
                     .in_section(Section::Motion)
                     .with_label("pings per frame")
                     .with_slider(1, 16));

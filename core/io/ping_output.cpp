@@ -1,0 +1,131 @@
+#include "core/io/ping_output.hpp"
+
+#include "core/display/display_range.hpp"
+#include "core/io/output.hpp"
+#include "core/kinds/kind_images.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/sensor/sensor.hpp"
+#include "core/shading/physics.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sonarsim {
+namespace {
+
+/// The levels the image shows: the waterfall, or the scan's raw array.
+PolarImage shown_levels(const SceneDesc& s, const PingSeries& p) {
+    return s.sonar.kind == SonarKind::Sidescan ? waterfall_levels(p, s.sidescan.range, s.sonar.range_max_m)
+                                               : scan_levels(p);
+}
+
+Bytes image_png(const SceneDesc& s, const PingSeries& p) {
+    return encode_png(ping_image(s, p));
+}
+
+Bytes raw_npy(const std::vector<float>& levels, const PingSeries& p) {
+    std::vector<std::size_t> shape = {std::size_t(p.pings), std::size_t(p.channels), std::size_t(p.bins)};
+    if (p.channels == 1) shape.erase(shape.begin() + 1);
+    return encode_npy_array(levels.data(), levels.size() * 4, "<f4", shape);
+}
+Bytes level_npy(const SceneDesc&, const PingSeries& p) {
+    return raw_npy(p.level_db, p);
+}
+Bytes ideal_npy(const SceneDesc&, const PingSeries& p) {
+    return raw_npy(p.ideal_db, p);
+}
+Bytes waterfall_npy(const SceneDesc& s, const PingSeries& p) {
+    return encode_npy(waterfall_levels(p, s.sidescan.range, s.sonar.range_max_m));
+}
+Bytes metadata_json(const SceneDesc& s, const PingSeries& p) {
+    return to_bytes(ping_metadata(s, p).dump(2) + "\n");
+}
+bool sidescan(const SceneDesc& s) {
+    return s.sonar.kind == SonarKind::Sidescan;
+}
+bool sensor_applied(const SceneDesc& s) {
+    return !sensor_is_ideal(s);
+}
+
+json number_or_null(double v) {
+    return std::isfinite(v) ? json(v) : json(nullptr);
+}
+
+} // namespace
+
+const std::vector<PingOutput>& ping_outputs() {
+    static const std::vector<PingOutput> table = {
+        {".png",
+         "the waterfall (side-scan: port | starboard, newest ping at the top) or the sweep (scanning)",
+         image_png},
+        {".npy", "levels dB through the sensor, float32 (pings, channels, bins); scanning (steps, bins)",
+         level_npy},
+        {"_waterfall.npy",
+         "the waterfall's levels dB as shown (pings, 2 x bins: port far..near, starboard "
+         "near..far; slant or ground range)",
+         waterfall_npy, sidescan},
+        {"_ideal.npy", "L_EN dB before the sensor stage, as .npy (only when the sensor is not ideal)",
+         ideal_npy, sensor_applied},
+        {".json", "metadata: parameters and each ping's time, pose, head angle, first bottom return",
+         metadata_json}};
+    return table;
+}
+
+std::string ping_outputs_text(const std::string& prefix, const SceneDesc& scene) {
+    std::string text;
+    for (auto& o : ping_outputs())
+        if (!o.wanted || o.wanted(scene))
+            text += (text.empty() ? "" : ", ") + prefix + o.suffix + " (" + o.what + ")";
+    return text;
+}
+
+void write_ping_files(const std::string& prefix, const SceneDesc& scene, const PingSeries& series) {
+    std::vector<std::pair<std::string, Bytes>> files;
+    for (auto& o : ping_outputs())
+        if (!o.wanted || o.wanted(scene)) files.emplace_back(prefix + o.suffix, o.encode(scene, series));
+    write_files_atomically(files);
+}
+
+DisplayParams ping_display(const SceneDesc& s, const PingSeries& p) {
+    return effective_display(shown_levels(s, p), s.display);
+}
+
+Image8 ping_image(const SceneDesc& s, const PingSeries& p) {
+    const DisplayParams d = ping_display(s, p);
+    if (s.sonar.kind == SonarKind::Sidescan) return waterfall_image(shown_levels(s, p), d);
+    return sweep_image(p, d, s.sonar.range_max_m, std::clamp(2 * p.bins, 256, 1024));
+}
+
+json ping_metadata(const SceneDesc& s, const PingSeries& p) {
+    json j = scene_to_json(s);
+    const double c = sound_speed_m_s(s.water.temperature_c, s.water.depth_m);
+    j["sound_speed_m_s"] = c;
+    j["alpha_db_per_m"] = absorption_db_per_m(s.sonar.frequency_khz, s.water.temperature_c, s.water.depth_m);
+    j["ping_interval_s"] = p.ping_interval_s;
+    j["ping_interval_rule"] = "2 r_max / c + the kind's overhead (" +
+                              std::string(s.sonar.kind == SonarKind::Sidescan ? "sidescan.ping_overhead_ms"
+                                                                              : "scanning.step_overhead_ms") +
+                              ")";
+    j["channels"] = json::array();
+    for (int ch = 0; ch < p.channels; ++ch) j["channels"].push_back(channel_name(s.sonar.kind, ch));
+    j["range_bin_edges_m"] = p.grid->bin_edges_m();
+    const DisplayParams shown = ping_display(s, p);
+    j["display_used"] = {{"lo_db", shown.lo_db}, {"hi_db", shown.hi_db}};
+    json pings = json::array();
+    for (int i = 0; i < p.pings; ++i) {
+        const Ping& g = p.schedule[size_t(i)];
+        json e = {{"time_s", g.time_s},
+                  {"position_m", g.vehicle.position_m},
+                  {"orientation_deg", g.vehicle.orientation_deg}};
+        if (s.sonar.kind == SonarKind::Scanning) e["head_deg"] = g.head_deg;
+        if (s.sonar.kind == SonarKind::Sidescan)
+            e["first_return_m"] = number_or_null(p.first_return_m[size_t(i)]);
+        pings.push_back(e);
+    }
+    j["pings"] = pings;
+    j["rays_traced"] = p.rays_traced;
+    j["render_ms"] = p.trace_ms;
+    return j;
+}
+
+} // namespace sonarsim

@@ -1,0 +1,42 @@
+// The files of a side-scan's or scanning sonar's image, in one table: the waterfall or sweep PNG, the raw
+// arrays (.npy float32), and the metadata (every effective parameter, each ping's time, pose, head angle and
+// first bottom return).
+#pragma once
+#include "core/io/png.hpp"
+#include "core/kinds/ping_series.hpp"
+#include "core/scene/param_spec.hpp"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace sonarsim {
+
+/// One file of a ping image: PREFIX + suffix.
+struct PingOutput {
+    const char* suffix;
+    const char* what;
+    Bytes (*encode)(const SceneDesc& scene, const PingSeries& series);
+    bool (*wanted)(const SceneDesc& scene) = nullptr; ///< written only where it says so (null: always)
+};
+
+/// The one table of the files a side-scan or scanning image is written as.
+const std::vector<PingOutput>& ping_outputs();
+
+/// "PREFIX.png (waterfall ...), ...": the files `scene` writes, for messages.
+std::string ping_outputs_text(const std::string& prefix, const SceneDesc& scene);
+
+/// Writes every file of ping_outputs() for `prefix` in one atomic step.
+void write_ping_files(const std::string& prefix, const SceneDesc& scene, const PingSeries& series);
+
+/// The display range the image is shown with (display.auto: from the levels shown).
+DisplayParams ping_display(const SceneDesc& scene, const PingSeries& series);
+
+/// The ping image as the PNG shows it: a side-scan's waterfall, a scanning sonar's sweep.
+Image8 ping_image(const SceneDesc& scene, const PingSeries& series);
+
+/// Metadata: the scene's parameters, the sound speed and ping interval, the bin edges, and per ping its
+/// time, vehicle pose, head angle (scanning) and first bottom return (side-scan).
+json ping_metadata(const SceneDesc& scene, const PingSeries& series);
+
+} // namespace sonarsim

@@ -1,0 +1,66 @@
+#include "core/kinds/ping_series.hpp"
+
+#include "core/base/timing.hpp"
+#include "core/pipeline/simulator.hpp"
+#include "core/shading/physics.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <memory>
+
+namespace sonarsim {
+
+double first_return_m(const PingSeries& s, int ping, double threshold_db) {
+    for (int k = 0; k < s.bins; ++k)
+        for (int ch = 0; ch < s.channels; ++ch) {
+            const size_t at = (size_t(ping) * size_t(s.channels) + size_t(ch)) * size_t(s.bins) + size_t(k);
+            if (s.ideal_db[at] >= threshold_db) return s.grid->bin_near_edge_m(k);
+        }
+    return std::numeric_limits<double>::quiet_NaN();
+}
+
+PingSeries render_pings(const SceneDesc& scene, const PingControl& control) {
+    const auto t0 = std::chrono::steady_clock::now();
+    PingSeries out;
+    out.kind = scene.sonar.kind;
+    out.channels = channel_count(scene.sonar.kind);
+    out.schedule = ping_schedule(scene);
+    out.pings = int(out.schedule.size());
+    out.bins = scene.sonar.range_bins;
+    const SceneDesc beam = beam_scene(scene);
+    out.grid = sonar_grid(beam.sonar);
+    out.ping_interval_s =
+        kind_ping_interval_s(scene, sound_speed_m_s(scene.water.temperature_c, scene.water.depth_m));
+    const size_t n = size_t(out.pings) * size_t(out.channels) * size_t(out.bins);
+    out.level_db.resize(n), out.ideal_db.resize(n);
+    // One simulator per channel: each keeps its geometry and its stages' buffers from ping to ping, and only
+    // the pose changes between them.
+    std::vector<std::unique_ptr<Simulator>> sims;
+    for (int ch = 0; ch < out.channels; ++ch) sims.push_back(std::make_unique<Simulator>(beam));
+    TraceControl trace;
+    trace.cancel = control.cancel;
+    for (int p = 0; p < out.pings; ++p) {
+        for (int ch = 0; ch < out.channels; ++ch) {
+            SceneDesc at = beam;
+            at.sonar.pose = transducer_pose(scene, out.schedule[size_t(p)], ch);
+            sims[size_t(ch)]->set_scene(at, Stage::Trace);
+            const auto f = sims[size_t(ch)]->render(trace);
+            out.rays_traced += f->hits().rays_traced;
+            const size_t off = (size_t(p) * size_t(out.channels) + size_t(ch)) * size_t(out.bins);
+            std::memcpy(out.level_db.data() + off, f->polar().level_db.data(), size_t(out.bins) * 4);
+            std::memcpy(out.ideal_db.data() + off, f->ideal().level_db.data(), size_t(out.bins) * 4);
+        }
+        if (control.progress) control.progress(p + 1, out.pings);
+    }
+    if (out.kind == SonarKind::Sidescan) {
+        out.first_return_m.resize(size_t(out.pings));
+        for (int p = 0; p < out.pings; ++p)
+            out.first_return_m[size_t(p)] = first_return_m(out, p, scene.sidescan.bottom_threshold_db);
+    }
+    out.trace_ms = ms_since(t0);
+    return out;
+}
+
+} // namespace sonarsim

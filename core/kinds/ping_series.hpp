@@ -1,0 +1,51 @@
+// A side-scan's or scanning sonar's pings traced and shaded: per ping and channel one range profile (the
+// one-beam imaging sonar's image through the sensor stage), the pose and time it was heard from, and for a
+// side-scan the altitude of its first bottom return.
+#pragma once
+#include "core/grid/sonar_grid.hpp"
+#include "core/kinds/pings.hpp"
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace sonarsim {
+
+/// The traced pings of one waterfall or sweep.
+struct PingSeries {
+    SonarKind kind = SonarKind::Imaging;
+    int pings = 0, channels = 0, bins = 0;
+    std::shared_ptr<const SonarGrid> grid; ///< one channel's beam and its bins
+    double ping_interval_s = 0;
+    std::vector<Ping> schedule; ///< when and from where each ping was heard
+    std::vector<float>
+        level_db; ///< through the sensor [dB], index [(ping * channels + channel) * bins + bin]
+    std::vector<float> ideal_db; ///< L_EN before the sensor, same layout
+    /// Side-scan: each ping's first bottom return (sidescan.bottom_threshold_db on L_EN, either channel): the
+    /// near edge of its bin [m]; NaN where no bin reaches it.
+    std::vector<double> first_return_m;
+    std::uint64_t rays_traced = 0;
+    double trace_ms = 0; ///< the pings' time, all stages included
+
+    const float* profile(int ping, int channel) const {
+        return level_db.data() + (size_t(ping) * size_t(channels) + size_t(channel)) * size_t(bins);
+    }
+};
+
+/// What render_pings reports and obeys while it runs.
+struct PingControl {
+    /// Called after each ping with (pings done, pings in all); may be empty.
+    std::function<void(int, int)> progress;
+    const std::atomic<bool>* cancel = nullptr; ///< set: the current ping's trace throws TraceCancelled
+};
+
+/// Traces every ping of `scene` (a side-scan or scanning sonar) with its sampler and sensor.
+PingSeries render_pings(const SceneDesc& scene, const PingControl& control = {});
+
+/// The first bin of a ping whose L_EN reaches `threshold_db` in any channel, as the range of its near edge
+/// [m]; NaN where none does.
+double first_return_m(const PingSeries& series, int ping, double threshold_db);
+
+} // namespace sonarsim

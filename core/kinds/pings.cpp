@@ -1,0 +1,88 @@
+#include "core/kinds/pings.hpp"
+
+#include "core/data/pose.hpp"
+#include "core/sampling/acquisition.hpp"
+#include "core/shading/physics.hpp"
+
+#include <cmath>
+
+namespace sonarsim {
+
+int channel_count(SonarKind kind) {
+    return kind == SonarKind::Sidescan ? 2 : 1;
+}
+
+const char* channel_name(SonarKind kind, int channel) {
+    if (kind != SonarKind::Sidescan) return "beam";
+    return channel == 0 ? "port" : "starboard";
+}
+
+double kind_ping_interval_s(const SceneDesc& s, double c) {
+    const double listen = 2 * s.sonar.range_max_m / c;
+    switch (s.sonar.kind) {
+    case SonarKind::Sidescan:
+        return listen + 1e-3 * s.sidescan.ping_overhead_ms;
+    case SonarKind::Scanning:
+        return listen + 1e-3 * s.scanning.step_overhead_ms;
+    case SonarKind::Imaging:
+        break;
+    }
+    return ping_interval_s(s.sonar, c);
+}
+
+std::vector<double> sweep_head_angles_deg(const ScanningParams& sc) {
+    const double span = sc.sector_end_deg - sc.sector_start_deg;
+    const double dir = span < 0 ? -1 : 1;
+    const bool full = std::abs(std::abs(span) - 360) < 1e-9;
+    // Steps that fit in the span; a hair of tolerance so that 360 / 0.9 is 400 steps, not 399.
+    const double fit = std::abs(span) / sc.step_deg;
+    const int steps = full ? int(std::lround(fit)) : int(std::floor(fit + 1e-9)) + 1;
+    std::vector<double> angles(size_t(std::max(steps, 1)));
+    for (size_t i = 0; i < angles.size(); ++i)
+        angles[i] = sc.sector_start_deg + dir * double(i) * sc.step_deg;
+    return angles;
+}
+
+std::vector<Ping> ping_schedule(const SceneDesc& s) {
+    const double c = sound_speed_m_s(s.water.temperature_c, s.water.depth_m);
+    const double dt = kind_ping_interval_s(s, c);
+    std::vector<double> heads;
+    if (s.sonar.kind == SonarKind::Scanning)
+        heads = sweep_head_angles_deg(s.scanning);
+    else
+        heads.assign(size_t(s.sonar.kind == SonarKind::Sidescan ? s.sidescan.pings : 1), 0.0);
+    std::vector<Ping> pings(heads.size());
+    for (size_t i = 0; i < pings.size(); ++i) {
+        pings[i].time_s = double(i) * dt;
+        pings[i].vehicle = pose_at(s.sonar, pings[i].time_s);
+        pings[i].head_deg = heads[i];
+    }
+    return pings;
+}
+
+Pose transducer_pose(const SceneDesc& s, const Ping& ping, int channel) {
+    glm::dmat3 mount(1.0);
+    if (s.sonar.kind == SonarKind::Sidescan)
+        mount = rotation_matrix({0, s.sidescan.depression_deg, channel == 0 ? 90.0 : -90.0});
+    else if (s.sonar.kind == SonarKind::Scanning)
+        mount = rotation_matrix({0, 0, ping.head_deg});
+    Pose p = ping.vehicle;
+    p.orientation_deg = orientation_of(rotation_matrix(ping.vehicle.orientation_deg) * mount);
+    return p;
+}
+
+SceneDesc beam_scene(const SceneDesc& scene) {
+    SceneDesc b = scene;
+    b.sonar.kind = SonarKind::Imaging;
+    b.sonar.beams = 1;
+    b.sonar.beam_table = "uniform";
+    b.sonar.pings_per_frame = 1;
+    b.sonar.velocity_mps = {0, 0, 0}; // each ping a snapshot from its transmit pose
+    b.sonar.angular_rate_dps = {0, 0, 0};
+    b.sidescan = {};
+    b.scanning = {};
+    b.display.auto_range = false; // the waterfall or sweep chooses its own range
+    return b;
+}
+
+} // namespace sonarsim

@@ -1,0 +1,45 @@
+// When a side-scan or scanning sonar pings and from where: the schedule of its pings (each from the
+// vehicle's pose at its transmit time), each transducer's pose, and the one-beam imaging sonar that traces
+// a ping. A ping is an image of one beam (per channel) with everything the imaging sonar has: the sonar
+// equation, materials, the sampler, the sensor stage.
+#pragma once
+#include "core/data/scene.hpp"
+
+#include <string>
+#include <vector>
+
+namespace sonarsim {
+
+/// One ping of a side-scan (both channels) or of a scanning head (one channel).
+struct Ping {
+    double time_s = 0;   ///< transmit time after the first ping's [s]
+    Pose vehicle;        ///< the sonar's pose at the transmit (sonar.position and orientation moved by the
+                         ///< motion rows)
+    double head_deg = 0; ///< scanning: the head angle from the sonar's x axis toward port [deg]
+};
+
+/// Channels of a kind: 2 for a side-scan (0 port, 1 starboard), else 1.
+int channel_count(SonarKind kind);
+/// "port", "starboard", or "beam".
+const char* channel_name(SonarKind kind, int channel);
+
+/// Time from one ping to the next [s]: the listening window 2 r_max / c plus the kind's overhead
+/// (sidescan.ping_overhead_ms, scanning.step_overhead_ms). `sound_speed_m_s`: c.
+double kind_ping_interval_s(const SceneDesc& scene, double sound_speed_m_s);
+
+/// Head angles of one sweep [deg]: from sector_start_deg toward sector_end_deg in steps of step_deg, both
+/// ends included; a full circle (|end - start| = 360) without its end (it is the start).
+std::vector<double> sweep_head_angles_deg(const ScanningParams& scanning);
+
+/// The pings of one image: a side-scan's waterfall (sidescan.pings) or a scanning head's sweep.
+std::vector<Ping> ping_schedule(const SceneDesc& scene);
+
+/// The pose of channel `channel`'s transducer at ping `ping`: a side-scan's port (+90 deg yaw) or starboard
+/// (-90 deg) transducer pitched down by sidescan.depression_deg; a scanning head turned by head_deg.
+Pose transducer_pose(const SceneDesc& scene, const Ping& ping, int channel);
+
+/// The one-beam imaging sonar that traces one channel's ping: `scene` with sonar.kind imaging, one beam
+/// sonar.azimuth_fov_deg wide, no motion within the ping; its pose is set per ping (transducer_pose).
+SceneDesc beam_scene(const SceneDesc& scene);
+
+} // namespace sonarsim

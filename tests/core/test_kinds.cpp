@@ -1,0 +1,277 @@
+// Side-scan and scanning sonars against closed forms: the nadir gap, ground range, the level against the
+// flat-floor integral, a cube's shadow, independent channels, a round tank's wall from a still and a moving
+// head, and the ping timing.
+#include "core/analysis/reference.hpp"
+#include "core/base/errors.hpp"
+#include "core/kinds/kind_images.hpp"
+#include "core/kinds/ping_series.hpp"
+#include "core/scene/params.hpp"
+#include "core/scene/scene_io.hpp"
+#include "core/shading/physics.hpp"
+#include "support.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <fstream>
+
+using namespace sonarsim;
+using sonarsim::test::out_path;
+
+namespace {
+
+/// A side-scan at altitude `h_m` over a bare flat floor, heading +x, pinging `pings` times while still.
+SceneDesc sidescan_scene(double h_m, int pings = 4) {
+    SceneDesc s;
+    apply_setting(s, "sonar.kind", "sidescan", "test");
+    s.sonar.pose = {{0, 0, h_m}, {0, 0, 0}};
+    s.sonar.frequency_khz = 400;
+    s.sonar.azimuth_fov_deg = 1.0;
+    s.sonar.elevation_fov_deg = 100; // from 5 deg above the horizon to 5 deg past nadir
+    s.sidescan.depression_deg = 45;
+    s.sonar.range_min_m = 0.5, s.sonar.range_max_m = 20, s.sonar.range_bins = 400;
+    s.sonar.source_level_db = 210, s.sonar.noise_level_db = 40;
+    s.sidescan.pings = pings;
+    s.seafloor = Seafloor{};
+    s.seafloor->material.nu_db = -30;
+    validate_scene(s, "test");
+    return s;
+}
+
+ObjectDesc box(Vec3d size_m, Vec3d centre_m, double nu_db) {
+    ObjectDesc o;
+    o.box_m = size_m, o.position_m = centre_m;
+    o.material.nu_db = nu_db;
+    return o;
+}
+
+/// Near edge of the first bin of `profile` at or beyond bin `from` whose level reaches `threshold_db`
+/// (-1: none).
+int first_bin_at_least(const float* profile, int bins, double threshold_db, int from = 0) {
+    for (int k = from; k < bins; ++k)
+        if (profile[k] >= threshold_db) return k;
+    return -1;
+}
+
+/// A vertical cylinder wall of radius r_m from z = 0 to 2 m, 720 faces, as an OBJ file.
+std::string tank_obj(double r_m) {
+    const std::string path = out_path("kinds_tank.obj");
+    std::ofstream f(path);
+    const int n = 720;
+    for (int i = 0; i < n; ++i) {
+        const double a = 2 * 3.14159265358979323846 * i / n;
+        f << "v " << r_m * std::cos(a) << " " << r_m * std::sin(a) << " 0\n";
+        f << "v " << r_m * std::cos(a) << " " << r_m * std::sin(a) << " 2\n";
+    }
+    for (int i = 0; i < n; ++i) {
+        const int a = 2 * i + 1, b = 2 * i + 2, c = 2 * ((i + 1) % n) + 1, d = 2 * ((i + 1) % n) + 2;
+        f << "f " << a << " " << c << " " << d << "\nf " << a << " " << d << " " << b << "\n";
+    }
+    return path;
+}
+
+/// A scanning sonar at (x, 0, 1) in a round tank of radius r_m (no floor), full circle in 3.6 deg steps.
+SceneDesc tank_scan(double r_m) {
+    SceneDesc s;
+    apply_setting(s, "sonar.kind", "scanning", "test");
+    s.sonar.pose = {{0, 0, 1}, {0, 0, 0}};
+    s.sonar.frequency_khz = 750;
+    s.sonar.azimuth_fov_deg = 2, s.sonar.elevation_fov_deg = 25;
+    s.sonar.range_min_m = 0.3, s.sonar.range_max_m = 8, s.sonar.range_bins = 400;
+    s.sonar.source_level_db = 200, s.sonar.noise_level_db = 40;
+    s.scanning.step_deg = 3.6;
+    s.seafloor.reset();
+    ObjectDesc wall;
+    wall.mesh = wall.mesh_resolved = tank_obj(r_m);
+    wall.material.nu_db = -20;
+    s.objects = {wall};
+    validate_scene(s, "test");
+    return s;
+}
+
+} // namespace
+
+TEST_CASE("side-scan over a flat floor: nothing before the altitude, the first return at it, each channel's "
+          "level within 0.2 dB median of the flat-floor integral",
+          "[kinds]") {
+    const double h = 6;
+    const SceneDesc s = sidescan_scene(h);
+    const PingSeries p = render_pings(s);
+    REQUIRE(p.pings == 4);
+    REQUIRE(p.channels == 2);
+    const double bin = p.grid->bin_m;
+    for (int ping = 0; ping < p.pings; ++ping) {
+        CHECK(std::abs(p.first_return_m[size_t(ping)] - h) <= bin);
+        for (int ch = 0; ch < 2; ++ch) {
+            const float* ideal = p.ideal_db.data() + (size_t(ping) * 2 + size_t(ch)) * size_t(p.bins);
+            for (int k = 0; k < p.bins; ++k)
+                if (p.grid->bin_near_edge_m(k) + bin < h) CHECK_FALSE(std::isfinite(ideal[k]));
+        }
+    }
+    // Each channel is a one-beam imaging sonar at its transducer's pose: the integral of a bare floor.
+    for (int ch = 0; ch < 2; ++ch) {
+        SceneDesc beam = beam_scene(s);
+        beam.sonar.pose = transducer_pose(s, p.schedule[0], ch);
+        const PolarImage ref = floor_reference(beam);
+        PolarImage got;
+        got.bins = p.bins, got.beams = 1;
+        got.level_db.assign(p.ideal_db.begin() + ptrdiff_t(ch) * p.bins,
+                            p.ideal_db.begin() + ptrdiff_t(ch + 1) * p.bins);
+        const ImageError e = compare_images(got, ref);
+        INFO("channel " << ch << ": median " << e.median_abs_db << " dB, rel L1 " << e.rel_l1);
+        CHECK(e.median_abs_db < 0.2);
+        CHECK(e.echoing_ref > p.bins / 2);
+    }
+}
+
+TEST_CASE("side-scan ground range: a bright strip on the floor at ground range 8-10 m shows there, within "
+          "one bin, in both channels' halves",
+          "[kinds]") {
+    const double h = 5;
+    SceneDesc s = sidescan_scene(h, 2);
+    // Strips 2 cm thick along the track, to starboard (y < 0) and port (y > 0), 2 m wide.
+    s.objects = {box({40, 2, 0.02}, {0, -9, 0.01}, -5), box({40, 2, 0.02}, {0, 9, 0.01}, -5)};
+    s.sidescan.range = SidescanRange::Ground;
+    const PingSeries p = render_pings(s);
+    const PolarImage w = waterfall_levels(p, SidescanRange::Ground, s.sonar.range_max_m);
+    SceneDesc bare = s;
+    bare.objects.clear();
+    const PolarImage floor = waterfall_levels(render_pings(bare), SidescanRange::Ground, s.sonar.range_max_m);
+    const double ground_bin = s.sonar.range_max_m / p.bins;
+    // The strip is 25 dB above the floor: its columns are those 10 dB above the bare floor's.
+    for (int side = 0; side < 2; ++side) {
+        double first = -1, last = -1;
+        for (int j = 0; j < p.bins; ++j) {
+            const int col = side == 0 ? p.bins - 1 - j : p.bins + j;
+            if (std::isfinite(w.at(0, col)) && w.at(0, col) >= floor.at(0, col) + 10) {
+                if (first < 0) first = j * ground_bin;
+                last = (j + 1) * ground_bin;
+            }
+        }
+        INFO("side " << side << ": strip from " << first << " to " << last << " m");
+        CHECK(std::abs(first - 8) <= ground_bin);
+        CHECK(std::abs(last - 10) <= ground_bin);
+    }
+    // Slant range: the strip spans sqrt(g^2 + h^2).
+    const PolarImage slant = waterfall_levels(p, SidescanRange::Slant, s.sonar.range_max_m);
+    const int k8 = p.grid->bin_of(std::hypot(8.0, h)), k10 = p.grid->bin_of(std::hypot(10.0, h));
+    CHECK(slant.at(0, p.bins + k8 + 2) > slant.at(0, p.bins + k8 - 3) + 15);
+    CHECK(slant.at(0, p.bins + k10 - 3) > slant.at(0, p.bins + k10 + 2) + 15);
+}
+
+TEST_CASE("side-scan: a 1 m cube's shadow ends at ground range x h / (h - 1), and only its side sees it",
+          "[kinds]") {
+    const double h = 4, x_far = 9;
+    SceneDesc s = sidescan_scene(h, 1);
+    s.sonar.range_bins = 800;
+    s.sonar.source_level_db = 220;
+    s.objects = {box({1, 1, 1}, {0, -(x_far - 0.5), 0.5}, -20)}; // to starboard, far top edge at 9 m
+    const PingSeries p = render_pings(s);
+    const PolarImage w = waterfall_levels(p, SidescanRange::Ground, s.sonar.range_max_m);
+    const double ground_bin = s.sonar.range_max_m / p.bins;
+    // Starboard columns beyond the cube: the first that echoes again ends the shadow.
+    const int from = int(x_far / ground_bin) + 1;
+    int end = -1;
+    for (int j = from; j < p.bins && end < 0; ++j)
+        if (std::isfinite(w.at(0, p.bins + j))) end = j;
+    REQUIRE(end > 0);
+    const double shadow_end = end * ground_bin, expected = x_far * h / (h - 1);
+    INFO("shadow ends at " << shadow_end << " m, expected " << expected);
+    CHECK(std::abs(shadow_end - expected) <= 2 * ground_bin);
+    // Port sees a bare floor: the same profile as without the cube.
+    SceneDesc bare = s;
+    bare.objects.clear();
+    const PingSeries q = render_pings(bare);
+    for (int k = 0; k < p.bins; ++k) CHECK(p.profile(0, 0)[k] == q.profile(0, 0)[k]);
+    int differ = 0;
+    for (int k = 0; k < p.bins; ++k) differ += p.profile(0, 1)[k] != q.profile(0, 1)[k];
+    CHECK(differ > 50);
+}
+
+TEST_CASE("scanning sonar at the centre of a round tank: the wall at R in every step, within one bin",
+          "[kinds]") {
+    const double R = 5;
+    const SceneDesc s = tank_scan(R);
+    const PingSeries p = render_pings(s);
+    REQUIRE(p.pings == 100);
+    REQUIRE(p.channels == 1);
+    for (int i = 0; i < p.pings; ++i) {
+        const int k = first_bin_at_least(p.profile(i, 0), p.bins, 10);
+        INFO("step " << i << " head " << p.schedule[size_t(i)].head_deg);
+        REQUIRE(k >= 0);
+        CHECK(std::abs(k - p.grid->bin_of(R)) <= 1);
+    }
+}
+
+TEST_CASE("scanning sonar moving at v during its sweep: the step fired at t sees the wall from x0 + v t, "
+          "within one bin",
+          "[kinds]") {
+    const double R = 5, v = 0.6;
+    SceneDesc s = tank_scan(R);
+    s.sonar.velocity_mps = {v, 0, 0};
+    // A narrow beam: off the centre the wall is met obliquely, and a 2 deg beam's edge would find it a bin
+    // or two nearer than its axis does.
+    s.sonar.azimuth_fov_deg = 0.2;
+    const PingSeries p = render_pings(s);
+    const double sweep_s = p.schedule.back().time_s;
+    REQUIRE(v * sweep_s > 2); // the sonar crosses two metres of the tank in one sweep: a visible distortion
+    for (int i = 0; i < p.pings; ++i) {
+        const Ping& g = p.schedule[size_t(i)];
+        const double d = v * g.time_s, a = g.head_deg * 3.14159265358979323846 / 180;
+        CHECK(g.vehicle.position_m[0] == Approx(d));
+        // From (d, 0) along (cos a, sin a) to the circle of radius R.
+        const double wall = -d * std::cos(a) + std::sqrt(R * R - d * d * std::sin(a) * std::sin(a));
+        const int k = first_bin_at_least(p.profile(i, 0), p.bins, 10);
+        INFO("step " << i << " at " << g.time_s << " s, head " << g.head_deg << " deg: wall at " << wall);
+        REQUIRE(k >= 0);
+        CHECK(std::abs(k - p.grid->bin_of(wall)) <= 1);
+    }
+}
+
+TEST_CASE(
+    "ping timing: 2 r_max / c plus the kind's overhead, and a full circle of 0.9 deg steps is 400 pings",
+    "[kinds]") {
+    SceneDesc s = sidescan_scene(5, 3);
+    s.sidescan.ping_overhead_ms = 2;
+    const double c = sound_speed_m_s(s.water.temperature_c, s.water.depth_m);
+    const auto pings = ping_schedule(s);
+    REQUIRE(pings.size() == 3);
+    CHECK(pings[2].time_s == Approx(2 * (2 * 20 / c + 0.002)));
+    SceneDesc t = tank_scan(5);
+    t.scanning.step_deg = 0.9;
+    const auto steps = ping_schedule(t);
+    REQUIRE(steps.size() == 400);
+    CHECK(steps[1].time_s == Approx(2 * 8 / c + 0.025));
+    CHECK(steps[399].head_deg == Approx(-180 + 399 * 0.9));
+    t.scanning.sector_start_deg = -45, t.scanning.sector_end_deg = 45;
+    const auto sector = sweep_head_angles_deg(t.scanning);
+    REQUIRE(sector.size() == 101); // both ends
+    CHECK(sector.back() == Approx(45));
+}
+
+TEST_CASE("a key another kind uses is an error naming it, and choosing a kind resets the other kinds' keys",
+          "[kinds]") {
+    SceneDesc s = default_scene();
+    s.sonar.beams = 64;
+    apply_setting(s, "sonar.kind", "sidescan", "test");
+    CHECK(s.sonar.beams == SceneDesc{}.sonar.beams);
+    s.sonar.beams = 64;
+    try {
+        validate_scene(s, "f.json");
+        FAIL("no error");
+    } catch (const InputError& e) {
+        CHECK(std::string(e.what()) == "f.json: sonar.beams: not used by sonar.kind \"sidescan\"; allowed: "
+                                       "leave it out, or sonar.kind imaging");
+    }
+    CHECK_THROWS_AS(
+        parse_scene(R"({"sonar": {"kind": "scanning"}, "sidescan": {"pings": 5}})", "g.json", "."),
+        InputError);
+    const SceneDesc ok =
+        parse_scene(R"({"sonar": {"kind": "scanning"}, "scanning": {"step_deg": 1.8}})", "g.json", ".");
+    CHECK(ok.scanning.step_deg == 1.8);
+    // A scene file written for a kind holds only its keys, and reads back.
+    const json j = scene_to_json(ok);
+    CHECK_FALSE(j["sonar"].contains("beams"));
+    CHECK_FALSE(j.contains("sidescan"));
+    CHECK(scene_to_json(parse_scene(j.dump(), "h.json", ".")) == j);
+}
