@@ -58,7 +58,13 @@ Row row_of(const DevicePreset& p) {
     r.name = p.name;
     r.title = p.title;
     r.frequency = show(p, "sonar.frequency_khz", " kHz");
-    r.beams = show(p, "sonar.beams");
+    // A side-scan's two beams and a scanning head's one, each with its kind's figure.
+    if (p.kind() == "sidescan")
+        r.beams = "2 side-scan, " + show(p, "sidescan.depression_deg", "°") + " down";
+    else if (p.kind() == "scanning")
+        r.beams = "1 scanning, " + show(p, "scanning.step_deg", "°") + " steps";
+    else
+        r.beams = show(p, "sonar.beams");
     r.fov = show(p, "sonar.azimuth_fov_deg", "°") + " × " + show(p, "sonar.elevation_fov_deg", "°");
     r.beamwidth = show(p, "sensor.azimuth_beamwidth_deg", "°");
     const DeviceValue* beamformer = value_of(p, "sensor.beamformer");

@@ -64,4 +64,11 @@ std::vector<std::string> device_choices() {
     return names;
 }
 
+std::vector<std::string> device_choices(const std::string& kind_name) {
+    std::vector<std::string> names = {"none"};
+    for (auto& p : device_presets())
+        if (p.kind() == kind_name) names.push_back(p.name);
+    return names;
+}
+
 } // namespace sonarsim

@@ -43,5 +43,7 @@ const DevicePreset* find_device(const std::string& name);
 /// "none" followed by every preset's name: the values sonar.device allows (from the embedded files' names,
 /// without reading them).
 std::vector<std::string> device_choices();
+/// "none" followed by the presets whose kind (DevicePreset::kind) is `kind_name` ("imaging", ...).
+std::vector<std::string> device_choices(const std::string& kind_name);
 
 } // namespace sonarsim

@@ -30,7 +30,8 @@ void apply_sensor_model(SceneDesc& scene) {
 /// (rows with an "ideal" value) only under sensor.model "device".
 void apply_device(SceneDesc& scene) {
     const DevicePreset* preset = find_device(scene.sonar.device);
-    if (!preset) return; // "none": the values stay as they are
+    if (!preset) return;                   // "none": the values stay as they are
+    scene.sonar.kind = SonarKind::Imaging; // unless the preset names another kind
     for (auto& dv : preset->values) {
         const ParamSpec& p = *find_param(dv.key);
         if (p.ideal_value.is_null()) p.put(scene, validate_value(p, dv.value, preset->file, dv.key));

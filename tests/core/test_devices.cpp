@@ -110,9 +110,19 @@ TEST_CASE("devices: every preset value is a table key with a valid value and a s
         INFO(p.file);
         // The main figures every preset gives, and the display that never renders black.
         for (const char* key :
-             {"sonar.frequency_khz", "sonar.azimuth_fov_deg", "sonar.elevation_fov_deg", "sonar.beams",
-              "sonar.range_min_m", "sonar.range_max_m", "sonar.range_bins", "sonar.source_level_db",
-              "sonar.noise_level_db", "sensor.azimuth_beamwidth_deg", "sensor.range_resolution_m"}) {
+             {"sonar.frequency_khz", "sonar.azimuth_fov_deg", "sonar.elevation_fov_deg", "sonar.range_min_m",
+              "sonar.range_max_m", "sonar.range_bins", "sonar.source_level_db", "sonar.noise_level_db",
+              "sensor.range_resolution_m"}) {
+            INFO(key);
+            CHECK(value_of(p, key));
+        }
+        // An imaging sonar's beams; a side-scan's tilt; a scanning head's step and its time.
+        const std::vector<const char*> of_kind =
+            p.kind() == "imaging" ? std::vector<const char*>{"sonar.beams", "sensor.azimuth_beamwidth_deg"}
+            : p.kind() == "sidescan"
+                ? std::vector<const char*>{"sidescan.depression_deg"}
+                : std::vector<const char*>{"scanning.step_deg", "scanning.step_overhead_ms"};
+        for (const char* key : of_kind) {
             INFO(key);
             CHECK(value_of(p, key));
         }
@@ -214,9 +224,10 @@ TEST_CASE("devices: sonar.device sets the preset values and scene keys override 
     CHECK_THROWS_AS(apply_setting(t, "sonar.device", "no-such-sonar", "--set"), InputError);
 }
 
-TEST_CASE("devices: each preset renders a visible floor with the device sensor", "[devices]") {
+TEST_CASE("devices: each imaging preset renders a visible floor with the device sensor", "[devices]") {
     for (auto& p : device_presets()) {
         INFO(p.name);
+        if (p.kind() != "imaging") continue; // tests/core/test_kinds.cpp
         const SceneDesc s = floor_scene(p.name);
         Simulator sim(s);
         const auto frame = sim.render();

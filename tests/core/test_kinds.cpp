@@ -3,6 +3,8 @@
 // head, and the ping timing.
 #include "core/analysis/reference.hpp"
 #include "core/base/errors.hpp"
+#include "core/display/display_range.hpp"
+#include "core/scene/devices.hpp"
 #include "core/kinds/kind_images.hpp"
 #include "core/kinds/ping_series.hpp"
 #include "core/scene/params.hpp"
@@ -274,4 +276,39 @@ TEST_CASE("a key another kind uses is an error naming it, and choosing a kind re
     CHECK_FALSE(j["sonar"].contains("beams"));
     CHECK_FALSE(j.contains("sidescan"));
     CHECK(scene_to_json(parse_scene(j.dump(), "h.json", ".")) == j);
+}
+
+TEST_CASE("each side-scan and scanning preset images a floor, most of it neither black nor white",
+          "[kinds][devices]") {
+    for (auto& preset : device_presets()) {
+        if (preset.kind() == "imaging") continue;
+        INFO(preset.name);
+        SceneDesc s;
+        apply_setting(s, "sonar.device", preset.name, "test");
+        apply_setting(s, "sensor.model", "device", "test");
+        // Level, 5 m over the floor: a side-scan looks down to both sides, a scanning head (pitched 20 deg
+        // down) sweeps the floor around it.
+        const bool side = s.sonar.kind == SonarKind::Sidescan;
+        s.sonar.pose = {{0, 0, 5}, {0, side ? 0.0 : 20.0, 0}};
+        if (side)
+            s.sidescan.pings = 8;
+        else
+            s.scanning.step_deg = 9;
+        s.objects = {box({2, 2, 2}, {0, -10, 1}, -20)};
+        validate_scene(s, "test");
+        const PingSeries p = render_pings(s);
+        const PolarImage shown =
+            side ? waterfall_levels(p, SidescanRange::Slant, s.sonar.range_max_m) : scan_levels(p);
+        const DisplayParams d = effective_display(shown, s.display);
+        // The cells whose echo stands above the noise (the water column before the first return does not).
+        size_t echoing = 0, mid = 0;
+        for (size_t i = 0; i < p.level_db.size(); ++i) {
+            if (!(p.ideal_db[i] >= 0)) continue;
+            ++echoing;
+            const float g = gray_level(p.level_db[i], d.lo_db, d.hi_db);
+            mid += g > 0 && g < 255;
+        }
+        CHECK(echoing > p.level_db.size() / 4);
+        CHECK(mid > echoing * 8 / 10);
+    }
 }

@@ -141,12 +141,9 @@ void section_params(ControlsWidgets& w, Session& session, Section section) {
             const std::string now = cur.get<std::string>();
             const std::string label = field_label(w, p.label_text(), p.key);
             if (ImGui::BeginCombo(label.c_str(), now.c_str())) {
-                for (auto& c : p.choices) {
-                    // The viewer shows imaging sonars: the other kinds' presets render headless.
-                    const DevicePreset* preset = p.key == "sonar.device" ? find_device(c) : nullptr;
-                    if (preset && preset->kind() != "imaging") continue;
+                // The viewer shows imaging sonars: the other kinds' presets render headless.
+                for (auto& c : p.key == "sonar.device" ? device_choices("imaging") : p.choices)
                     if (ImGui::Selectable(c.c_str(), c == now)) session.set(p.key, c);
-                }
                 ImGui::EndCombo();
             }
             help_tooltip(p);

@@ -48,9 +48,10 @@ void Viewer::menu_bar() {
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Device")) {
-        // sonar.device presets (assets/devices) and the sensor model: the same keys as the panel's.
+        // sonar.device presets (assets/devices) and the sensor model: the same keys as the panel's. The
+        // viewer shows imaging sonars: the other kinds' presets render headless.
         const SceneDesc& s = session_.scene();
-        for (const std::string& name : device_choices()) {
+        for (const std::string& name : device_choices("imaging")) {
             const DevicePreset* p = find_device(name);
             if (ImGui::MenuItem(p ? (name + "  " + p->title).c_str() : "none (keep the values)", nullptr,
                                 s.sonar.device == name))
