@@ -2,6 +2,8 @@
 
 #include "core/display/display_range.hpp"
 #include "core/io/output.hpp"
+#include "core/io/ping360_log.hpp"
+#include "core/io/xtf.hpp"
 #include "core/kinds/kind_images.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/sensor/sensor.hpp"
@@ -40,6 +42,15 @@ Bytes waterfall_npy(const SceneDesc& s, const PingSeries& p) {
 Bytes metadata_json(const SceneDesc& s, const PingSeries& p) {
     return to_bytes(ping_metadata(s, p).dump(2) + "\n");
 }
+Bytes xtf_file(const SceneDesc& s, const PingSeries& p) {
+    return encode_xtf(s, p, ping_byte_mapping(s, p));
+}
+Bytes ping360_file(const SceneDesc& s, const PingSeries& p) {
+    return encode_ping360_log(s, p, ping_byte_mapping(s, p), s.source_file);
+}
+bool ping360_log(const SceneDesc& s) {
+    return s.sonar.kind == SonarKind::Scanning && ping360_log_problem(s).empty();
+}
 bool sidescan(const SceneDesc& s) {
     return s.sonar.kind == SonarKind::Sidescan;
 }
@@ -64,6 +75,11 @@ const std::vector<PingOutput>& ping_outputs() {
          "the waterfall's levels dB as shown (pings, 2 x bins: port far..near, starboard "
          "near..far; slant or ground range)",
          waterfall_npy, sidescan},
+        {".xtf",
+         "the side-scan's pings as XTF (eXtended Triton Format): port and starboard, one byte a sample",
+         xtf_file, sidescan},
+        {"_ping360.bin", "the sweep as a Ping Viewer sensor log (Ping360 device_data messages)", ping360_file,
+         ping360_log},
         {"_ideal.npy", "L_EN dB before the sensor stage, as .npy (only when the sensor is not ideal)",
          ideal_npy, sensor_applied},
         {".json", "metadata: parameters and each ping's time, pose, head angle, first bottom return",
@@ -123,6 +139,11 @@ json ping_metadata(const SceneDesc& s, const PingSeries& p) {
         pings.push_back(e);
     }
     j["pings"] = pings;
+    // The 8-bit files' mapping (.xtf, _ping360.bin), and why a scan has no Ping360 log.
+    const ByteMapping m = ping_byte_mapping(s, p);
+    j["byte_mapping"] = {{"lo_db", m.lo_db}, {"hi_db", m.hi_db}, {"automatic", m.automatic}};
+    if (s.sonar.kind == SonarKind::Scanning && !ping360_log_problem(s).empty())
+        j["ping360_log"] = "not written: " + ping360_log_problem(s);
     j["rays_traced"] = p.rays_traced;
     j["render_ms"] = p.trace_ms;
     return j;

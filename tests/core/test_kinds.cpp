@@ -5,6 +5,10 @@
 #include "core/base/errors.hpp"
 #include "core/display/display_range.hpp"
 #include "core/scene/devices.hpp"
+#include "core/io/ping360_log.hpp"
+#include "core/io/ping360_log_read.hpp"
+#include "core/io/xtf.hpp"
+#include "core/io/xtf_read.hpp"
 #include "core/kinds/kind_images.hpp"
 #include "core/kinds/ping_series.hpp"
 #include "core/scene/params.hpp"
@@ -311,4 +315,115 @@ TEST_CASE("each side-scan and scanning preset images a floor, most of it neither
         CHECK(echoing > p.level_db.size() / 4);
         CHECK(mid > echoing * 8 / 10);
     }
+}
+
+TEST_CASE("a side-scan's XTF file read back field by field by the reader written from the layout",
+          "[kinds][xtf]") {
+    SceneDesc s = sidescan_scene(6, 5);
+    s.sonar.velocity_mps = {1.5, 0, 0};
+    s.sonar.pose.orientation_deg = {0, 0, 30}; // heading 60 deg clockwise from north
+    s.exports.start_time_s = 1767225600.25;    // 2026-01-01 00:00:00.25 UTC
+    s.objects = {box({1, 1, 1}, {3, -8, 0.5}, -15)};
+    const PingSeries p = render_pings(s);
+    const ByteMapping m = ping_byte_mapping(s, p);
+    const Bytes bytes = encode_xtf(s, p, m);
+    const XtfFile f = read_xtf(bytes, "test.xtf");
+    CHECK(f.recording_program == "sonarsim");
+    CHECK(f.nav_units == 0);
+    REQUIRE(f.sonar_channels == 2);
+    CHECK(f.channel_info[0].type == 1);
+    CHECK(f.channel_info[1].type == 2);
+    CHECK(f.channel_info[0].frequency_khz == Approx(400));
+    CHECK(f.channel_info[1].tilt_deg == Approx(45));
+    CHECK(f.channel_info[0].horizontal_beam_deg == Approx(1));
+    CHECK(f.channel_info[0].bytes_per_sample == 1);
+    REQUIRE(f.pings.size() == 5);
+    const double c = sound_speed_m_s(s.water.temperature_c, s.water.depth_m);
+    for (int i = 0; i < 5; ++i) {
+        const XtfPing& x = f.pings[size_t(i)];
+        const Ping& g = p.schedule[size_t(i)];
+        INFO("ping " << i);
+        CHECK(x.ping_number == std::uint32_t(i));
+        CHECK(x.year == 2026);
+        CHECK(x.month == 1);
+        CHECK(x.julian_day == 1);
+        const double t = 0.25 + g.time_s;
+        CHECK(x.second * 100 + x.hundredths == int(std::floor(t * 100)));
+        CHECK(x.sensor_x == Approx(g.vehicle.position_m[0]));
+        CHECK(x.sensor_y == Approx(g.vehicle.position_m[1]));
+        CHECK(x.heading_deg == Approx(60));
+        CHECK(x.altitude_m == Approx(p.first_return_m[size_t(i)]));
+        CHECK(x.computed_sound_velocity == Approx(c));
+        REQUIRE(x.channels.size() == 2);
+        for (int ch = 0; ch < 2; ++ch) {
+            const XtfChannelPing& xc = x.channels[size_t(ch)];
+            CHECK(xc.channel == ch);
+            CHECK(xc.slant_range_m == Approx(20));
+            CHECK(xc.time_delay_s == Approx(2 * 0.5 / c));
+            CHECK(xc.time_duration_s == Approx(2 * 19.5 / c));
+            CHECK(xc.seconds_per_ping == Approx(p.ping_interval_s));
+            REQUIRE(xc.samples == std::uint32_t(p.bins));
+            // Each sample the byte of its level: back to the level within half a byte's step.
+            const double step_db = (m.hi_db - m.lo_db) / 255;
+            for (int k = 0; k < p.bins; ++k) {
+                const float level = p.profile(i, ch)[k];
+                const int byte = xc.data[size_t(k)];
+                if (!std::isfinite(level) || level <= m.lo_db)
+                    CHECK(byte == 0);
+                else if (level >= m.hi_db)
+                    CHECK(byte == 255);
+                else
+                    CHECK(std::abs(m.lo_db + byte * step_db - level) <= 0.5 * step_db + 1e-4);
+            }
+        }
+    }
+    // Malformed: a truncated record names its field.
+    Bytes cut(bytes.begin(), bytes.end() - 10);
+    CHECK_THROWS_WITH(read_xtf(cut, "cut.xtf"),
+                      Catch::Contains("cut.xtf") && Catch::Contains("NumBytesThisRecord"));
+}
+
+TEST_CASE("a scan's Ping Viewer log read back field by field by the reader written from the log structure",
+          "[kinds][ping360]") {
+    SceneDesc s = tank_scan(5);
+    s.sonar.range_bins = 600;
+    s.exports.start_time_s = 1767225600 + 3600 + 0.5; // 01:00:00.500 UTC
+    const PingSeries p = render_pings(s);
+    const ByteMapping m = ping_byte_mapping(s, p);
+    const Bytes bytes = encode_ping360_log(s, p, m, "test");
+    const Ping360Log log = read_ping360_log(bytes, "test.bin");
+    CHECK(log.header == "PingViewer sensor log file");
+    CHECK(log.version == 1);
+    CHECK(log.sensor_family == 1);
+    CHECK(log.sensor_type == 2);
+    REQUIRE(log.pings.size() == size_t(p.pings));
+    const double c = sound_speed_m_s(s.water.temperature_c, s.water.depth_m);
+    // 600 samples over 8 m: 2 x 8 / (600 c 25 ns) ticks.
+    const int ticks = int(std::lround(2 * 8 / (600 * c * 25e-9)));
+    for (int i = 0; i < p.pings; ++i) {
+        const Ping360DeviceData& d = log.pings[size_t(i)];
+        INFO("step " << i);
+        CHECK(d.mode == 1);
+        CHECK(d.angle_grad == (400 - int(std::lround(p.schedule[size_t(i)].head_deg / 0.9))) % 400);
+        CHECK(d.sample_period_ticks == ticks);
+        CHECK(d.transmit_frequency_khz == 750);
+        CHECK(d.number_of_samples == 600);
+        CHECK(d.transmit_duration_us ==
+              int(std::lround(std::clamp(8000 * 8 / c, 2.5 * ticks * 0.025, 64 * ticks * 0.025))));
+        REQUIRE(d.data.size() == 600);
+        // The wall at 5 m: the first sample at or above the byte of 10 dB over the noise lies there.
+        const int wall = first_bin_at_least(p.profile(i, 0), p.bins, 10);
+        REQUIRE(wall >= 0);
+        const double sample_m = 8.0 / 600;
+        int first = -1;
+        for (int j = 0; j < 600 && first < 0; ++j)
+            if (d.data[size_t(j)] >= level_byte(p.profile(i, 0)[wall], m) && d.data[size_t(j)] > 0) first = j;
+        CHECK(std::abs(first * sample_m - p.grid->bin_near_edge_m(wall)) <= 2 * sample_m);
+    }
+    CHECK(log.pings[0].timestamp == "01:00:00.500");
+    // Outside the protocol: a clear error naming the key.
+    s.sonar.frequency_khz = 1200;
+    CHECK_THROWS_WITH(encode_ping360_log(s, p, m, "f.json"), Catch::Contains("f.json: sonar.frequency_khz"));
+    Bytes cut(bytes.begin(), bytes.end() - 3);
+    CHECK_THROWS_WITH(read_ping360_log(cut, "cut.bin"), Catch::Contains("cut.bin"));
 }
