@@ -427,3 +427,26 @@ TEST_CASE("a scan's Ping Viewer log read back field by field by the reader writt
     Bytes cut(bytes.begin(), bytes.end() - 3);
     CHECK_THROWS_WITH(read_ping360_log(cut, "cut.bin"), Catch::Contains("cut.bin"));
 }
+
+TEST_CASE("the example scenes of the side-scan and the scanning sonar load and image their targets",
+          "[kinds]") {
+    SceneDesc ss = load_scene(SONARSIM_ASSETS "/scenes/sidescan_wreck.json");
+    REQUIRE(ss.sonar.kind == SonarKind::Sidescan);
+    ss.sidescan.pings = 3;
+    ss.sonar.pose.position_m[0] = 0; // abeam of the wreck: starboard sees its hull, port bare sand
+    const PingSeries p = render_pings(ss);
+    auto peak = [&](int ch) {
+        float m = -1e30f;
+        for (int k = 0; k < p.bins; ++k) m = std::max(m, p.profile(1, ch)[k]);
+        return m;
+    };
+    CHECK(peak(1) > peak(0) + 6);
+    SceneDesc sc = load_scene(SONARSIM_ASSETS "/scenes/scan_tank.json");
+    REQUIRE(sc.sonar.kind == SonarKind::Scanning);
+    sc.scanning.step_deg = 18;
+    const PingSeries q = render_pings(sc);
+    CHECK(q.pings == 20);
+    // Every step meets a wall of the 12.3 x 6.3 m tank within 10 m.
+    for (int i = 0; i < q.pings; ++i)
+        CHECK(first_bin_at_least(q.ideal_db.data() + size_t(i) * q.bins, q.bins, 10) >= 0);
+}
