@@ -146,6 +146,10 @@ json ping_metadata(const SceneDesc& s, const PingSeries& p) {
         j["ping360_log"] = "not written: " + ping360_log_problem(s);
     j["rays_traced"] = p.rays_traced;
     j["render_ms"] = p.trace_ms;
+    j["stage_ms"] = {{"trace", p.stage_ms[0]},
+                     {"shade", p.stage_ms[1]},
+                     {"sensor", p.stage_ms[2]},
+                     {"image", p.stage_ms[3]}};
     return j;
 }
 

@@ -9,6 +9,10 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <mutex>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 namespace sonarsim {
 
@@ -35,24 +39,45 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control) {
         kind_ping_interval_s(scene, sound_speed_m_s(scene.water.temperature_c, scene.water.depth_m));
     const size_t n = size_t(out.pings) * size_t(out.channels) * size_t(out.bins);
     out.level_db.resize(n), out.ideal_db.resize(n);
-    // One simulator per channel: each keeps its geometry and its stages' buffers from ping to ping, and only
-    // the pose changes between them.
-    std::vector<std::unique_ptr<Simulator>> sims;
-    for (int ch = 0; ch < out.channels; ++ch) sims.push_back(std::make_unique<Simulator>(beam));
+    // The pings are independent: they run in parallel, each thread with one simulator per channel, which
+    // keeps its geometry and its stages' buffers from ping to ping (only the pose changes). A ping's image
+    // does not depend on which simulator made it, so the series is the same whatever the threads.
+    struct Worker {
+        std::vector<std::unique_ptr<Simulator>> sims;
+        std::uint64_t rays = 0;
+        double stage_ms[4] = {0, 0, 0, 0};
+    };
+    tbb::enumerable_thread_specific<Worker> workers;
     TraceControl trace;
     trace.cancel = control.cancel;
-    for (int p = 0; p < out.pings; ++p) {
-        for (int ch = 0; ch < out.channels; ++ch) {
-            SceneDesc at = beam;
-            at.sonar.pose = transducer_pose(scene, out.schedule[size_t(p)], ch);
-            sims[size_t(ch)]->set_scene(at, Stage::Trace);
-            const auto f = sims[size_t(ch)]->render(trace);
-            out.rays_traced += f->hits().rays_traced;
-            const size_t off = (size_t(p) * size_t(out.channels) + size_t(ch)) * size_t(out.bins);
-            std::memcpy(out.level_db.data() + off, f->polar().level_db.data(), size_t(out.bins) * 4);
-            std::memcpy(out.ideal_db.data() + off, f->ideal().level_db.data(), size_t(out.bins) * 4);
+    std::mutex progress_mutex;
+    int done = 0;
+    tbb::parallel_for(tbb::blocked_range<int>(0, out.pings, 4), [&](const tbb::blocked_range<int>& r) {
+        Worker& w = workers.local();
+        if (w.sims.empty())
+            for (int ch = 0; ch < out.channels; ++ch) w.sims.push_back(std::make_unique<Simulator>(beam));
+        for (int p = r.begin(); p != r.end(); ++p) {
+            for (int ch = 0; ch < out.channels; ++ch) {
+                SceneDesc at = beam;
+                at.sonar.pose = transducer_pose(scene, out.schedule[size_t(p)], ch);
+                w.sims[size_t(ch)]->set_scene(at, Stage::Trace);
+                const auto f = w.sims[size_t(ch)]->render(trace);
+                w.rays += f->hits().rays_traced;
+                const double times[4] = {f->trace_ms, f->shade_ms, f->sensor_ms, f->image_ms};
+                for (int k = 0; k < 4; ++k) w.stage_ms[k] += times[k];
+                const size_t off = (size_t(p) * size_t(out.channels) + size_t(ch)) * size_t(out.bins);
+                std::memcpy(out.level_db.data() + off, f->polar().level_db.data(), size_t(out.bins) * 4);
+                std::memcpy(out.ideal_db.data() + off, f->ideal().level_db.data(), size_t(out.bins) * 4);
+            }
+            if (control.progress) {
+                std::lock_guard<std::mutex> lock(progress_mutex);
+                control.progress(++done, out.pings);
+            }
         }
-        if (control.progress) control.progress(p + 1, out.pings);
+    });
+    for (const Worker& w : workers) {
+        out.rays_traced += w.rays;
+        for (int k = 0; k < 4; ++k) out.stage_ms[k] += w.stage_ms[k];
     }
     if (out.kind == SonarKind::Sidescan) {
         out.first_return_m.resize(size_t(out.pings));

@@ -27,7 +27,10 @@ struct PingSeries {
     /// near edge of its bin [m]; NaN where no bin reaches it.
     std::vector<double> first_return_m;
     std::uint64_t rays_traced = 0;
-    double trace_ms = 0; ///< the pings' time, all stages included
+    double trace_ms = 0; ///< the pings' wall-clock time, all stages included
+    /// The stages' times summed over pings and channels, on every thread (Frame's trace, shade, sensor,
+    /// image).
+    double stage_ms[4] = {0, 0, 0, 0};
 
     const float* profile(int ping, int channel) const {
         return level_db.data() + (size_t(ping) * size_t(channels) + size_t(channel)) * size_t(bins);
@@ -36,7 +39,8 @@ struct PingSeries {
 
 /// What render_pings reports and obeys while it runs.
 struct PingControl {
-    /// Called after each ping with (pings done, pings in all); may be empty.
+    /// Called after each ping with (pings done, pings in all), one call at a time from the threads that trace
+    /// the pings; may be empty.
     std::function<void(int, int)> progress;
     const std::atomic<bool>* cancel = nullptr; ///< set: the current ping's trace throws TraceCancelled
 };
