@@ -5,6 +5,9 @@
 #include "core/shading/ground_truth.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/output.hpp"
+#include "core/io/ping_output.hpp"
+#include "core/kinds/kind_images.hpp"
+#include "core/kinds/ping_series.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/pipeline/simulator.hpp"
@@ -194,6 +197,54 @@ PYBIND11_MODULE(sonarsim, m) {
         py::arg("scene") = py::none(), py::arg("pose") = py::none(), py::arg("set") = py::none(),
         py::arg("ground_truth") = false,
         "one frame: sonarsim.render(scene, pose=[...], set={'sonar.beams': 64})");
+
+    m.def(
+        "render_pings",
+        [](const py::object& scene, const py::object& set) {
+            SceneDesc s = scene_from(scene);
+            std::vector<std::string> keys;
+            if (!set.is_none())
+                for (auto item : set.cast<py::dict>()) {
+                    const std::string key = py::str(item.first);
+                    apply_setting(s, key, to_json(item.second), "set");
+                    keys.push_back(key);
+                }
+            validate_scene(s, "set", keys);
+            if (s.sonar.kind == SonarKind::Imaging)
+                throw InputError(
+                    s.source_file, "sonar.kind",
+                    "render_pings takes sonar.kind sidescan or scanning; an imaging sonar: render()");
+            PingSeries p;
+            {
+                py::gil_scoped_release release;
+                p = render_pings(s);
+            }
+            auto array = [](const std::vector<float>& v, std::vector<py::ssize_t> shape) {
+                py::array_t<float> a(shape);
+                std::copy(v.begin(), v.end(), a.mutable_data());
+                return a;
+            };
+            std::vector<py::ssize_t> shape = {p.pings, p.channels, p.bins};
+            if (p.channels == 1) shape.erase(shape.begin() + 1);
+            py::dict d;
+            d["level_db"] = array(p.level_db, shape);
+            d["ideal_db"] = array(p.ideal_db, shape);
+            if (s.sonar.kind == SonarKind::Sidescan) {
+                const PolarImage w = waterfall_levels(p, s.sidescan.range, s.sonar.range_max_m);
+                d["waterfall_db"] = array(w.level_db, {w.bins, w.beams});
+            }
+            const Image8 img = ping_image(s, p);
+            py::array_t<std::uint8_t> rgb({img.height, img.width, img.channels});
+            std::copy(img.pixels.begin(), img.pixels.end(), rgb.mutable_data());
+            d["image"] = rgb;
+            d["metadata"] = to_python(ping_metadata(s, p));
+            return d;
+        },
+        py::arg("scene") = py::none(), py::arg("set") = py::none(),
+        "a side-scan's waterfall or a scanning sonar's sweep: {'level_db': (pings, channels, bins) or "
+        "(steps, "
+        "bins), 'ideal_db', 'waterfall_db' (side-scan), 'image' (RGB), 'metadata'}, as `sonarsim render` "
+        "writes them");
 
     m.def(
         "prepare_dataset",

@@ -10,14 +10,14 @@
 
 namespace sonarsim {
 
+/// Widest elevation span a pattern is traced over [deg]: the front half-space of the transducer's face.
+constexpr double kMaxPatternTracedDeg = 179;
+
 /// Two-way elevation pattern B_v(e) with -3 dB full width phi3:
 ///   gaussian: B = exp(-4 ln 2 e^2 / phi3^2), traced out to -30 dB (|e| <= 1.579 phi3);
 ///   sinc:     B = (sin x / x)^2 with x = 1.39156 * 2 e / phi3 (B = 1/2 at e = phi3 / 2), traced out to its
 ///             second null (|e| <= 2.258 phi3: the main lobe and the first sidelobe, -13.3 dB);
 ///   flat:     the hard aperture sonar.elevation_fov_deg, B = 1 inside.
-/// Widest elevation span a pattern is traced over [deg]: the front half-space of the transducer's face.
-constexpr double kMaxPatternTracedDeg = 179;
-
 class ElevationWeight {
   public:
     explicit ElevationWeight(const SceneDesc& scene);

@@ -87,6 +87,18 @@ const std::vector<PingOutput>& ping_outputs() {
     return table;
 }
 
+ByteMapping ping_byte_mapping(const SceneDesc& s, const PingSeries& p) {
+    return choose_byte_mapping(s.exports, size_t(p.pings), [&](size_t i) {
+        PolarImage img;
+        img.bins = p.bins, img.beams = p.channels;
+        img.level_db.resize(size_t(p.bins) * size_t(p.channels));
+        for (int ch = 0; ch < p.channels; ++ch)
+            for (int k = 0; k < p.bins; ++k)
+                img.level_db[size_t(k) * size_t(p.channels) + size_t(ch)] = p.profile(int(i), ch)[k];
+        return img;
+    });
+}
+
 std::string ping_outputs_text(const std::string& prefix, const SceneDesc& scene) {
     std::string text;
     for (auto& o : ping_outputs())

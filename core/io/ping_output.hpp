@@ -2,6 +2,7 @@
 // arrays (.npy float32), and the metadata (every effective parameter, each ping's time, pose, head angle and
 // first bottom return).
 #pragma once
+#include "core/io/byte_mapping.hpp"
 #include "core/io/png.hpp"
 #include "core/kinds/ping_series.hpp"
 #include "core/scene/param_spec.hpp"
@@ -28,6 +29,10 @@ std::string ping_outputs_text(const std::string& prefix, const SceneDesc& scene)
 
 /// Writes every file of ping_outputs() for `prefix` in one atomic step.
 void write_ping_files(const std::string& prefix, const SceneDesc& scene, const PingSeries& series);
+
+/// The 8-bit files' mapping of a series' levels (.xtf, _ping360.bin): export.lo_db/hi_db, or with export.auto
+/// the high quantile of every ping's levels (choose_byte_mapping, each ping one image).
+ByteMapping ping_byte_mapping(const SceneDesc& scene, const PingSeries& series);
 
 /// The display range the image is shown with (display.auto: from the levels shown).
 DisplayParams ping_display(const SceneDesc& scene, const PingSeries& series);

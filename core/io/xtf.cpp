@@ -118,18 +118,6 @@ void append_ping(le::Bytes& out, const SceneDesc& s, const PingSeries& p, int i,
 
 } // namespace
 
-ByteMapping ping_byte_mapping(const SceneDesc& s, const PingSeries& p) {
-    return choose_byte_mapping(s.exports, size_t(p.pings), [&](size_t i) {
-        PolarImage img;
-        img.bins = p.bins, img.beams = p.channels;
-        img.level_db.resize(size_t(p.bins) * size_t(p.channels));
-        for (int ch = 0; ch < p.channels; ++ch)
-            for (int k = 0; k < p.bins; ++k)
-                img.level_db[size_t(k) * size_t(p.channels) + size_t(ch)] = p.profile(int(i), ch)[k];
-        return img;
-    });
-}
-
 Bytes encode_xtf(const SceneDesc& s, const PingSeries& p, const ByteMapping& m) {
     const double c = sound_speed_m_s(s.water.temperature_c, s.water.depth_m);
     le::Bytes out = file_header(s, m);

@@ -15,8 +15,4 @@ namespace sonarsim {
 /// scene's x and y), heading clockwise from north (90 - yaw), the first bottom return as the altitude.
 Bytes encode_xtf(const SceneDesc& scene, const PingSeries& series, const ByteMapping& mapping);
 
-/// The mapping of a side-scan's pings: export.lo_db/hi_db, or with export.auto the high quantile of every
-/// ping's levels (choose_byte_mapping).
-ByteMapping ping_byte_mapping(const SceneDesc& scene, const PingSeries& series);
-
 } // namespace sonarsim

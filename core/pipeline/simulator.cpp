@@ -25,10 +25,11 @@ namespace {
 /// The staged simulator forms an imaging sonar's fan; the other kinds' pings are traced by render_pings.
 const SceneDesc& imaging(const SceneDesc& scene) {
     if (scene.sonar.kind != SonarKind::Imaging)
-        throw InputError(scene.source_file, "sonar.kind",
-                         "\"" + kind_name(scene.sonar.kind) +
-                             "\" is rendered ping by ping (sonarsim render); the viewer, "
-                             "batch and study take sonar.kind imaging");
+        throw InputError(
+            scene.source_file, "sonar.kind",
+            "\"" + kind_name(scene.sonar.kind) +
+                "\" is rendered ping by ping (sonarsim render, Python's render_pings); the viewer, "
+                "batch and study take sonar.kind imaging");
     return scene;
 }
 
@@ -38,11 +39,11 @@ Simulator::Simulator(const SceneDesc& scene)
     : scene_(imaging(scene)), geometry_(std::make_unique<SceneGeometry>(scene)) {}
 
 void Simulator::set_scene(const SceneDesc& scene) {
-    set_scene(scene, changed_stage(scene_, imaging(scene)));
+    set_scene(scene, changed_stage(scene_, scene));
 }
 
 void Simulator::set_scene(const SceneDesc& scene, Stage s) {
-    imaging(scene);
+    imaging(scene); // before anything changes
     // Objects only moved, turned or scaled: new instance transforms, no mesh read and no BVH rebuilt.
     // Otherwise a new geometry from the mesh cache. Either may throw, keeping the old geometry.
     if (s == Stage::Geometry && !geometry_->update_transforms(scene))

@@ -154,3 +154,20 @@ def test_compare_reads_a_gray_fan_png(sonarsim_exe, scratch):
     assert abs(r["a"]["floor_fraction"] - r["b"]["floor_fraction"]) < 0.05
     with pytest.raises(ValueError, match="outside"):
         sonarsim.compare(png, shown, fan_a="10,10,1000,32,0.5,5,60,110,48,96")
+
+
+def test_render_pings_equals_render_files(sonarsim_exe, scratch, source_dir):
+    """render_pings gives a side-scan's arrays as `sonarsim render` writes them."""
+    scene = str(source_dir / "assets/scenes/sidescan_wreck.json")
+    sets = {"sidescan.pings": 12, "sonar.range_bins": 300}
+    subprocess.run([sonarsim_exe, "render", "--scene", scene, *[f"--set={k}={v}" for k, v in sets.items()],
+                    "--out", str(scratch / "ss")], check=True, stdout=subprocess.DEVNULL,
+                   stderr=subprocess.DEVNULL)
+    out = sonarsim.render_pings(scene, set=sets)
+    assert out["level_db"].shape == (12, 2, 300)
+    assert np.array_equal(out["level_db"], read_npy(scratch / "ss.npy"))
+    assert np.array_equal(out["waterfall_db"], read_npy(scratch / "ss_waterfall.npy"))
+    assert out["image"].shape == (12, 600, 3)
+    assert len(out["metadata"]["pings"]) == 12
+    with pytest.raises(ValueError, match="render_pings takes sonar.kind sidescan or scanning"):
+        sonarsim.render_pings(None)

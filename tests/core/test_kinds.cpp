@@ -6,6 +6,7 @@
 #include "core/display/display_range.hpp"
 #include "core/scene/devices.hpp"
 #include "core/io/ping360_log.hpp"
+#include "core/io/ping_output.hpp"
 #include "core/io/ping360_log_read.hpp"
 #include "core/io/xtf.hpp"
 #include "core/io/xtf_read.hpp"
