@@ -6,7 +6,6 @@
 #include "core/base/errors.hpp"
 #include "core/io/output.hpp"
 #include "core/io/ping_output.hpp"
-#include "core/kinds/kind_images.hpp"
 #include "core/kinds/ping_series.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/scene_io.hpp"
@@ -229,15 +228,14 @@ PYBIND11_MODULE(sonarsim, m) {
             py::dict d;
             d["level_db"] = array(p.level_db, shape);
             d["ideal_db"] = array(p.ideal_db, shape);
-            if (s.sonar.kind == SonarKind::Sidescan) {
-                const PolarImage w = waterfall_levels(p, s.sidescan.range, s.sonar.range_max_m);
-                d["waterfall_db"] = array(w.level_db, {w.bins, w.beams});
-            }
-            const Image8 img = ping_image(s, p);
+            const PingViews views = ping_views(s, p);
+            if (s.sonar.kind == SonarKind::Sidescan)
+                d["waterfall_db"] = array(views.shown.level_db, {views.shown.bins, views.shown.beams});
+            const Image8 img = ping_image(s, p, views);
             py::array_t<std::uint8_t> rgb({img.height, img.width, img.channels});
             std::copy(img.pixels.begin(), img.pixels.end(), rgb.mutable_data());
             d["image"] = rgb;
-            d["metadata"] = to_python(ping_metadata(s, p));
+            d["metadata"] = to_python(ping_metadata(s, p, views));
             return d;
         },
         py::arg("scene") = py::none(), py::arg("set") = py::none(),

@@ -15,14 +15,8 @@
 namespace sonarsim {
 namespace {
 
-/// The levels the image shows: the waterfall, or the scan's raw array.
-PolarImage shown_levels(const SceneDesc& s, const PingSeries& p) {
-    return s.sonar.kind == SonarKind::Sidescan ? waterfall_levels(p, s.sidescan.range, s.sonar.range_max_m)
-                                               : scan_levels(p);
-}
-
-Bytes image_png(const SceneDesc& s, const PingSeries& p) {
-    return encode_png(ping_image(s, p));
+Bytes image_png(const SceneDesc& s, const PingSeries& p, const PingViews& v) {
+    return encode_png(ping_image(s, p, v));
 }
 
 Bytes raw_npy(const std::vector<float>& levels, const PingSeries& p) {
@@ -30,23 +24,23 @@ Bytes raw_npy(const std::vector<float>& levels, const PingSeries& p) {
     if (p.channels == 1) shape.erase(shape.begin() + 1);
     return encode_npy_array(levels.data(), levels.size() * 4, "<f4", shape);
 }
-Bytes level_npy(const SceneDesc&, const PingSeries& p) {
+Bytes level_npy(const SceneDesc&, const PingSeries& p, const PingViews&) {
     return raw_npy(p.level_db, p);
 }
-Bytes ideal_npy(const SceneDesc&, const PingSeries& p) {
+Bytes ideal_npy(const SceneDesc&, const PingSeries& p, const PingViews&) {
     return raw_npy(p.ideal_db, p);
 }
-Bytes waterfall_npy(const SceneDesc& s, const PingSeries& p) {
-    return encode_npy(waterfall_levels(p, s.sidescan.range, s.sonar.range_max_m));
+Bytes waterfall_npy(const SceneDesc&, const PingSeries&, const PingViews& v) {
+    return encode_npy(v.shown); // a side-scan's shown levels are its waterfall
 }
-Bytes metadata_json(const SceneDesc& s, const PingSeries& p) {
-    return to_bytes(ping_metadata(s, p).dump(2) + "\n");
+Bytes metadata_json(const SceneDesc& s, const PingSeries& p, const PingViews& v) {
+    return to_bytes(ping_metadata(s, p, v).dump(2) + "\n");
 }
-Bytes xtf_file(const SceneDesc& s, const PingSeries& p) {
-    return encode_xtf(s, p, ping_byte_mapping(s, p));
+Bytes xtf_file(const SceneDesc& s, const PingSeries& p, const PingViews& v) {
+    return encode_xtf(s, p, v.mapping);
 }
-Bytes ping360_file(const SceneDesc& s, const PingSeries& p) {
-    return encode_ping360_log(s, p, ping_byte_mapping(s, p), s.source_file);
+Bytes ping360_file(const SceneDesc& s, const PingSeries& p, const PingViews& v) {
+    return encode_ping360_log(s, p, v.mapping, s.source_file);
 }
 bool ping360_log(const SceneDesc& s) {
     return s.sonar.kind == SonarKind::Scanning && ping360_log_problem(s).empty();
@@ -108,23 +102,29 @@ std::string ping_outputs_text(const std::string& prefix, const SceneDesc& scene)
 }
 
 void write_ping_files(const std::string& prefix, const SceneDesc& scene, const PingSeries& series) {
+    const PingViews views = ping_views(scene, series);
     std::vector<std::pair<std::string, Bytes>> files;
     for (auto& o : ping_outputs())
-        if (!o.wanted || o.wanted(scene)) files.emplace_back(prefix + o.suffix, o.encode(scene, series));
+        if (!o.wanted || o.wanted(scene))
+            files.emplace_back(prefix + o.suffix, o.encode(scene, series, views));
     write_files_atomically(files);
 }
 
-DisplayParams ping_display(const SceneDesc& s, const PingSeries& p) {
-    return effective_display(shown_levels(s, p), s.display);
+PingViews ping_views(const SceneDesc& s, const PingSeries& p) {
+    PingViews v;
+    v.shown = s.sonar.kind == SonarKind::Sidescan ? waterfall_levels(p, s.sidescan.range, s.sonar.range_max_m)
+                                                  : scan_levels(p);
+    v.display = effective_display(v.shown, s.display);
+    v.mapping = ping_byte_mapping(s, p);
+    return v;
 }
 
-Image8 ping_image(const SceneDesc& s, const PingSeries& p) {
-    const DisplayParams d = ping_display(s, p);
-    if (s.sonar.kind == SonarKind::Sidescan) return waterfall_image(shown_levels(s, p), d);
-    return sweep_image(p, d, s.sonar.range_max_m, std::clamp(2 * p.bins, 256, 1024));
+Image8 ping_image(const SceneDesc& s, const PingSeries& p, const PingViews& v) {
+    if (s.sonar.kind == SonarKind::Sidescan) return waterfall_image(v.shown, v.display);
+    return sweep_image(p, v.display, s.sonar.range_max_m, std::clamp(2 * p.bins, 256, 1024));
 }
 
-json ping_metadata(const SceneDesc& s, const PingSeries& p) {
+json ping_metadata(const SceneDesc& s, const PingSeries& p, const PingViews& v) {
     json j = scene_to_json(s);
     const double c = sound_speed_m_s(s.water.temperature_c, s.water.depth_m);
     j["sound_speed_m_s"] = c;
@@ -137,8 +137,7 @@ json ping_metadata(const SceneDesc& s, const PingSeries& p) {
     j["channels"] = json::array();
     for (int ch = 0; ch < p.channels; ++ch) j["channels"].push_back(channel_name(s.sonar.kind, ch));
     j["range_bin_edges_m"] = p.grid->bin_edges_m();
-    const DisplayParams shown = ping_display(s, p);
-    j["display_used"] = {{"lo_db", shown.lo_db}, {"hi_db", shown.hi_db}};
+    j["display_used"] = {{"lo_db", v.display.lo_db}, {"hi_db", v.display.hi_db}};
     json pings = json::array();
     for (int i = 0; i < p.pings; ++i) {
         const Ping& g = p.schedule[size_t(i)];
@@ -152,10 +151,11 @@ json ping_metadata(const SceneDesc& s, const PingSeries& p) {
     }
     j["pings"] = pings;
     // The 8-bit files' mapping (.xtf, _ping360.bin), and why a scan has no Ping360 log.
-    const ByteMapping m = ping_byte_mapping(s, p);
-    j["byte_mapping"] = {{"lo_db", m.lo_db}, {"hi_db", m.hi_db}, {"automatic", m.automatic}};
-    if (s.sonar.kind == SonarKind::Scanning && !ping360_log_problem(s).empty())
-        j["ping360_log"] = "not written: " + ping360_log_problem(s);
+    j["byte_mapping"] = {
+        {"lo_db", v.mapping.lo_db}, {"hi_db", v.mapping.hi_db}, {"automatic", v.mapping.automatic}};
+    if (const std::string problem = ping360_log_problem(s);
+        s.sonar.kind == SonarKind::Scanning && !problem.empty())
+        j["ping360_log"] = "not written: " + problem;
     j["rays_traced"] = p.rays_traced;
     j["render_ms"] = p.trace_ms;
     j["stage_ms"] = {{"trace", p.stage_ms[0]},

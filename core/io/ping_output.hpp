@@ -13,11 +13,20 @@
 
 namespace sonarsim {
 
+/// What the files of a ping image share, made once per write: the levels the image shows (the waterfall, or
+/// the scan's raw array), the display range it is shown with, and the 8-bit files' byte mapping.
+struct PingViews {
+    PolarImage shown;
+    DisplayParams display;
+    ByteMapping mapping;
+};
+PingViews ping_views(const SceneDesc& scene, const PingSeries& series);
+
 /// One file of a ping image: PREFIX + suffix.
 struct PingOutput {
     const char* suffix;
     const char* what;
-    Bytes (*encode)(const SceneDesc& scene, const PingSeries& series);
+    Bytes (*encode)(const SceneDesc& scene, const PingSeries& series, const PingViews& views);
     bool (*wanted)(const SceneDesc& scene) = nullptr; ///< written only where it says so (null: always)
 };
 
@@ -34,14 +43,11 @@ void write_ping_files(const std::string& prefix, const SceneDesc& scene, const P
 /// the high quantile of every ping's levels (choose_byte_mapping, each ping one image).
 ByteMapping ping_byte_mapping(const SceneDesc& scene, const PingSeries& series);
 
-/// The display range the image is shown with (display.auto: from the levels shown).
-DisplayParams ping_display(const SceneDesc& scene, const PingSeries& series);
-
 /// The ping image as the PNG shows it: a side-scan's waterfall, a scanning sonar's sweep.
-Image8 ping_image(const SceneDesc& scene, const PingSeries& series);
+Image8 ping_image(const SceneDesc& scene, const PingSeries& series, const PingViews& views);
 
 /// Metadata: the scene's parameters, the sound speed and ping interval, the bin edges, and per ping its
 /// time, vehicle pose, head angle (scanning) and first bottom return (side-scan).
-json ping_metadata(const SceneDesc& scene, const PingSeries& series);
+json ping_metadata(const SceneDesc& scene, const PingSeries& series, const PingViews& views);
 
 } // namespace sonarsim
