@@ -1,5 +1,6 @@
 // `sonarsim batch`: one frame per pose of a trajectory (a CSV file, a circle or a line) into a dataset
 // directory, optionally one shard of it, resumable; then, on request, the ARIS and MCAP files of the dataset.
+// A side-scan's or scanning sonar's frame is its waterfall or sweep from the frame's pose.
 #include "commands.hpp"
 #include "load.hpp"
 #include "status_line.hpp"
@@ -8,6 +9,8 @@
 #include "core/dataset/batch.hpp"
 #include "core/dataset/export.hpp"
 #include "core/io/aris.hpp"
+#include "core/kinds/pings.hpp"
+#include "core/scene/params.hpp"
 
 #include <atomic>
 #include <csignal>
@@ -70,6 +73,24 @@ int run_batch_command(const BatchCliOptions& o) {
     options.ground_truth = o.ground_truth;
     StatusLine status;
     options.progress = [&](const BatchProgress& p) { status.show(progress_text(p)); };
+    if (scene.sonar.kind != SonarKind::Imaging) { // each frame a waterfall or sweep: the timing said once
+        if (!o.aris.empty())
+            throw InputError("--aris", "sonar.kind",
+                             "an ARIS recording holds an imaging sonar's frames, not a " +
+                                 kind_name(scene.sonar.kind) + " sonar's pings; allowed: --mcap");
+        std::string line = ping_timing_text(scene);
+        if (trajectory.size() > 1) {
+            char b[160];
+            std::snprintf(b, sizeof b, "; the trajectory's frames are %.3f s apart",
+                          (trajectory.back().t_s - trajectory.front().t_s) / double(trajectory.size() - 1));
+            line += b;
+        }
+        line += scene.sonar.motion_from_trajectory
+                    ? "; each frame's pings move along the trajectory (sonar.motion_from_trajectory)"
+                    : "; each frame's pings are heard from the frame's pose (sonar.motion_from_trajectory "
+                      "true moves them along the trajectory)";
+        std::cout << line << "\n";
+    }
     if (!o.aris.empty()) { // before rendering: the scene as an ARIS mode, on its samples, no faster than it
         const std::string origin = o.scene.scene_file.empty() ? "--aris" : o.scene.scene_file;
         std::string note;
@@ -125,7 +146,10 @@ int run_batch_command(const BatchCliOptions& o) {
     if (!o.aris.empty()) pack(o.aris, ExportFormat::Aris, "ARIS recording, " + frames + " frames");
     if (!o.mcap.empty())
         pack(o.mcap, o.mcap_dtype == "float32" ? ExportFormat::McapFloat32 : ExportFormat::McapUint8,
-             "ROS 2 bag in MCAP, " + frames + " ProjectedSonarImage messages");
+             scene.sonar.kind == SonarKind::Imaging
+                 ? "ROS 2 bag in MCAP, " + frames + " ProjectedSonarImage messages"
+                 : "ROS 2 bag in MCAP, " + std::to_string(ping_schedule(scene).size() * trajectory.size()) +
+                       " RawSonarImage messages, one per ping");
     return 0;
 }
 
@@ -156,15 +180,18 @@ void register_batch(CLI::App& app, std::function<int()>& run) {
         "--start-now", o->start_now,
         "Start the dataset's clock (ARIS FrameTime, MCAP stamps) at the wall clock when it is first "
         "prepared, instead of export.start_time_s (default 2026-01-01 00:00:00 UTC)");
-    cmd->add_flag("--ground-truth", o->ground_truth,
-                  "Also write each frame's NNNNNN_gt_<name>.npy (elevation, point, object id, incidence, "
-                  "surfaces and reflections per range bin and beam)");
+    cmd->add_flag(
+        "--ground-truth", o->ground_truth,
+        "Also write each frame's NNNNNN_gt_<name>.npy (elevation, point, object id, incidence, "
+        "surfaces and reflections per range bin and beam; a side-scan or scan: per ping, channel and "
+        "sample)");
     cmd->add_option(
         "--aris", o->aris,
         "Also write the dataset as an ARIS recording (.aris; 48, 64, 96 or 128 beams); needs every frame");
     cmd->add_option(
         "--mcap", o->mcap,
-        "Also write the dataset as a ROS 2 bag (MCAP) of marine_acoustic_msgs/ProjectedSonarImage");
+        "Also write the dataset as a ROS 2 bag (MCAP) of marine_acoustic_msgs/ProjectedSonarImage (a "
+        "side-scan or scan: RawSonarImage, one per ping)");
     cmd->add_option("--mcap-dtype", o->mcap_dtype,
                     "Data of the MCAP messages: uint8 (as ARIS) or float32 (L_EN dB)")
         ->capture_default_str()

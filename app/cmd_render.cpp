@@ -85,12 +85,9 @@ void check_parent_dir(const std::string& path, const std::string& option) {
 
 /// A side-scan's waterfall or a scanning sonar's sweep: its pings traced one by one, progress on a terminal.
 int run_render_pings(const RenderOptions& o, const SceneDesc& scene) {
-    if (o.ground_truth)
-        throw InputError("--ground-truth", "",
-                         "not yet written for sonar.kind \"" + kind_name(scene.sonar.kind) +
-                             "\"; allowed: --ground-truth with sonar.kind imaging");
     StatusLine status;
     PingControl control;
+    control.ground_truth = o.ground_truth;
     control.progress = [&](int done, int all) {
         if (done % 16 == 0 || done == all)
             status.show("ping " + std::to_string(done) + " of " + std::to_string(all));
@@ -105,6 +102,9 @@ int run_render_pings(const RenderOptions& o, const SceneDesc& scene) {
     std::cout << "wrote " << ping_outputs_text(o.out, scene) << "\n"
               << timing << "rays " << series.rays_traced << ", ping interval " << series.ping_interval_s * 1e3
               << " ms (" << series.pings * series.ping_interval_s << " s of sonar time)\n";
+    if (o.ground_truth)
+        std::cout << "wrote " << o.out << "_gt_*.npy (ground truth per sample, shaped as " << o.out
+                  << ".npy)\n";
     return 0;
 }
 
@@ -149,7 +149,8 @@ void register_render(CLI::App& app, std::function<int()>& run) {
     cmd->add_option("--out", o->out, "Output prefix: writes " + render_outputs_text("PREFIX"));
     cmd->add_flag("--ground-truth", o->ground_truth,
                   "Also write PREFIX_gt_<name>.npy: per range bin and beam the elevation (mean, min, max), "
-                  "point, object id, incidence, number of surfaces behind it and reflections (multipath)");
+                  "point, object id, incidence, number of surfaces behind it and reflections (multipath); a "
+                  "side-scan or scan: per ping, channel and sample");
     cmd->add_option(
         "--view3d", o->view3d,
         "Also draw the 3D view (scene, sonar, field of view) into this PNG, with no display (EGL)");

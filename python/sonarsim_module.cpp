@@ -199,7 +199,7 @@ PYBIND11_MODULE(sonarsim, m) {
 
     m.def(
         "render_pings",
-        [](const py::object& scene, const py::object& set) {
+        [](const py::object& scene, const py::object& set, bool ground_truth) {
             SceneDesc s = scene_from(scene);
             std::vector<std::string> keys;
             if (!set.is_none())
@@ -216,7 +216,9 @@ PYBIND11_MODULE(sonarsim, m) {
             PingSeries p;
             {
                 py::gil_scoped_release release;
-                p = render_pings(s);
+                PingControl control;
+                control.ground_truth = ground_truth;
+                p = render_pings(s, control);
             }
             auto array = [](const std::vector<float>& v, std::vector<py::ssize_t> shape) {
                 py::array_t<float> a(shape);
@@ -236,13 +238,31 @@ PYBIND11_MODULE(sonarsim, m) {
             std::copy(img.pixels.begin(), img.pixels.end(), rgb.mutable_data());
             d["image"] = rgb;
             d["metadata"] = to_python(ping_metadata(s, p, views));
+            if (ground_truth) { // per ping, channel and sample, shaped as level_db (point_m: a last axis of
+                                // 3)
+                py::dict gt;
+                for (const GroundTruthField& f : ground_truth_fields()) {
+                    std::vector<py::ssize_t> fshape = shape;
+                    if (f.components > 1) fshape.push_back(f.components);
+                    auto joined = [&](auto member) {
+                        using T = typename std::decay_t<decltype(p.truth[0].*member)>::value_type;
+                        py::array_t<T> a(fshape);
+                        T* out = a.mutable_data();
+                        for (const GroundTruth& g : p.truth)
+                            out = std::copy((g.*member).begin(), (g.*member).end(), out);
+                        return py::object(a);
+                    };
+                    gt[f.name] = f.f32 ? joined(f.f32) : joined(f.i32);
+                }
+                d["ground_truth"] = gt;
+            }
             return d;
         },
-        py::arg("scene") = py::none(), py::arg("set") = py::none(),
+        py::arg("scene") = py::none(), py::arg("set") = py::none(), py::arg("ground_truth") = false,
         "a side-scan's waterfall or a scanning sonar's sweep: {'level_db': (pings, channels, bins) or "
         "(steps, "
-        "bins), 'ideal_db', 'waterfall_db' (side-scan), 'image' (RGB), 'metadata'}, as `sonarsim render` "
-        "writes them");
+        "bins), 'ideal_db', 'waterfall_db' (side-scan), 'image' (RGB), 'metadata', with ground_truth=True "
+        "'ground_truth' (arrays by name, shaped as level_db)}, as `sonarsim render` writes them");
 
     m.def(
         "prepare_dataset",

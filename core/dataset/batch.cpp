@@ -9,6 +9,8 @@
 #include "core/base/file_io.hpp"
 #include "core/shading/ground_truth.hpp"
 #include "core/io/output.hpp"
+#include "core/io/ping_output.hpp"
+#include "core/kinds/ping_series.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/pipeline/simulator.hpp"
@@ -58,7 +60,8 @@ std::string fmt(double v) {
 }
 
 /// One row of index.csv for complete frame k, from its metadata JSON.
-std::string index_row(const std::string& dir, const Trajectory& trajectory, size_t k) {
+std::string index_row(const std::string& dir, const SceneDesc& scene, const Trajectory& trajectory,
+                      size_t k) {
     const std::string prefix = frame_prefix(dir, k);
     const json meta = json::parse(read_text(prefix + ".json"), nullptr, false);
     const TrajectoryPoint& p = trajectory[k];
@@ -67,13 +70,14 @@ std::string index_row(const std::string& dir, const Trajectory& trajectory, size
     auto add = [&](const std::string& path) {
         files += (files.empty() ? "" : ";") + fs::path(path).lexically_relative(dir).string();
     };
-    for (auto& o : render_outputs())
-        if (!o.wanted || fs::is_regular_file(prefix + o.suffix, ec)) add(prefix + o.suffix);
+    for (const FrameFile& f : frame_files(scene))
+        if (f.always || fs::is_regular_file(prefix + f.suffix, ec)) add(prefix + f.suffix);
     for (auto& name : ground_truth_names()) // batch --ground-truth
         if (fs::is_regular_file(prefix + "_gt_" + name + ".npy", ec)) add(prefix + "_gt_" + name + ".npy");
     std::string ms, err_median, err_p95, rays;
     if (meta.is_object()) {
         if (meta.contains("time_ms")) ms = fmt(meta["time_ms"].value("total", 0.0));
+        if (meta.contains("render_ms")) ms = fmt(meta.value("render_ms", 0.0)); // a side-scan's or scan's
         const json est = meta.value("sampling_error_estimate", json());
         if (est.is_object())
             err_median = fmt(est.value("median_abs_db", 0.0)), err_p95 = fmt(est.value("p95_abs_db", 0.0));
@@ -127,11 +131,20 @@ std::string frame_prefix(const std::string& dir, size_t k) {
     return (fs::path(dir) / "frames" / name).string();
 }
 
-bool frame_complete(const std::string& dir, size_t k) {
+std::vector<FrameFile> frame_files(const SceneDesc& scene) {
+    std::vector<FrameFile> files;
+    if (scene.sonar.kind == SonarKind::Imaging)
+        for (auto& o : render_outputs()) files.push_back({o.suffix, !o.wanted});
+    else
+        for (auto& o : ping_outputs()) files.push_back({o.suffix, !o.wanted});
+    return files;
+}
+
+bool frame_complete(const std::string& dir, size_t k, const SceneDesc& scene) {
     // A frame's files are renamed into place as one set: the files every frame has tell.
     std::error_code ec;
-    for (auto& o : render_outputs())
-        if (!o.wanted && !fs::is_regular_file(frame_prefix(dir, k) + o.suffix, ec)) return false;
+    for (const FrameFile& f : frame_files(scene))
+        if (f.always && !fs::is_regular_file(frame_prefix(dir, k) + f.suffix, ec)) return false;
     return true;
 }
 
@@ -233,17 +246,24 @@ BatchSummary run_batch(const std::string& dir, const BatchOptions& options) {
             progress.interrupted = true;
             break;
         }
-        if (!(options.resume && frame_complete(dir, k))) {
+        if (!(options.resume && frame_complete(dir, k, base))) {
             const SceneDesc s = frame_scene(base, trajectory, k);
-            if (sim)
+            if (s.sonar.kind != SonarKind::Imaging) { // a side-scan's waterfall or a scan's sweep
+                PingControl control;
+                control.ground_truth = options.ground_truth;
+                write_ping_files(frame_prefix(dir, k), s, render_pings(s, control));
+            } else if (sim)
                 sim->set_scene(s);
             else
                 sim.emplace(s);
-            sim->request({options.ground_truth, false});
-            const auto f = sim->render();
-            write_render_files(frame_prefix(dir, k), s, *f,
-                               options.ground_truth ? ground_truth_files(frame_prefix(dir, k), *f->truth_ptr)
-                                                    : std::vector<std::pair<std::string, Bytes>>{});
+            if (s.sonar.kind == SonarKind::Imaging) {
+                sim->request({options.ground_truth, false});
+                const auto f = sim->render();
+                write_render_files(frame_prefix(dir, k), s, *f,
+                                   options.ground_truth
+                                       ? ground_truth_files(frame_prefix(dir, k), *f->truth_ptr)
+                                       : std::vector<std::pair<std::string, Bytes>>{});
+            }
             ++progress.rendered;
         }
         ++progress.done;
@@ -255,18 +275,53 @@ BatchSummary run_batch(const std::string& dir, const BatchOptions& options) {
     summary.skipped = progress.done - progress.rendered;
     summary.elapsed_s = progress.elapsed_s;
     summary.interrupted = progress.interrupted;
-    if (options.index) summary.indexed = write_index(dir, trajectory);
+    if (options.index) summary.indexed = write_index(dir, base, trajectory);
     return summary;
 }
 
-std::function<PolarImage(size_t)> dataset_images(const std::string& dir, size_t frames,
-                                                 const std::string& origin) {
+namespace {
+
+/// Throws InputError(origin, ...) at once when any of the first `frames` frames is not complete.
+void check_frames_complete(const std::string& dir, size_t frames, const SceneDesc& base,
+                           const std::string& origin) {
     for (size_t k = 0; k < frames; ++k)
-        if (!frame_complete(dir, k))
+        if (!frame_complete(dir, k, base))
             throw InputError(
                 origin, "",
                 "frame " + std::to_string(k) + " of " + dir +
                     " is not complete; when every shard has finished, run `batch --resume` with it");
+}
+
+} // namespace
+
+PingFrameSource dataset_ping_frames(const std::string& dir, size_t frames, const std::string& origin) {
+    SceneDesc base;
+    Trajectory trajectory;
+    load_dataset(dir, base, trajectory);
+    check_frames_complete(dir, frames, base, origin);
+    return [dir, base, trajectory](size_t k) {
+        PingFrame f;
+        f.scene = frame_scene(base, trajectory, k);
+        f.t_s = trajectory.at(k).t_s;
+        const size_t values = ping_schedule(f.scene).size() * size_t(channel_count(base.sonar.kind)) *
+                              size_t(base.sonar.range_bins);
+        const std::string path = frame_prefix(dir, k) + ".npy";
+        const std::string bytes = read_text(path);
+        f.level_db = decode_npy_values(Bytes(bytes.begin(), bytes.end()), path, values);
+        return f;
+    };
+}
+
+std::function<PolarImage(size_t)> dataset_images(const std::string& dir, size_t frames,
+                                                 const std::string& origin) {
+    SceneDesc base;
+    Trajectory trajectory;
+    load_dataset(dir, base, trajectory);
+    if (base.sonar.kind != SonarKind::Imaging)
+        throw InputError(origin, "sonar.kind",
+                         "the dataset in " + dir + " holds a " + kind_name(base.sonar.kind) +
+                             " sonar's pings, not an imaging sonar's frames; allowed: --mcap");
+    check_frames_complete(dir, frames, base, origin);
     return [dir](size_t k) {
         const std::string path = frame_prefix(dir, k) + ".npy";
         const std::string bytes = read_text(path);
@@ -274,13 +329,13 @@ std::function<PolarImage(size_t)> dataset_images(const std::string& dir, size_t 
     };
 }
 
-size_t write_index(const std::string& dir, const Trajectory& trajectory) {
+size_t write_index(const std::string& dir, const SceneDesc& base, const Trajectory& trajectory) {
     IndexLock lock(dir);
     std::string text =
         "frame,t,x,y,z,roll_deg,pitch_deg,yaw_deg,files,ms,error_median_db,error_p95_db,rays\n";
     size_t listed = 0;
     for (size_t k = 0; k < trajectory.size(); ++k)
-        if (frame_complete(dir, k)) text += index_row(dir, trajectory, k), ++listed;
+        if (frame_complete(dir, k, base)) text += index_row(dir, base, trajectory, k), ++listed;
     write_files_atomically({{dir + "/index.csv", to_bytes(text)}});
     return listed;
 }
@@ -293,7 +348,7 @@ size_t write_index(const std::string& dir) {
     SceneDesc base;
     Trajectory trajectory;
     load_dataset(dir, base, trajectory);
-    return write_index(dir, trajectory);
+    return write_index(dir, base, trajectory);
 }
 
 } // namespace sonarsim

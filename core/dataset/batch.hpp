@@ -9,6 +9,7 @@
 #include "core/data/polar_image.hpp"
 #include "core/data/scene.hpp"
 #include "core/data/trajectory.hpp"
+#include "core/io/ros2_pings.hpp"
 
 #include <atomic>
 #include <cstddef>
@@ -28,8 +29,17 @@ SceneDesc frame_scene(const SceneDesc& base, const Trajectory& trajectory, size_
 /// "DIR/frames/NNNNNN" (6 digits).
 std::string frame_prefix(const std::string& dir, size_t k);
 
-/// Whether every file of frame k exists.
-bool frame_complete(const std::string& dir, size_t k);
+/// A file every frame of a dataset has (`always`), or has where its scene asks for it.
+struct FrameFile {
+    const char* suffix;
+    bool always;
+};
+/// The files of a frame of `scene`'s dataset: render_outputs(), or ping_outputs() for a side-scan or scan
+/// (each frame one waterfall or sweep from the frame's pose, its pings along the trajectory).
+std::vector<FrameFile> frame_files(const SceneDesc& scene);
+
+/// Whether every file of frame k of the dataset of `base` in DIR exists.
+bool frame_complete(const std::string& dir, size_t k, const SceneDesc& base);
 
 /// The dataset's start when no export.start_time_s is given: 2026-01-01 00:00:00 UTC, so that the same
 /// command writes the same files (`batch --start-now` asks for the wall clock instead).
@@ -86,14 +96,18 @@ struct BatchSummary {
 BatchSummary run_batch(const std::string& dir, const BatchOptions& options);
 
 /// Reads the L_EN image of frame k of the dataset in DIR (its .npy). Throws InputError(origin, ...) at
-/// once when any of the first `frames` frames is not complete.
+/// once when any of the first `frames` frames is not complete, or the dataset is of a side-scan or scan.
 std::function<PolarImage(size_t)> dataset_images(const std::string& dir, size_t frames,
                                                  const std::string& origin);
+
+/// Frame k of the dataset of a side-scan or scan in DIR: its scene, time and levels (its .npy). Throws
+/// InputError(origin, ...) at once when any of the first `frames` frames is not complete.
+PingFrameSource dataset_ping_frames(const std::string& dir, size_t frames, const std::string& origin);
 
 /// Rebuilds DIR/index.csv from the complete frames: frame, t, pose, files (every file of the frame, ground
 /// truth included), render time [ms], the sampling error estimate [dB] and rays. Returns the number of frames
 /// listed.
-size_t write_index(const std::string& dir, const Trajectory& trajectory);
+size_t write_index(const std::string& dir, const SceneDesc& base, const Trajectory& trajectory);
 /// The same for the dataset in DIR, its trajectory read from DIR.
 size_t write_index(const std::string& dir);
 

@@ -165,7 +165,10 @@ void AtomicFile::commit() {
     }
 }
 
-PolarImage decode_npy(const Bytes& b, const std::string& path) {
+namespace {
+
+/// The header of an .npy v1.0 float32 C-order file and where its data start; throws otherwise.
+std::string npy_f32_header(const Bytes& b, const std::string& path, size_t& data_at) {
     auto bad = [&](const std::string& why) {
         return std::runtime_error(path + ": not a float32 .npy image: " + why);
     };
@@ -176,17 +179,34 @@ PolarImage decode_npy(const Bytes& b, const std::string& path) {
     if (header.find("'descr': '<f4'") == std::string::npos ||
         header.find("'fortran_order': False") == std::string::npos)
         throw bad("expected '<f4' in C order");
+    data_at = 10 + hlen;
+    return header;
+}
+
+} // namespace
+
+PolarImage decode_npy(const Bytes& b, const std::string& path) {
+    size_t at = 0;
+    const std::string header = npy_f32_header(b, path, at);
     PolarImage img;
     const size_t shape = header.find("'shape': (");
     if (shape == std::string::npos ||
         std::sscanf(header.c_str() + shape, "'shape': (%d, %d)", &img.bins, &img.beams) != 2 ||
         img.bins < 1 || img.beams < 1)
-        throw bad("expected a 2-D shape");
-    const size_t n = size_t(img.bins) * size_t(img.beams);
-    if (b.size() != 10 + hlen + 4 * n) throw bad("size does not match its shape");
-    img.level_db.resize(n);
-    std::memcpy(img.level_db.data(), b.data() + 10 + hlen, 4 * n);
+        throw std::runtime_error(path + ": not a float32 .npy image: expected a 2-D shape");
+    img.level_db = decode_npy_values(b, path, size_t(img.bins) * size_t(img.beams));
     return img;
+}
+
+std::vector<float> decode_npy_values(const Bytes& b, const std::string& path, std::size_t count) {
+    size_t at = 0;
+    npy_f32_header(b, path, at);
+    if (b.size() != at + 4 * count)
+        throw std::runtime_error(path + ": not a float32 .npy array of " + std::to_string(count) +
+                                 " values: its size differs");
+    std::vector<float> v(count);
+    std::memcpy(v.data(), b.data() + at, 4 * count);
+    return v;
 }
 
 void write_files_atomically(const std::vector<std::pair<std::string, Bytes>>& files) {

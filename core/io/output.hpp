@@ -51,6 +51,9 @@ class AtomicFile {
 /// Parses an .npy file as encode_npy writes it (float32 little-endian, C order, 2-D); throws
 /// std::runtime_error naming `path` when it is not one.
 PolarImage decode_npy(const Bytes& bytes, const std::string& path);
+/// The float32 values of an .npy file as encode_npy_array writes it ('<f4', C order), of any shape of
+/// `count` values; throws std::runtime_error naming `path` otherwise.
+std::vector<float> decode_npy_values(const Bytes& bytes, const std::string& path, std::size_t count);
 
 /// One file of a rendered frame: PREFIX + suffix.
 struct RenderOutput {

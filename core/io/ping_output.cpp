@@ -1,6 +1,7 @@
 #include "core/io/ping_output.hpp"
 
 #include "core/display/display_range.hpp"
+#include "core/io/ground_truth_files.hpp"
 #include "core/io/output.hpp"
 #include "core/io/ping360_log.hpp"
 #include "core/io/xtf.hpp"
@@ -19,10 +20,14 @@ Bytes image_png(const SceneDesc& s, const PingSeries& p, const PingViews& v) {
     return encode_png(ping_image(s, p, v));
 }
 
-Bytes raw_npy(const std::vector<float>& levels, const PingSeries& p) {
+/// The raw arrays' shape: (pings, channels, bins), a scan's (steps, bins).
+std::vector<std::size_t> raw_shape(const PingSeries& p) {
     std::vector<std::size_t> shape = {std::size_t(p.pings), std::size_t(p.channels), std::size_t(p.bins)};
     if (p.channels == 1) shape.erase(shape.begin() + 1);
-    return encode_npy_array(levels.data(), levels.size() * 4, "<f4", shape);
+    return shape;
+}
+Bytes raw_npy(const std::vector<float>& levels, const PingSeries& p) {
+    return encode_npy_array(levels.data(), levels.size() * 4, "<f4", raw_shape(p));
 }
 Bytes level_npy(const SceneDesc&, const PingSeries& p, const PingViews&) {
     return raw_npy(p.level_db, p);
@@ -107,7 +112,14 @@ void write_ping_files(const std::string& prefix, const SceneDesc& scene, const P
     for (auto& o : ping_outputs())
         if (!o.wanted || o.wanted(scene))
             files.emplace_back(prefix + o.suffix, o.encode(scene, series, views));
+    for (auto& f : ping_ground_truth_files(prefix, series)) files.push_back(std::move(f));
     write_files_atomically(files);
+}
+
+std::vector<std::pair<std::string, Bytes>> ping_ground_truth_files(const std::string& prefix,
+                                                                   const PingSeries& series) {
+    if (series.truth.empty()) return {};
+    return ground_truth_files(prefix, series.truth, raw_shape(series));
 }
 
 PingViews ping_views(const SceneDesc& s, const PingSeries& p) {

@@ -36,8 +36,14 @@ const std::vector<PingOutput>& ping_outputs();
 /// "PREFIX.png (waterfall ...), ...": the files `scene` writes, for messages.
 std::string ping_outputs_text(const std::string& prefix, const SceneDesc& scene);
 
-/// Writes every file of ping_outputs() for `prefix` in one atomic step.
+/// Writes every file of ping_outputs() for `prefix`, and the series' ground truth when it has one
+/// (ping_ground_truth_files), in one atomic step.
 void write_ping_files(const std::string& prefix, const SceneDesc& scene, const PingSeries& series);
+
+/// PREFIX_gt_<name>.npy of a series made with PingControl::ground_truth, each of the .npy's shape (pings,
+/// channels, bins; a scan's (steps, bins)), point_m with a last axis of 3; none without.
+std::vector<std::pair<std::string, Bytes>> ping_ground_truth_files(const std::string& prefix,
+                                                                   const PingSeries& series);
 
 /// The 8-bit files' mapping of a series' levels (.xtf, _ping360.bin): export.lo_db/hi_db, or with export.auto
 /// the high quantile of every ping's levels (choose_byte_mapping, each ping one image).

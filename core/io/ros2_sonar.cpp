@@ -3,68 +3,57 @@
 #include "core/grid/sensor_patterns.hpp"
 
 #include "core/base/le_bytes.hpp"
+#include "core/io/cdr.hpp"
 #include "core/io/mcap.hpp"
 #include "core/data/pose.hpp"
 #include "core/grid/sonar_grid.hpp"
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 namespace sonarsim {
-namespace {
 
-/// OMG CDR, little-endian (ROS 2's XCDR1 plain CDR): a 4-byte encapsulation header, then each primitive
-/// aligned to its size counted from the end of that header; strings and sequences carry a uint32 count.
-class Cdr {
-  public:
-    Cdr() : b_{0x00, 0x01, 0x00, 0x00} {} // CDR_LE, options 0
-    template <typename T> void put(T v) {
-        align(sizeof v);
-        le::append<T>(b_, v);
-    }
-    void put_string(const std::string& s) {
-        put<std::uint32_t>(std::uint32_t(s.size() + 1)); // counts the terminating NUL
-        le::append_bytes(b_, s.c_str(), s.size() + 1);
-    }
-    template <typename T> void put_sequence(const std::vector<T>& v) {
-        put<std::uint32_t>(std::uint32_t(v.size()));
-        for (T x : v) put<T>(x);
-    }
-    void put_octets(const Bytes& v) {
-        put<std::uint32_t>(std::uint32_t(v.size()));
-        b_.insert(b_.end(), v.begin(), v.end());
-    }
-    Bytes take() { return std::move(b_); }
-
-  private:
-    void align(size_t n) {
-        while ((b_.size() - 4) % n) b_.push_back(0);
-    }
-    Bytes b_;
-};
-
-} // namespace
+std::string ros2msg_dependency(const std::string& name) {
+    static const std::string sep = "\n" + std::string(80, '=') + "\n";
+    static const std::map<std::string, std::string> defs = {
+        {"std_msgs/Header", "builtin_interfaces/Time stamp\nstring frame_id\n"},
+        {"builtin_interfaces/Time", "int32 sec\nuint32 nanosec\n"},
+        {"marine_acoustic_msgs/PingInfo",
+         "float32 frequency\nfloat32 sound_speed\nfloat32[] tx_beamwidths\nfloat32[] rx_beamwidths\n"},
+        {"geometry_msgs/Vector3", "float64 x\nfloat64 y\nfloat64 z\n"},
+        {"marine_acoustic_msgs/SonarImageData",
+         "bool is_bigendian\n"
+         "uint32 DTYPE_UINT8=0\nuint32 DTYPE_INT8=1\nuint32 DTYPE_UINT16=2\nuint32 DTYPE_INT16=3\n"
+         "uint32 DTYPE_UINT32=4\nuint32 DTYPE_INT32=5\nuint32 DTYPE_UINT64=6\nuint32 DTYPE_INT64=7\n"
+         "uint32 DTYPE_FLOAT32=8\nuint32 DTYPE_FLOAT64=9\n"
+         "uint32 dtype\nuint32 beam_count\nuint8[] data\n"}};
+    return sep + "MSG: " + name + "\n" + defs.at(name);
+}
 
 const std::string& projected_sonar_image_schema() {
-    static const std::string sep = "\n" + std::string(80, '=') + "\n";
     static const std::string text =
         "std_msgs/Header header\n"
         "PingInfo ping_info\n"
         "geometry_msgs/Vector3[] beam_directions\n"
         "float32[] ranges\n"
         "SonarImageData image\n" +
-        sep + "MSG: std_msgs/Header\nbuiltin_interfaces/Time stamp\nstring frame_id\n" + sep +
-        "MSG: builtin_interfaces/Time\nint32 sec\nuint32 nanosec\n" + sep +
-        "MSG: marine_acoustic_msgs/PingInfo\nfloat32 frequency\nfloat32 sound_speed\nfloat32[] "
-        "tx_beamwidths\n"
-        "float32[] rx_beamwidths\n" +
-        sep + "MSG: geometry_msgs/Vector3\nfloat64 x\nfloat64 y\nfloat64 z\n" + sep +
-        "MSG: marine_acoustic_msgs/SonarImageData\nbool is_bigendian\n"
-        "uint32 DTYPE_UINT8=0\nuint32 DTYPE_INT8=1\nuint32 DTYPE_UINT16=2\nuint32 DTYPE_INT16=3\n"
-        "uint32 DTYPE_UINT32=4\nuint32 DTYPE_INT32=5\nuint32 DTYPE_UINT64=6\nuint32 DTYPE_INT64=7\n"
-        "uint32 DTYPE_FLOAT32=8\nuint32 DTYPE_FLOAT64=9\n"
-        "uint32 dtype\nuint32 beam_count\nuint8[] data\n";
+        ros2msg_dependency("std_msgs/Header") + ros2msg_dependency("builtin_interfaces/Time") +
+        ros2msg_dependency("marine_acoustic_msgs/PingInfo") + ros2msg_dependency("geometry_msgs/Vector3") +
+        ros2msg_dependency("marine_acoustic_msgs/SonarImageData");
     return text;
+}
+
+std::map<std::string, std::string> sonar_channel_metadata(SonarDataType type, const ByteMapping& mapping) {
+    std::map<std::string, std::string> metadata{{"offered_qos_profiles", ""}};
+    if (type == SonarDataType::Uint8) {
+        char lo[32], hi[32];
+        std::snprintf(lo, sizeof lo, "%.9g", mapping.lo_db);
+        std::snprintf(hi, sizeof hi, "%.9g", mapping.hi_db);
+        metadata["byte_lo_db"] = lo; // the image levels of bytes 0 and 255
+        metadata["byte_hi_db"] = hi;
+    }
+    return metadata;
 }
 
 UnixTime unix_time(double start_s, double t_s) {
@@ -124,15 +113,8 @@ ExportReport write_sonar_mcap(const std::string& path, const SceneDesc& s, const
     McapWriter w(path, "ros2", "sonarsim");
     const auto schema = w.add_schema("marine_acoustic_msgs/msg/ProjectedSonarImage", "ros2msg",
                                      projected_sonar_image_schema());
-    std::map<std::string, std::string> metadata{{"offered_qos_profiles", ""}};
-    if (type == SonarDataType::Uint8) {
-        char lo[32], hi[32];
-        std::snprintf(lo, sizeof lo, "%.9g", mapping.lo_db);
-        std::snprintf(hi, sizeof hi, "%.9g", mapping.hi_db);
-        metadata["byte_lo_db"] = lo; // the image levels of bytes 0 and 255
-        metadata["byte_hi_db"] = hi;
-    }
-    const auto channel = w.add_channel(schema, "/sonarsim/image", "cdr", metadata);
+    const auto channel =
+        w.add_channel(schema, "/sonarsim/image", "cdr", sonar_channel_metadata(type, mapping));
     ExportReport report;
     report.mapping = mapping;
     for (size_t k = 0; k < trajectory.size(); ++k) {

@@ -6,6 +6,7 @@
 #include "core/io/output.hpp"
 
 #include <cstdint>
+#include <map>
 #include <string>
 
 namespace sonarsim {
@@ -14,6 +15,15 @@ enum class SonarDataType { Uint8, Float32 };
 
 /// The message's .msg definition with its dependencies (MCAP schema encoding `ros2msg`).
 const std::string& projected_sonar_image_schema();
+
+/// One dependency of a ros2msg schema: the separator line, "MSG: NAME" and its definition; NAME one of
+/// std_msgs/Header, builtin_interfaces/Time, marine_acoustic_msgs/PingInfo, geometry_msgs/Vector3,
+/// marine_acoustic_msgs/SonarImageData.
+std::string ros2msg_dependency(const std::string& name);
+
+/// A sonar channel's MCAP metadata: offered_qos_profiles, and for uint8 data the image levels of bytes 0 and
+/// 255 (byte_lo_db, byte_hi_db).
+std::map<std::string, std::string> sonar_channel_metadata(SonarDataType type, const ByteMapping& mapping);
 
 /// A time since 1970 in whole seconds and nanoseconds.
 struct UnixTime {

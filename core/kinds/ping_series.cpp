@@ -39,6 +39,7 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control) {
         kind_ping_interval_s(scene, sound_speed_m_s(scene.water.temperature_c, scene.water.depth_m));
     const size_t n = size_t(out.pings) * size_t(out.channels) * size_t(out.bins);
     out.level_db.resize(n), out.ideal_db.resize(n);
+    if (control.ground_truth) out.truth.resize(size_t(out.pings) * size_t(out.channels));
     // The pings are independent: they run in parallel, each thread with one simulator per channel, which
     // keeps its geometry and its stages' buffers from ping to ping (only the pose changes). A ping's image
     // does not depend on which simulator made it, so the series is the same whatever the threads.
@@ -55,7 +56,10 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control) {
     tbb::parallel_for(tbb::blocked_range<int>(0, out.pings, 4), [&](const tbb::blocked_range<int>& r) {
         Worker& w = workers.local();
         if (w.sims.empty())
-            for (int ch = 0; ch < out.channels; ++ch) w.sims.push_back(std::make_unique<Simulator>(beam));
+            for (int ch = 0; ch < out.channels; ++ch) {
+                w.sims.push_back(std::make_unique<Simulator>(beam));
+                w.sims.back()->request({control.ground_truth, false});
+            }
         for (int p = r.begin(); p != r.end(); ++p) {
             for (int ch = 0; ch < out.channels; ++ch) {
                 SceneDesc at = beam;
@@ -68,6 +72,8 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control) {
                 const size_t off = (size_t(p) * size_t(out.channels) + size_t(ch)) * size_t(out.bins);
                 std::memcpy(out.level_db.data() + off, f->polar().level_db.data(), size_t(out.bins) * 4);
                 std::memcpy(out.ideal_db.data() + off, f->ideal().level_db.data(), size_t(out.bins) * 4);
+                if (control.ground_truth)
+                    out.truth[size_t(p) * size_t(out.channels) + size_t(ch)] = *f->truth_ptr;
             }
             if (control.progress) {
                 std::lock_guard<std::mutex> lock(progress_mutex);

@@ -4,6 +4,7 @@
 #pragma once
 #include "core/grid/sonar_grid.hpp"
 #include "core/kinds/pings.hpp"
+#include "core/shading/ground_truth.hpp"
 
 #include <atomic>
 #include <cstdint>
@@ -26,6 +27,9 @@ struct PingSeries {
     /// Side-scan: each ping's first bottom return (sidescan.bottom_threshold_db on L_EN, either channel): the
     /// near edge of its bin [m]; NaN where no bin reaches it.
     std::vector<double> first_return_m;
+    /// Ground truth per sample (PingControl::ground_truth, else empty): one per ping and channel, in
+    /// level_db's order, each of the shape (bins, 1): what echoed into each sample, as an imaging sonar's.
+    std::vector<GroundTruth> truth;
     std::uint64_t rays_traced = 0;
     double trace_ms = 0; ///< the pings' wall-clock time, all stages included
     /// The stages' times summed over pings and channels, on every thread (Frame's trace, shade, sensor,
@@ -43,6 +47,7 @@ struct PingControl {
     /// the pings; may be empty.
     std::function<void(int, int)> progress;
     const std::atomic<bool>* cancel = nullptr; ///< set: the current ping's trace throws TraceCancelled
+    bool ground_truth = false;                 ///< also make PingSeries::truth (in the shading pass)
 };
 
 /// Traces every ping of `scene` (a side-scan or scanning sonar) with its sampler and sensor.

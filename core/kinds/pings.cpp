@@ -5,6 +5,7 @@
 #include "core/shading/physics.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 namespace sonarsim {
 
@@ -28,6 +29,21 @@ double kind_ping_interval_s(const SceneDesc& s, double c) {
         break;
     }
     return ping_interval_s(s.sonar, c);
+}
+
+std::string ping_timing_text(const SceneDesc& s) {
+    const double c = sound_speed_m_s(s.water.temperature_c, s.water.depth_m);
+    const double dt = kind_ping_interval_s(s, c), listen = 2 * s.sonar.range_max_m / c;
+    const bool side = s.sonar.kind == SonarKind::Sidescan;
+    const size_t pings = ping_schedule(s).size();
+    char b[320];
+    std::snprintf(b, sizeof b,
+                  "%s: a %s every %.2f ms (2 r_max / c = %.2f ms + %.2f ms %s); %zu %s an image span %.3f s",
+                  side ? "side-scan" : "scanning sonar", side ? "ping" : "step", dt * 1e3, listen * 1e3,
+                  (dt - listen) * 1e3, side ? "sidescan.ping_overhead_ms" : "scanning.step_overhead_ms",
+                  pings, side ? (pings == 1 ? "ping" : "pings") : (pings == 1 ? "step" : "steps"),
+                  double(pings) * dt);
+    return b;
 }
 
 std::vector<double> sweep_head_angles_deg(const ScanningParams& sc) {

@@ -27,6 +27,10 @@ const char* channel_name(SonarKind kind, int channel);
 /// (sidescan.ping_overhead_ms, scanning.step_overhead_ms). `sound_speed_m_s`: c.
 double kind_ping_interval_s(const SceneDesc& scene, double sound_speed_m_s);
 
+/// The timing in words, e.g. "side-scan: a ping every 81.3 ms (2 r_max / c = 80.0 ms + 1.3 ms
+/// sidescan.ping_overhead_ms); 64 pings an image span 5.21 s" (c from the scene's water).
+std::string ping_timing_text(const SceneDesc& scene);
+
 /// Head angles of one sweep [deg]: from sector_start_deg toward sector_end_deg in steps of step_deg, both
 /// ends included; a full circle (|end - start| = 360) without its end (it is the start).
 std::vector<double> sweep_head_angles_deg(const ScanningParams& scanning);

@@ -171,3 +171,24 @@ def test_render_pings_equals_render_files(sonarsim_exe, scratch, source_dir):
     assert len(out["metadata"]["pings"]) == 12
     with pytest.raises(ValueError, match="render_pings takes sonar.kind sidescan or scanning"):
         sonarsim.render_pings(None)
+
+
+def test_render_pings_ground_truth_per_sample(sonarsim_exe, scratch, source_dir):
+    """render_pings(ground_truth=True) gives the arrays `render --ground-truth` writes, shaped as level_db."""
+    scene = str(source_dir / "assets/scenes/scan_tank.json")
+    sets = {"scanning.sector_end_deg": 36, "sonar.range_bins": 200}
+    subprocess.run([sonarsim_exe, "render", "--scene", scene, *[f"--set={k}={v}" for k, v in sets.items()],
+                    "--ground-truth", "--out", str(scratch / "sc")], check=True, stdout=subprocess.DEVNULL,
+                   stderr=subprocess.DEVNULL)
+    out = sonarsim.render_pings(scene, set=sets, ground_truth=True)
+    steps = out["level_db"].shape[0]
+    gt = out["ground_truth"]
+    assert gt["point_m"].shape == (steps, 200, 3)
+    assert gt["object_id"].shape == (steps, 200)
+    for name in ("point_m", "object_id", "incidence_deg", "elevation_deg"):
+        assert np.array_equal(gt[name], np.load(scratch / f"sc_gt_{name}.npy"), equal_nan=True), name
+    # A sample the truth names something for has an echo (a footprint also spreads echo into bins its
+    # surface does not cross at their centre range, which the truth leaves empty).
+    named = gt["object_id"] >= 0
+    assert named.sum() > 1000
+    assert np.isfinite(out["ideal_db"][named]).all()

@@ -127,8 +127,11 @@ TEST_CASE("resume after a killed run completes the set", "[batch]") {
     // started.
     std::filesystem::rename(frame_prefix(dir, 3) + ".json", frame_prefix(dir, 3) + ".json.tmp-1-abc");
     std::filesystem::remove(frame_prefix(dir, 3) + ".npy");
-    CHECK_FALSE(frame_complete(dir, 3));
-    CHECK(frame_complete(dir, 2));
+    SceneDesc base;
+    Trajectory stored;
+    load_dataset(dir, base, stored);
+    CHECK_FALSE(frame_complete(dir, 3, base));
+    CHECK(frame_complete(dir, 2, base));
 
     BatchOptions resume;
     resume.resume = true;

@@ -1,6 +1,7 @@
 // ARIS and MCAP files read back by readers written here from the specifications (SENSORS.md §3.1 and
 // Appendix A; the MCAP specification and OMG CDR), not with the writers' code; PNG files likewise (chunks
 // and CRCs here, pixels decoded by stb_image).
+#include "mcap_read.hpp"
 #include "support.hpp"
 
 #include "core/io/aris.hpp"
@@ -145,56 +146,6 @@ TEST_CASE("an ARIS file read from its specification gives back the frames", "[ar
         CHECK(lit > 100); // the frame is not blank
     }
 }
-
-namespace {
-
-/// The records of an MCAP file: opcode and content, in file order, after checking both magics.
-struct Record {
-    std::uint8_t op;
-    size_t offset; ///< of the opcode, from the start of the file
-    std::vector<std::uint8_t> content;
-};
-
-std::vector<Record> mcap_records(const std::vector<std::uint8_t>& b) {
-    const std::uint8_t magic[8] = {0x89, 'M', 'C', 'A', 'P', '0', '\r', '\n'};
-    REQUIRE(b.size() > 16);
-    REQUIRE(std::memcmp(b.data(), magic, 8) == 0);
-    REQUIRE(std::memcmp(b.data() + b.size() - 8, magic, 8) == 0);
-    std::vector<Record> out;
-    for (size_t p = 8; p < b.size() - 8;) {
-        const auto len = size_t(at<std::uint64_t>(b, p + 1));
-        REQUIRE(p + 9 + len <= b.size() - 8);
-        out.push_back({b[p], p, {b.begin() + long(p + 9), b.begin() + long(p + 9 + len)}});
-        p += 9 + len;
-    }
-    return out;
-}
-
-/// Reads fields in order from a byte string.
-struct Reader {
-    const std::vector<std::uint8_t>& b;
-    size_t p = 0, origin = 0; ///< CDR aligns from `origin`
-    template <typename T> T get(bool aligned = false) {
-        if (aligned)
-            while ((p - origin) % sizeof(T)) ++p;
-        T v = at<T>(b, p);
-        p += sizeof(T);
-        return v;
-    }
-    std::string str(bool cdr = false) {
-        const auto n = size_t(get<std::uint32_t>(cdr));
-        std::string s(b.begin() + long(p), b.begin() + long(p + n));
-        p += n;
-        if (cdr) {
-            REQUIRE(!s.empty());
-            REQUIRE(s.back() == '\0');
-            s.pop_back();
-        }
-        return s;
-    }
-};
-
-} // namespace
 
 TEST_CASE("an MCAP bag read from its specification gives back the frames", "[mcap]") {
     const Dataset& d = dataset("formats_mcap");

@@ -131,6 +131,40 @@ TEST_CASE("side-scan over a flat floor: nothing before the altitude, the first r
     }
 }
 
+TEST_CASE(
+    "side-scan ground truth per sample over a flat floor: each echo on the floor at its bin's range, on "
+    "its side, at incidence acos(h / r)",
+    "[kinds]") {
+    const double h = 6;
+    const SceneDesc s = sidescan_scene(h, 2);
+    PingControl control;
+    control.ground_truth = true;
+    const PingSeries p = render_pings(s, control);
+    REQUIRE(p.truth.size() == size_t(p.pings) * 2);
+    const double bin = p.grid->bin_m;
+    int checked = 0;
+    for (int ping = 0; ping < p.pings; ++ping)
+        for (int ch = 0; ch < 2; ++ch) {
+            const GroundTruth& g = p.truth[size_t(ping) * 2 + size_t(ch)];
+            REQUIRE(g.bins == p.bins);
+            REQUIRE(g.beams == 1);
+            const Vec3d x = transducer_pose(s, p.schedule[size_t(ping)], ch).position_m;
+            for (int k = 0; k < p.bins; ++k) {
+                const double r = p.grid->bin_near_edge_m(k) + bin / 2; // the bin's centre range
+                if (g.object_id[size_t(k)] != 0 || r < h + 2 * bin) continue;
+                const float* pt = g.point_m.data() + 3 * size_t(k);
+                const double dx = pt[0] - x[0], dy = pt[1] - x[1], dz = pt[2] - x[2];
+                INFO("ping " << ping << ", channel " << ch << ", bin " << k);
+                CHECK(std::abs(pt[2]) < bin / 10); // on the floor (z = 0)
+                CHECK(std::abs(std::sqrt(dx * dx + dy * dy + dz * dz) - r) <= bin / 2); // at the bin's range
+                CHECK((ch == 0 ? dy > 0 : dy < 0));                                     // port is +y
+                CHECK(g.incidence_deg[size_t(k)] == Approx(std::acos(h / r) * 180 / kPi).margin(1.0));
+                ++checked;
+            }
+        }
+    CHECK(checked > p.pings * 2 * p.bins / 2);
+}
+
 TEST_CASE("side-scan ground range: a bright strip on the floor at ground range 8-10 m shows there, within "
           "one bin, in both channels' halves",
           "[kinds]") {
