@@ -130,6 +130,7 @@ struct Column {
     int beam = 0;
     int j0 = 0, j1 = 0;      ///< the base cells [j0, j1) it covers (a split refines only where it is needed)
     bool sibling = false;    ///< made by the last azimuth split, beside its siblings (same group)
+    bool unrefined = false;  ///< traced beside a split, its elevation refinement still to come
     int group = 0;           ///< sibling columns of one split (or base triples) share a group
     std::vector<Node> nodes; ///< ordered by decreasing elevation
     std::vector<Node> base;  ///< the base grid as first traced (for comparing neighbouring columns)

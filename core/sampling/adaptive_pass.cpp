@@ -161,18 +161,42 @@ static PolarImage lasting_edges_image(const Sampler& sp, const Beams& beams, con
     return shade(lasting, sampled_beams_scene(sp.s, sampled));
 }
 
+/// Whether the azimuth probe looks at column c of a sample beam: it is still at the beam's base width
+/// `base_da` (not split in azimuth; a split's triple holds the difference).
+bool probed(const Column& c, double base_da) {
+    return !c.sibling && c.da > 0.999 * base_da;
+}
+
+/// The base width of the columns of a sample beam's `cols`.
+double probe_base_da(const Sampler& sp, const std::vector<Column>& cols) {
+    const int beam = cols.empty() ? 0 : cols.front().beam;
+    return sp.frame.grid->beam_width_rad(beam) / sp.columns(beam);
+}
+
+/// The rays the azimuth probe of a sample beam's columns asks for: two per probed cell.
+std::uint64_t probe_rays_wanted(const Sampler& sp, const std::vector<Column>& cols) {
+    const double base_da = probe_base_da(sp, cols);
+    const auto every = size_t(sp.probe_every), first = every / 2;
+    std::uint64_t n = 0;
+    for (const Column& c : cols)
+        if (probed(c, base_da) && c.nodes.size() > first)
+            n += 2 * ((c.nodes.size() - first + every - 1) / every);
+    return n;
+}
+
 /// The azimuth probe of a sample beam's columns `cols` (refined): on every probe_every-th cell of each
 /// column still at the beam's base width (not split in azimuth), two more rays at a third of the width each
-/// side; those cells as one column (`one`) and as three (`three`), appended, and with multipath their
-/// ghosts (`one_ghosts`, `three_ghosts`). Returns the rays traced; `ghost_rays` gets the ghosts' rays.
-std::uint64_t azimuth_probe(const Sampler& sp, const std::vector<Column>& cols, std::vector<Cell>& one,
-                            std::vector<Cell>& three, std::vector<GhostCell>& one_ghosts,
-                            std::vector<GhostCell>& three_ghosts, std::uint64_t& ghost_rays) {
-    const double base_da = sp.frame.grid->beam_width_rad(cols.empty() ? 0 : cols.front().beam) /
-                           sp.columns(cols.empty() ? 0 : cols.front().beam);
+/// side, as long as `allowance` (its rays paid from the budget) lasts; those cells as one column (`one`)
+/// and as three (`three`), appended, and with multipath their ghosts (`one_ghosts`, `three_ghosts`).
+/// Returns the rays traced; `ghost_rays` gets the ghosts' rays.
+std::uint64_t azimuth_probe(const Sampler& sp, const std::vector<Column>& cols, std::uint64_t allowance,
+                            std::vector<Cell>& one, std::vector<Cell>& three,
+                            std::vector<GhostCell>& one_ghosts, std::vector<GhostCell>& three_ghosts,
+                            std::uint64_t& ghost_rays) {
+    const double base_da = probe_base_da(sp, cols);
     std::uint64_t rays = 0;
     for (const Column& c : cols) {
-        if (c.sibling || !(c.da > 0.999 * base_da)) continue; // split: its triple holds the difference
+        if (!probed(c, base_da)) continue;
         const double d3 = c.da / 3;
         const Angle a(c.a), a_lo(c.a - c.da / 2), a_hi(c.a + c.da / 2);
         const Angle m_lo(c.a - d3 / 2), m_hi(c.a + d3 / 2), p(c.a + d3), p_hi(c.a + c.da / 2), st(c.a - d3),
@@ -188,7 +212,7 @@ std::uint64_t azimuth_probe(const Sampler& sp, const std::vector<Column>& cols, 
             };
             const Angle h(b.de / 2);
             const Angle lo(e.rad - h.rad, e, h, -1), hi(e.rad + h.rad, e, h, +1); // e -+ de/2
-            if (!sp.reserve(2)) return rays;
+            if (rays + 2 > allowance) return rays; // the budget paid for no more
             rays += 2;
             if (b.hit) {
                 add(one, detail::make_cell(sp.frame, *b.hit, a, e, a_lo, a_hi, lo, hi));
@@ -259,9 +283,10 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
         sp.mp.set_cull_floor({&sp.criteria.base_db,
                               sp.criteria.tolerance_per_bin_db() + 10 * std::log10(detail::kGhostCullShare),
                               2, 1});
-    tbb::parallel_for(0, N, [&](int i) {
-        for (auto& c : beams[size_t(i)]) sp.refine_column(c, M0);
-    });
+    std::vector<Column*> columns; // in beam order
+    for (auto& cols : beams)
+        for (auto& c : cols) columns.push_back(&c);
+    sp.refine_columns(columns, M0);
     sp.refine_azimuth(beams, M0);
     if (sp.control.cancelled()) throw TraceCancelled();
     std::vector<int> samples(static_cast<size_t>(G), -1);
@@ -277,12 +302,17 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
         out.az_one.cells.resize(size_t(G)), out.az_three.cells.resize(size_t(G));
         if (sp.multipath) out.az_one.ghosts.resize(size_t(G)), out.az_three.ghosts.resize(size_t(G));
         std::vector<std::uint64_t> r(static_cast<size_t>(G), 0), rg(static_cast<size_t>(G), 0);
+        std::vector<std::uint64_t> allowance(static_cast<size_t>(G), 0); // paid in the groups' order
+        for (int k = 0; k < G; ++k)
+            if (samples[size_t(k)] >= 0)
+                allowance[size_t(k)] =
+                    sp.reserve_up_to(probe_rays_wanted(sp, beams[size_t(samples[size_t(k)])]));
         tbb::parallel_for(0, G, [&](int k) {
             const int i = samples[size_t(k)];
             if (i < 0) return;
             std::vector<GhostCell> one_ghosts, three_ghosts;
             r[size_t(k)] =
-                azimuth_probe(sp, beams[size_t(i)], out.az_one.cells[size_t(k)],
+                azimuth_probe(sp, beams[size_t(i)], allowance[size_t(k)], out.az_one.cells[size_t(k)],
                               out.az_three.cells[size_t(k)], one_ghosts, three_ghosts, rg[size_t(k)]);
             if (!sp.multipath) return;
             // In the sample's slot whatever beam they arrive in: the probe sums |three - one|.

@@ -95,6 +95,8 @@ struct Sampler {
 
     /// Takes n rays from the image's budget (sampling.max_rays); false (and nothing taken) when it is spent.
     bool reserve(std::uint64_t n) const;
+    /// Takes up to n rays (an even number) from the budget; returns how many (0 when it is spent).
+    std::uint64_t reserve_up_to(std::uint64_t n) const;
 
     // refine_elevation.cpp
     /// One ray (a, e) standing for a cell of width de in elevation, with what the criteria read.
@@ -103,8 +105,9 @@ struct Sampler {
     Column trace_column(double a_rad, double da, int M0, int beam, int j0, int j1) const;
     /// A base column at M0 / 3 as one at M0: each cell splits in three, keeping its ray as the middle one.
     void densify_column(Column& col, int M0) const;
-    /// Ternary refinement of a column's cells down to kElevationLevels.
-    void refine_column(Column& col, int M0) const;
+    /// Ternary refinement of the columns' cells down to kElevationLevels, level by level; at the budget
+    /// the columns earlier in `cols` are paid first, whatever the threads.
+    void refine_columns(const std::vector<Column*>& cols, int M0) const;
 
     // refine_azimuth.cpp
     /// Splits columns in azimuth (kAzimuthLevels levels) where neighbours disagree or a cell needs it.

@@ -90,16 +90,16 @@ std::vector<std::pair<int, int>> marked_runs(const Column& c, const std::vector<
     return runs;
 }
 
-/// Splits column c in three over each run of marked base cells (widened by one cell each side): the
-/// middle takes c's rays there, two new columns are traced beside it over that run only. What c keeps
-/// outside the runs stays as it is. Appends the results to `out`.
-void split_column(const Sampler& sp, Column&& c, const std::vector<char>& marked, int M0, int& next_group,
-                  std::vector<Column>& out) {
+/// Splits column c in three over each of `runs` (marked base cells widened by kRunMargin, paid for from the
+/// budget): the middle takes c's rays there, two new columns are traced beside it over that run only, left
+/// `unrefined` for refine_columns. What c keeps outside the runs stays as it is. Appends the results to
+/// `out`.
+void split_column(const Sampler& sp, Column&& c, const std::vector<std::pair<int, int>>& runs, int M0,
+                  int& next_group, std::vector<Column>& out) {
     std::vector<Column> triples;
     std::vector<char> moved(c.nodes.size(), 0);
     const double da = c.da / 3;
-    for (auto [lo, hi] : marked_runs(c, marked)) {
-        if (!sp.reserve(2 * std::uint64_t(hi - lo))) continue; // budget spent: this run stays as it is
+    for (auto [lo, hi] : runs) {
         Column mid;
         mid.a = c.a, mid.da = da, mid.beam = c.beam, mid.j0 = lo, mid.j1 = hi;
         // The nodes go down the column in elevation, so their base cells do not decrease: the run's nodes
@@ -111,9 +111,8 @@ void split_column(const Sampler& sp, Column&& c, const std::vector<char>& marked
         std::fill(moved.begin() + (first - c.nodes.begin()), moved.begin() + (last - c.nodes.begin()), 1);
         mid.base.assign(c.base.begin() + (lo - c.j0), c.base.begin() + (hi - c.j0));
         Column port = sp.trace_column(c.a + da, da, M0, c.beam, lo, hi); // port side first
-        sp.refine_column(port, M0);
         Column starboard = sp.trace_column(c.a - da, da, M0, c.beam, lo, hi);
-        sp.refine_column(starboard, M0);
+        port.unrefined = starboard.unrefined = true;
         const int g = next_group++;
         for (Column* t : {&port, &mid, &starboard}) {
             t->group = g, t->sibling = true;
@@ -137,16 +136,19 @@ void split_column(const Sampler& sp, Column&& c, const std::vector<char>& marked
     for (auto& t : triples) out.push_back(std::move(t));
 }
 
-/// Replaces the columns of one beam by their splits where marked.
-void split_marked_columns(const Sampler& sp, std::vector<Column>& cols,
-                          const std::vector<std::vector<char>>& m, int M0, int& next_group) {
+/// Each column's runs to split, of one beam.
+using Runs = std::vector<std::vector<std::pair<int, int>>>;
+
+/// Replaces the columns of one beam by their splits over `runs`.
+void split_marked_columns(const Sampler& sp, std::vector<Column>& cols, const Runs& runs, int M0,
+                          int& next_group) {
     std::vector<Column> next;
     for (size_t k = 0; k < cols.size(); ++k) {
-        if (std::find(m[k].begin(), m[k].end(), 1) == m[k].end()) {
+        if (runs[k].empty()) {
             cols[k].sibling = false;
             next.push_back(std::move(cols[k]));
         } else {
-            split_column(sp, std::move(cols[k]), m[k], M0, next_group, next);
+            split_column(sp, std::move(cols[k]), runs[k], M0, next_group, next);
         }
     }
     cols.swap(next);
@@ -172,9 +174,24 @@ void Sampler::refine_azimuth(Beams& beams, int M0) const {
             if (mark_alone(*this, cols, min_da, lv > 0, m)) any = true;
         });
         if (!any) break;
+        // The runs to split, paid from the budget in the beams' and columns' order (a run refused stays as
+        // it is), so that where the budget ends does not depend on the threads.
+        std::vector<Runs> runs(static_cast<size_t>(N));
+        for (int i = 0; i < N; ++i) {
+            const auto& cols = beams[size_t(i)];
+            runs[size_t(i)].resize(cols.size());
+            for (size_t k = 0; k < cols.size(); ++k)
+                for (auto run : marked_runs(cols[k], mark[size_t(i)][k]))
+                    if (reserve(2 * std::uint64_t(run.second - run.first))) runs[size_t(i)][k].push_back(run);
+        }
         tbb::parallel_for(0, N, [&](int i) {
-            split_marked_columns(*this, beams[size_t(i)], mark[size_t(i)], M0, next_group[size_t(i)]);
+            split_marked_columns(*this, beams[size_t(i)], runs[size_t(i)], M0, next_group[size_t(i)]);
         });
+        std::vector<Column*> fresh; // the new columns beside each split, refined in elevation in order
+        for (auto& cols : beams)
+            for (auto& c : cols)
+                if (c.unrefined) c.unrefined = false, fresh.push_back(&c);
+        refine_columns(fresh, M0);
     }
 }
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tbb/parallel_for.h>
 
 namespace sonarsim::adaptive {
 
@@ -85,6 +86,14 @@ bool Sampler::reserve(std::uint64_t n) const {
     rays.fetch_sub(n, std::memory_order_relaxed);
     budget_hit.store(true, std::memory_order_relaxed);
     return false;
+}
+
+std::uint64_t Sampler::reserve_up_to(std::uint64_t n) const {
+    if (reserve(n)) return n;
+    const std::uint64_t max = std::uint64_t(s.sampling.max_rays), used = rays.load(std::memory_order_relaxed);
+    const std::uint64_t left = used < max ? (max - used) & ~std::uint64_t(1) : 0;
+    if (left > 0) rays.fetch_add(left, std::memory_order_relaxed);
+    return left;
 }
 
 Node Sampler::trace_node(const Angle& a, const Angle& e, double de, int group) const {
@@ -205,18 +214,35 @@ void Sampler::split_marked(Column& col, const Angle& a, size_t marked, int& next
     col.nodes.swap(out);
 }
 
-void Sampler::refine_column(Column& col, int M0) const {
-    const Angle a(col.a);
+void Sampler::refine_columns(const std::vector<Column*>& cols, int M0) const {
     // The finest cell has the same width in every pass (base_de_min): a denser base grid (a later pass)
     // refines fewer levels, so that its rays go to the cells the first pass left coarse, not deeper into
-    // its edges.
-    int next_group = M0 + 3; // above every base group id (j / 3, then one per cell of a partial triple)
+    // its edges. Level by level over all columns: each level's rays are taken from the budget in the
+    // columns' order (so that where the budget ends does not depend on the threads), then its splits and
+    // the next level's marks are made in parallel. A column refused stays at its level, as one with nothing
+    // marked.
+    const size_t n = cols.size();
+    std::vector<int> next_group(n, M0 + 3); // above every base group id (j / 3, then one per partial triple)
+    std::vector<size_t> marked(n, 0);
+    std::vector<char> active(n, 1);
+    tbb::parallel_for(size_t(0), n,
+                      [&](size_t k) { marked[k] = mark_for_split(*cols[k], Angle(cols[k]->a)); });
     for (int level = 0; level < elevation_levels; ++level) {
         if (control.cancelled()) return;
-        const size_t marked = mark_for_split(col, a);
-        if (marked == 0) break;
-        if (!reserve(2 * marked)) break; // budget spent: this column stays at its current level
-        split_marked(col, a, marked, next_group);
+        bool any = false;
+        for (size_t k = 0; k < n; ++k) {
+            if (!active[k]) continue;
+            if (marked[k] == 0 || !reserve(2 * marked[k])) active[k] = 0; // done, or the budget is spent
+            any = any || active[k];
+        }
+        if (!any) return;
+        const bool last = level + 1 == elevation_levels;
+        tbb::parallel_for(size_t(0), n, [&](size_t k) { // this level's splits, then the next level's marks
+            if (!active[k]) return;
+            const Angle a(cols[k]->a);
+            split_marked(*cols[k], a, marked[k], next_group[k]);
+            marked[k] = last ? 0 : mark_for_split(*cols[k], a);
+        });
     }
 }
 
