@@ -1,6 +1,7 @@
 // Plain data describing a scene: sonar, water, sampling, display, seafloor and objects.
 // Every field with a unit carries it in its name. Defaults are the paper's (Tables I-II, ARIS Explorer 3000).
 #pragma once
+#include <cstdint>
 #include <array>
 #include <limits>
 #include <optional>
@@ -174,6 +175,9 @@ struct SensorParams {
     bool noise = false; ///< additive complex Gaussian noise at L_N
     Tvg tvg = Tvg::Off;
     double gain_db = 0;
+    /// Not a parameter (no key): which transmit the noise is drawn for, besides the pose; a side-scan's or
+    /// scan's ping number + 1 (render_pings), so that pings from one pose get their own noise; 0 an image.
+    std::uint64_t noise_draw = 0;
 };
 
 struct Seafloor {

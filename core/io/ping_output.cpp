@@ -106,14 +106,20 @@ std::string ping_outputs_text(const std::string& prefix, const SceneDesc& scene)
     return text;
 }
 
-void write_ping_files(const std::string& prefix, const SceneDesc& scene, const PingSeries& series) {
+std::vector<std::string> write_ping_files(const std::string& prefix, const SceneDesc& scene,
+                                          const PingSeries& series,
+                                          std::vector<std::pair<std::string, Bytes>> extra) {
     const PingViews views = ping_views(scene, series);
     std::vector<std::pair<std::string, Bytes>> files;
     for (auto& o : ping_outputs())
         if (!o.wanted || o.wanted(scene))
             files.emplace_back(prefix + o.suffix, o.encode(scene, series, views));
     for (auto& f : ping_ground_truth_files(prefix, series)) files.push_back(std::move(f));
+    for (auto& f : extra) files.push_back(std::move(f));
     write_files_atomically(files);
+    std::vector<std::string> paths;
+    for (auto& f : files) paths.push_back(f.first);
+    return paths;
 }
 
 std::vector<std::pair<std::string, Bytes>> ping_ground_truth_files(const std::string& prefix,

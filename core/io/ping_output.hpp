@@ -36,9 +36,11 @@ const std::vector<PingOutput>& ping_outputs();
 /// "PREFIX.png (waterfall ...), ...": the files `scene` writes, for messages.
 std::string ping_outputs_text(const std::string& prefix, const SceneDesc& scene);
 
-/// Writes every file of ping_outputs() for `prefix`, and the series' ground truth when it has one
-/// (ping_ground_truth_files), in one atomic step.
-void write_ping_files(const std::string& prefix, const SceneDesc& scene, const PingSeries& series);
+/// Writes every file of ping_outputs() for `prefix`, the series' ground truth when it has one
+/// (ping_ground_truth_files) and the `extra` files (a 3D view PNG), in one atomic step. Returns the paths.
+std::vector<std::string> write_ping_files(const std::string& prefix, const SceneDesc& scene,
+                                          const PingSeries& series,
+                                          std::vector<std::pair<std::string, Bytes>> extra = {});
 
 /// PREFIX_gt_<name>.npy of a series made with PingControl::ground_truth, each of the .npy's shape (pings,
 /// channels, bins; a scan's (steps, bins)), point_m with a last axis of 3; none without.

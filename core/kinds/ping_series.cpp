@@ -51,6 +51,7 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control) {
     tbb::enumerable_thread_specific<Worker> workers;
     TraceControl trace;
     trace.cancel = control.cancel;
+    trace.preview = control.preview;
     std::mutex progress_mutex;
     int done = 0;
     tbb::parallel_for(tbb::blocked_range<int>(0, out.pings, 4), [&](const tbb::blocked_range<int>& r) {
@@ -64,6 +65,7 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control) {
             for (int ch = 0; ch < out.channels; ++ch) {
                 SceneDesc at = beam;
                 at.sonar.pose = transducer_pose(scene, out.schedule[size_t(p)], ch);
+                at.sensor.noise_draw = std::uint64_t(p) + 1; // each ping its own noise, even from one pose
                 w.sims[size_t(ch)]->set_scene(at, Stage::Trace);
                 const auto f = w.sims[size_t(ch)]->render(trace);
                 w.rays += f->hits().rays_traced;

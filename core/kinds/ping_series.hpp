@@ -48,6 +48,7 @@ struct PingControl {
     std::function<void(int, int)> progress;
     const std::atomic<bool>* cancel = nullptr; ///< set: the current ping's trace throws TraceCancelled
     bool ground_truth = false;                 ///< also make PingSeries::truth (in the shading pass)
+    bool preview = false; ///< each ping traced as a preview (TraceControl::preview: the base grid only)
 };
 
 /// Traces every ping of `scene` (a side-scan or scanning sonar) with its sampler and sensor.

@@ -20,7 +20,7 @@ template <class Row> void append(std::vector<Row>& table, Section section, std::
 std::vector<ParamSpec> build_scene_params() {
     std::vector<ParamSpec> t;
     append(t, Section::Sonar, rows::sonar_rows());
-    append(t, Section::None, rows::kind_rows());   // the viewer shows imaging sonars (for now)
+    append(t, Section::None, rows::kind_rows());   // rows name their sections: the kind and its shape
     append(t, Section::None, rows::motion_rows()); // rows name their sections; batch's not in the viewer
     append(t, Section::Water, rows::water_rows());
     append(t, Section::Sampling, rows::sampling_rows());

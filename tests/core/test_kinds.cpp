@@ -165,6 +165,24 @@ TEST_CASE(
     CHECK(checked > p.pings * 2 * p.bins / 2);
 }
 
+TEST_CASE("a side-scan that does not move: every ping the same echo, each its own noise, the same bytes "
+          "every run",
+          "[kinds]") {
+    SceneDesc s = sidescan_scene(6, 3);
+    apply_setting(s, "sensor.model", "device", "test");
+    apply_setting(s, "sensor.noise", true, "test");
+    validate_scene(s, "test");
+    const PingSeries p = render_pings(s);
+    const size_t n = size_t(p.channels) * size_t(p.bins);
+    for (int ping = 1; ping < p.pings; ++ping) {
+        CHECK(std::equal(p.ideal_db.begin(), p.ideal_db.begin() + long(n), p.ideal_db.begin() + long(ping * n)));
+        size_t differ = 0;
+        for (size_t i = 0; i < n; ++i) differ += p.level_db[i] != p.level_db[size_t(ping) * n + i];
+        CHECK(differ > n / 2); // the noise is drawn anew
+    }
+    CHECK(render_pings(s).level_db == p.level_db);
+}
+
 TEST_CASE("side-scan ground range: a bright strip on the floor at ground range 8-10 m shows there, within "
           "one bin, in both channels' halves",
           "[kinds]") {

@@ -298,3 +298,49 @@ TEST_CASE("the worker forms the fan at the panel's height; snapshots still write
     session.set_fan_height_px(320);
     CHECK(session.submit() == 0); // unchanged: nothing to do
 }
+
+TEST_CASE("the viewer's session shows a side-scan's waterfall and a scan's sweep, and switching the kind "
+          "switches the image; snapshots write the kind's files",
+          "[ui][session][kinds]") {
+    SceneDesc s = default_scene();
+    ui::Session session(s);
+    session.submit();
+    REQUIRE(session.wait_full(60s));
+    REQUIRE(session.shown()->frame);
+    // To a side-scan: the image is its waterfall, as render_pings makes it (pings x (port | starboard)).
+    REQUIRE(session.set("sonar.kind", "sidescan"));
+    REQUIRE(session.set("sidescan.pings", 12));
+    REQUIRE(session.wait_full(60s));
+    const ui::RenderResult* r = session.shown();
+    REQUIRE(r);
+    CHECK(session.error().empty());
+    REQUIRE(r->pings);
+    CHECK_FALSE(r->frame);
+    CHECK(r->pings->pings == 12);
+    CHECK(r->pings->channels == 2);
+    const PingSeries ref = render_pings(r->scene);
+    CHECK(r->pings->level_db == ref.level_db); // the worker's pings are the headless ones, byte for byte
+    REQUIRE(r->ping_image);
+    CHECK(r->ping_image->height == 12);
+    CHECK(r->ping_image->width == 2 * r->scene.sonar.range_bins);
+    const std::string prefix = test::ui_out_path("session_sidescan");
+    REQUIRE(session.snapshot(prefix, {}));
+    for (const char* suffix : {".png", ".npy", "_waterfall.npy", ".xtf", ".json"})
+        CHECK(std::filesystem::is_regular_file(prefix + suffix));
+    // To a scan: one step per head angle, the image a square sweep.
+    REQUIRE(session.set("sonar.kind", "scanning"));
+    REQUIRE(session.set("scanning.sector_start_deg", -30.0));
+    REQUIRE(session.set("scanning.sector_end_deg", 30.0));
+    REQUIRE(session.set("scanning.step_deg", 3.0));
+    REQUIRE(session.wait_full(60s));
+    r = session.shown();
+    REQUIRE(r->pings);
+    CHECK(r->pings->pings == 21);
+    CHECK(r->pings->channels == 1);
+    CHECK(r->ping_image->width == r->ping_image->height);
+    // Back to the imaging sonar: a fan again.
+    REQUIRE(session.set("sonar.kind", "imaging"));
+    REQUIRE(session.wait_full(60s));
+    CHECK(session.shown()->frame);
+    CHECK_FALSE(session.shown()->pings);
+}

@@ -1,6 +1,7 @@
 #include "ui/gl/controls_panel.hpp"
 
 #include "core/scene/devices.hpp"
+#include "core/scene/params.hpp"
 
 #include "ui/model/bindings.hpp"
 #include "ui/model/interaction.hpp"
@@ -140,9 +141,12 @@ void section_params(ControlsWidgets& w, Session& session, Section section) {
         if (p.type == ParamType::Enum) {
             const std::string now = cur.get<std::string>();
             const std::string label = field_label(w, p.label_text(), p.key);
-            if (ImGui::BeginCombo(label.c_str(), now.c_str())) {
-                // The viewer shows imaging sonars: the other kinds' presets render headless.
-                for (auto& c : p.key == "sonar.device" ? device_choices("imaging") : p.choices)
+            const bool open = ImGui::BeginCombo(label.c_str(), now.c_str());
+            remember_rect(w, p.key); // the combo itself (what `move_to KEY` in a script aims at)
+            if (open) {
+                // The presets of the scene's kind of sonar.
+                for (auto& c : p.key == "sonar.device" ? device_choices(kind_name(session.scene().sonar.kind))
+                                                       : p.choices)
                     if (ImGui::Selectable(c.c_str(), c == now)) session.set(p.key, c);
                 ImGui::EndCombo();
             }
@@ -320,7 +324,15 @@ void stats_section(Session& session, const ControlsUi& ui) {
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("Absorption (eq. 7) at f, T, D; the paper's Table II gives 3.04 dB/m");
     ImGui::Text("frame %.1f ms", ui.frame_ms);
-    if (const RenderResult* r = session.shown()) {
+    if (const RenderResult* r = session.shown(); r && r->pings) { // a side-scan's or scan's pings
+        const PingSeries& p = *r->pings;
+        ImGui::SameLine();
+        ImGui::Text("  image %.1f ms%s", r->wall_ms, r->preview() ? " (preview)" : "");
+        ImGui::TextDisabled("%d %s x %d bins, %.2f ms a ping", p.pings, p.channels == 2 ? "pings" : "steps",
+                            p.bins, p.trace_ms / std::max(1, p.pings));
+        ImGui::TextDisabled("%llu rays, a ping every %.1f ms", static_cast<unsigned long long>(p.rays_traced),
+                            1e3 * p.ping_interval_s);
+    } else if (r) {
         const Frame& f = *r->frame;
         ImGui::SameLine();
         ImGui::Text("  image %.1f ms%s", r->wall_ms, f.preview() ? " (preview)" : "");

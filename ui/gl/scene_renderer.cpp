@@ -232,7 +232,8 @@ void SceneRenderer::draw(const SceneDesc& scene, const OrbitCamera& cam, int x, 
         grid_.draw(GL_LINES);
         // Where the field of view meets the floor: the outline of the insonified patch.
         v.clear();
-        for (const glm::vec3& q : floor_footprint(s, z)) v.push_back({q, {}, kFootprint});
+        for (const SonarParams& fov : fields_of_view(scene)) // a side-scan's swaths, a scan's beams
+            for (const glm::vec3& q : floor_footprint(fov, z)) v.push_back({q, {}, kFootprint});
         footprint_.upload(v);
         glLineWidth(2.0f);
         footprint_.draw(GL_LINES);
@@ -266,7 +267,12 @@ void SceneRenderer::draw(const SceneDesc& scene, const OrbitCamera& cam, int x, 
                            std::round(s.pose.position_m[1]), std::ceil(std::max(3.0, s.range_max_m + 1.0)));
 
     // Field of view: translucent faces, then the wireframe (faint where hidden behind surfaces).
-    const FrustumShell shell = frustum_shell(s);
+    FrustumShell shell;
+    for (const SonarParams& fov : fields_of_view(scene)) {
+        FrustumShell one = frustum_shell(fov);
+        shell.triangles.insert(shell.triangles.end(), one.triangles.begin(), one.triangles.end());
+        shell.lines.insert(shell.lines.end(), one.lines.begin(), one.lines.end());
+    }
     const float face_alpha = ov.sonar_hot ? 0.22f : 0.11f;
     v.clear();
     for (auto& p : shell.triangles) v.push_back({p, {}, glm::vec4(kShell, face_alpha)});

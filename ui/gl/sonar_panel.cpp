@@ -19,11 +19,13 @@ namespace sonarsim::ui {
 using namespace panel;
 
 void SonarPanel::draw_header(const Session& session, Session& edit) {
-    int view = polar ? 1 : 0;
-    ImGui::RadioButton("fan", &view, 0);
-    ImGui::SameLine();
-    ImGui::RadioButton("raw polar (P)", &view, 1);
-    polar = view == 1;
+    if (session.scene().sonar.kind == SonarKind::Imaging) { // a waterfall or a sweep has one view
+        int view = polar ? 1 : 0;
+        ImGui::RadioButton("fan", &view, 0);
+        ImGui::SameLine();
+        ImGui::RadioButton("raw polar (P)", &view, 1);
+        polar = view == 1;
+    }
     // The colour maps of core's parameter table.
     const std::string now = find_param("display.colormap")->get(session.scene()).get<std::string>();
     const float room = ImGui::GetContentRegionAvail().x - ImGui::GetCursorPosX();
@@ -35,6 +37,56 @@ void SonarPanel::draw_header(const Session& session, Session& edit) {
         ImGui::EndCombo();
     }
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("colour map (display.colormap)");
+}
+
+void SonarPanel::draw_pings(const Rect& area, const RenderResult& shown, std::uint64_t shown_count) {
+    has_layout_ = false; // no fan: its layout, hover and measuring do not apply
+    if (uploaded_count_ != shown_count) {
+        texture_.upload(*shown.ping_image);
+        uploaded_count_ = shown_count, uploaded_polar_ = false;
+    }
+    const PingSeries& p = *shown.pings;
+    const SceneDesc& sc = shown.scene;
+    const bool side = p.kind == SonarKind::Sidescan;
+    char what[200], facts[200];
+    if (side) {
+        std::snprintf(what, sizeof what, "waterfall, %s range: port | starboard, newest at the top",
+                      sc.sidescan.range == SidescanRange::Ground ? "ground" : "slant");
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (double h : p.first_return_m)
+            if (std::isfinite(h)) lo = std::min(lo, h), hi = std::max(hi, h);
+        if (std::isfinite(lo))
+            std::snprintf(facts, sizeof facts, "%d pings %.1f ms apart, altitude %.2f-%.2f m", p.pings,
+                          1e3 * p.ping_interval_s, lo, hi);
+        else
+            std::snprintf(facts, sizeof facts, "%d pings, %.1f ms apart; no bottom return", p.pings,
+                          1e3 * p.ping_interval_s);
+    } else {
+        std::snprintf(what, sizeof what, "sweep: forward up, port left, %.4g m to the edge",
+                      sc.sonar.range_max_m);
+        std::snprintf(facts, sizeof facts, "%d steps of %.3g deg, %.2f s a sweep", p.pings,
+                      sc.scanning.step_deg, p.pings * p.ping_interval_s);
+    }
+    ImGui::TextUnformatted(what);
+    ImGui::TextDisabled("%s", facts);
+    const ImVec2 at = ImGui::GetCursorScreenPos();
+    const float room_w = area.x + area.w - at.x - 4, room_h = area.y + area.h - at.y - 4;
+    const Image8& img = *shown.ping_image;
+    if (room_w < 8 || room_h < 8 || img.width < 1 || img.height < 1) return;
+    // Fitted without distortion for a sweep (its geometry is the picture); a waterfall takes the room (its
+    // rows are pings, not metres).
+    float w = room_w, h = room_h;
+    if (!side) {
+        const float k = std::min(room_w / float(img.width), room_h / float(img.height));
+        w = k * float(img.width), h = k * float(img.height);
+    }
+    const ImVec2 top(at.x + 0.5f * (room_w - w), at.y);
+    ImGui::SetCursorScreenPos(top);
+    ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(texture_.id())), ImVec2(w, h));
+    annotated_ = {top.x, top.y, w, h};
+    if (shown.preview())
+        text_at(ImGui::GetWindowDrawList(), ImVec2(top.x + w, top.y + h), IM_COL32(255, 200, 80, 255),
+                "preview (base grid only)", 1.0f, 1.0f);
 }
 
 void SonarPanel::ask_fan_height(const Rect& area, Session& session, float scale) {
@@ -86,6 +138,11 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
     if (!shown) {
         ImGui::TextDisabled("rendering the first image...");
         ask_fan_height(area, session, scale); // the first image at the height it will be shown
+        ImGui::End();
+        return;
+    }
+    if (shown->pings) {
+        draw_pings(area, *shown, session.shown_count());
         ImGui::End();
         return;
     }

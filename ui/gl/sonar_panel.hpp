@@ -48,6 +48,9 @@ class SonarPanel {
     void draw_colorbar(const DisplayParams& d);
     void draw_ascan(const Rect& r, const RenderResult& shown);
     void draw_header(const Session& session, Session& edit);
+    /// A side-scan's waterfall or a scanning sonar's sweep, fitted to the area below the header, with what
+    /// it shows in words.
+    void draw_pings(const Rect& area, const RenderResult& shown, std::uint64_t shown_count);
     void ask_fan_height(const Rect& area, Session& session, float scale);
     /// The place at screen point q, or nullopt off the image.
     std::optional<ImagePlace> place_at(const Rect& r, const RenderResult& shown, ImVec2 q) const;

@@ -207,7 +207,7 @@ void Viewer::frame(int index) {
     if (controller_.pressed() || session_.full_pending()) extra_frames_ = 2;
 
     if (ui_.want_snapshot) ++pending_snapshots_, ui_.want_snapshot = false;
-    const bool full_on_screen = session_.shown() && !session_.shown()->frame->preview();
+    const bool full_on_screen = session_.shown() && !session_.shown()->preview();
 
     upload_meshes();
     draw_gl(fb_w, fb_h, win_w, win_h);

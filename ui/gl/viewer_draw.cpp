@@ -27,7 +27,7 @@ ViewOverlay Viewer::overlay() const {
     ov.marker = controller_.surface_hover();
     ov.handles = frustum_handles(session_.scene());
     const RenderResult* shown = session_.shown();
-    if (shown && sonar_->hovered()) {
+    if (shown && shown->frame && sonar_->hovered()) {
         const ImagePlace& p = *sonar_->hovered();
         ov.arc = elevation_arc(shown->scene.sonar, p.range_m, p.azimuth_deg);
         ov.echo_points = echoing_points(shown->frame->hits(), shown->scene, p.bin, p.beam);
@@ -35,7 +35,7 @@ ViewOverlay Viewer::overlay() const {
         for (const auto& q : path.points_m) ov.echo_path.emplace_back(q[0], q[1], q[2]);
         ov.echo_path_scatterer = size_t(1 + path.out_bounces);
     }
-    if (shown && ui_.show_hits)
+    if (shown && shown->frame && ui_.show_hits)
         for (auto& beam : shown->frame->hits().cells)
             for (auto& c : beam) ov.hit_points.push_back(c.point_m);
     return ov;
@@ -58,7 +58,7 @@ void Viewer::draw_view_text(const Rect& v) {
     const RenderResult* shown = session_.shown();
     if (shown)
         std::snprintf(buf, sizeof buf, "frame %.1f ms   image %.1f ms%s", last_frame_ms_, shown->wall_ms,
-                      shown->frame->preview() ? " (preview)" : "");
+                      shown->preview() ? " (preview)" : "");
     else
         std::snprintf(buf, sizeof buf, "frame %.1f ms   image: rendering...", last_frame_ms_);
     put(v.y + pad * 0.5f, IM_COL32(230, 235, 240, 255), buf);
@@ -103,7 +103,7 @@ void Viewer::take_snapshot(const std::string& prefix_in, bool as_shown, const By
     // A snapshot is of a full-quality image, never of a drag's preview: of the edited scene, or (`as_shown`)
     // of the image on screen with the scene it was made from. `annotated`: the sonar panel as drawn this
     // frame (empty: no annotated PNG, never an older frame's, whose hover marker would be stale).
-    if (!session_.shown() || session_.shown()->frame->preview() || (!as_shown && session_.busy()))
+    if (!session_.shown() || session_.shown()->preview() || (!as_shown && session_.busy()))
         session_.wait_full(std::chrono::milliseconds(60000));
     const RenderResult* shown = session_.shown();
     if (!shown) {
@@ -131,8 +131,7 @@ Bytes Viewer::annotated_now(int fb_w, int fb_h, int win_w, int win_h) const {
     // The sonar panel's image, labels and colour bar exactly as drawn this frame, when that frame shows the
     // full-quality image of the scene being edited (else the snapshot's images would not match it).
     const RenderResult* shown = session_.shown();
-    if (!ui_.annotated_snapshot || win_w <= 0 || win_h <= 0 || !shown || shown->frame->preview() ||
-        session_.busy())
+    if (!ui_.annotated_snapshot || win_w <= 0 || win_h <= 0 || !shown || shown->preview() || session_.busy())
         return {};
     const float sx = float(fb_w) / win_w, sy = float(fb_h) / win_h;
     const Rect r = sonar_->annotated_rect();

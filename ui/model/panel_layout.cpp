@@ -175,6 +175,7 @@ int fan_height_to_form(double shown_h_px, const SonarGrid& grid) {
 }
 
 double fan_aspect(const SonarParams& s) {
+    if (s.kind != SonarKind::Imaging) return 1.0; // a waterfall or a sweep: a panel about as wide as high
     const FanLayout fan = sonar_grid(s)->fan_layout(default_sector_height(s));
     return double(fan.width_px) / fan.height_px;
 }

@@ -1,5 +1,6 @@
 #include "ui/model/render_worker.hpp"
 
+#include "core/io/ping_output.hpp"
 #include "core/base/timing.hpp"
 
 #include <algorithm>
@@ -82,7 +83,9 @@ void RenderWorker::loop() {
             if (stop_) return;
             job = std::move(*queued_);
             queued_.reset();
-            running_id_ = job.id, running_preview_ = job.preview;
+            running_id_ = job.id;
+            // A preview of pings traces every ping: as long as a full image, so a newer request cancels it.
+            running_preview_ = job.preview && job.scene.sonar.kind == SonarKind::Imaging;
             cancel_.store(false, std::memory_order_relaxed); // only requests after this one cancel it
         }
         RenderResult r;
@@ -90,27 +93,43 @@ void RenderWorker::loop() {
         bool cancelled = false;
         const auto t0 = std::chrono::steady_clock::now();
         try {
-            if (!sim) {
-                sim = std::make_unique<Simulator>(job.scene);
-                r.stage = Stage::Geometry;
+            if (job.scene.sonar.kind != SonarKind::Imaging) { // a side-scan's or scan's pings
+                PingControl pings;
+                pings.cancel = &cancel_;
+                pings.preview = job.preview;
+                pings.ground_truth = job.ground_truth && !job.preview;
+                auto series = std::make_shared<const PingSeries>(render_pings(job.scene, pings));
+                r.ping_image = std::make_shared<const Image8>(
+                    ping_image(job.scene, *series, ping_views(job.scene, *series)));
+                r.pings = std::move(series);
+                r.preview_pings = job.preview;
+                r.scene = job.scene;
+                r.stage = Stage::Trace;
+                known = false; // the imaging simulator does not hold this scene
             } else {
-                r.stage = known && job.changed ? *job.changed : changed_stage(sim->scene(), job.scene);
-                known = false;
-                sim->set_scene(job.scene, r.stage); // a bad mesh throws; the last good geometry stays
+                if (!sim) {
+                    sim = std::make_unique<Simulator>(job.scene);
+                    r.stage = Stage::Geometry;
+                } else {
+                    r.stage = known && job.changed ? *job.changed : changed_stage(sim->scene(), job.scene);
+                    known = false;
+                    sim->set_scene(job.scene, r.stage); // a bad mesh throws; the last good geometry stays
+                }
+                known = true;
+                sim->set_fan_height_px(job.fan_height_px); // a new height re-forms the fan only
+                TraceControl control;
+                control.cancel = &cancel_;
+                control.preview = job.preview;
+                // Full-quality frames carry each cell's strongest contribution (hovering draws its path
+                // without shading anything) and, when asked for, the ground truth, all made in the shading
+                // pass.
+                sim->request({job.ground_truth && !job.preview, !job.preview});
+                r.frame = sim->render(control); // shares its stages with the simulator: no copy
+                r.scene = sim->scene();
+                r.ground_truth = r.frame->truth_ptr;
+                r.stage = std::min(r.stage, carried);
+                carried = Stage::None;
             }
-            known = true;
-            sim->set_fan_height_px(job.fan_height_px); // a new height re-forms the fan only
-            TraceControl control;
-            control.cancel = &cancel_;
-            control.preview = job.preview;
-            // Full-quality frames carry each cell's strongest contribution (hovering draws its path without
-            // shading anything) and, when asked for, the ground truth, all made in the shading pass.
-            sim->request({job.ground_truth && !job.preview, !job.preview});
-            r.frame = sim->render(control); // shares its stages with the simulator: no copy
-            r.scene = sim->scene();
-            r.ground_truth = r.frame->truth_ptr;
-            r.stage = std::min(r.stage, carried);
-            carried = Stage::None;
         } catch (const TraceCancelled&) {
             cancelled = true; // the simulator keeps its stale stages stale; a newer request is queued
             carried = std::min(carried, r.stage);

@@ -5,6 +5,7 @@
 #pragma once
 #include "core/geometry/mesh.hpp"
 #include "core/shading/ground_truth.hpp"
+#include "core/kinds/ping_series.hpp"
 #include "core/pipeline/simulator.hpp"
 
 #include <atomic>
@@ -29,6 +30,14 @@ struct RenderResult {
     std::string error;         ///< InputError::what() (or another exception's) on failure
     Stage stage = Stage::None; ///< first stage recomputed (Stage::Geometry: meshes rebuilt)
     double wall_ms = 0;        ///< set_scene + render, as measured by the worker
+    /// A side-scan's or scanning sonar's pings (sonar.kind), with the image its PNG shows (the waterfall or
+    /// the sweep); `frame` is null then.
+    std::shared_ptr<const PingSeries> pings;
+    std::shared_ptr<const Image8> ping_image;
+    bool preview_pings = false; ///< the pings were traced as previews (each ping's base grid only)
+
+    /// A drag's preview, never to be taken for the full-quality image.
+    bool preview() const { return frame ? frame->preview() : preview_pings; }
 };
 
 class RenderWorker {

@@ -3,6 +3,7 @@
 #include "ui/model/snapshot.hpp"
 #include "ui/model/sonar_geometry.hpp"
 
+#include "core/io/ping_output.hpp"
 #include "core/scene/scene_parts.hpp"
 #include "core/base/errors.hpp"
 #include "core/geometry/mesh_cache.hpp"
@@ -154,8 +155,8 @@ bool Session::poll() {
         // The newest request failed (a mesh that the worker could not load): go back to the last good scene.
         if (r->id == requested_id_ && !dirty_) {
             scene_ = last_good_;
-            changed_.reset();                                   // the worker compares the scenes
-            full_pending_ = shown_ && shown_->frame->preview(); // the full image of the last good scene
+            changed_.reset();                            // the worker compares the scenes
+            full_pending_ = shown_ && shown_->preview(); // the full image of the last good scene
             try {
                 update_geometry(scene_);
             } catch (const InputError&) {
@@ -164,7 +165,7 @@ bool Session::poll() {
         return false;
     }
     // A preview request that came back in full quality (uniform and spread ignore TraceControl::preview).
-    if (r->id == requested_id_ && !r->frame->preview()) full_pending_ = false;
+    if (r->id == requested_id_ && !r->preview()) full_pending_ = false;
     last_good_ = r->scene;
     shown_ = std::make_shared<const RenderResult>(std::move(*r));
     ++shown_count_;
@@ -179,7 +180,7 @@ bool Session::wait_latest(std::chrono::milliseconds timeout) {
 
 bool Session::wait_full(std::chrono::milliseconds timeout) {
     submit(false);
-    return wait_latest(timeout) && shown_ && !shown_->frame->preview();
+    return wait_latest(timeout) && shown_ && !shown_->preview();
 }
 
 bool Session::busy() const {
@@ -198,12 +199,19 @@ void Session::set_fan_height_px(int height_px) {
     dirty_ = true; // the same scene again: the worker re-forms its fan
 }
 
+void Session::snapshot_status(const std::string& prefix, const std::vector<std::string>& paths) {
+    const std::filesystem::path folder = std::filesystem::absolute(prefix).lexically_normal().parent_path();
+    status_ = "snapshot in " + folder.string() + ":";
+    for (auto& p : paths) status_ += " " + std::filesystem::path(p).filename().string();
+    error_.clear();
+}
+
 bool Session::snapshot(const std::string& prefix, const Bytes& view3d_png, const Bytes& annotated_png) {
     if (!shown_) {
         error_ = "no sonar image yet: nothing to snapshot";
         return false;
     }
-    if (shown_->frame->preview() && !wait_full(std::chrono::milliseconds(60000))) {
+    if (shown_->preview() && !wait_full(std::chrono::milliseconds(60000))) {
         error_ = "snapshot: the full-quality image is not ready";
         return false;
     }
@@ -211,6 +219,12 @@ bool Session::snapshot(const std::string& prefix, const Bytes& view3d_png, const
         if (ground_truth_ && !shown_->ground_truth && !wait_full(std::chrono::milliseconds(60000))) {
             error_ = "snapshot: the ground truth is not ready";
             return false;
+        }
+        if (shown_->pings) { // a side-scan's or scan's files, as render writes them, and the 3D view
+            std::vector<std::pair<std::string, Bytes>> extra;
+            if (!view3d_png.empty()) extra.emplace_back(prefix + "_3d.png", view3d_png);
+            snapshot_status(prefix, write_ping_files(prefix, shown_->scene, *shown_->pings, extra));
+            return true;
         }
         // The files hold the fan at one row per range bin, whatever the panel shows.
         Frame frame = *shown_->frame;
@@ -222,11 +236,7 @@ bool Session::snapshot(const std::string& prefix, const Bytes& view3d_png, const
         const auto paths =
             write_snapshot(prefix, shown_->scene, frame, view3d_png,
                            ground_truth_ ? shown_->ground_truth.get() : nullptr, annotated_png);
-        const std::filesystem::path folder =
-            std::filesystem::absolute(prefix).lexically_normal().parent_path();
-        status_ = "snapshot in " + folder.string() + ":";
-        for (auto& p : paths) status_ += " " + std::filesystem::path(p).filename().string();
-        error_.clear();
+        snapshot_status(prefix, paths);
         return true;
     } catch (const std::exception& e) {
         error_ = std::string("snapshot failed: ") + e.what();

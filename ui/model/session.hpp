@@ -93,6 +93,8 @@ class Session {
     void set_fan_height_px(int height_px);
 
   private:
+    /// The status after a snapshot: its folder and files.
+    void snapshot_status(const std::string& prefix, const std::vector<std::string>& paths);
     /// `st`: changed_stage from the current scene to `next` when the caller knows it (apply_setting's).
     void set_scene(SceneDesc next, std::optional<Stage> st = std::nullopt);
     /// edit() with the stage the change reports (`stage`, filled by `change`; null: computed here).

@@ -1,5 +1,7 @@
 #include "ui/model/sonar_geometry.hpp"
 
+#include "core/kinds/pings.hpp"
+
 #include "core/grid/sonar_grid.hpp"
 #include "core/geometry/mesh_cache.hpp"
 #include "core/data/pose.hpp"
@@ -107,6 +109,25 @@ std::vector<glm::vec3> floor_footprint(const SonarParams& s, double z0, int step
             }
             return glm::vec3(sonar_point(s, r, a, 0.5 * (lo + hi)));
         });
+    return out;
+}
+
+std::vector<SonarParams> fields_of_view(const SceneDesc& scene) {
+    if (scene.sonar.kind == SonarKind::Imaging) return {scene.sonar};
+    const std::vector<Ping> pings = ping_schedule(scene);
+    const SceneDesc beam = beam_scene(scene);
+    std::vector<SonarParams> out;
+    if (pings.empty()) return out;
+    const int channels = channel_count(scene.sonar.kind);
+    for (const Ping* p : {&pings.front(), &pings.back()}) {
+        for (int ch = 0; ch < channels; ++ch) {
+            SonarParams s = beam.sonar;
+            s.pose = transducer_pose(scene, *p, ch);
+            out.push_back(s);
+        }
+        if (scene.sonar.kind == SonarKind::Sidescan || pings.size() == 1)
+            break; // a side-scan: its first ping
+    }
     return out;
 }
 

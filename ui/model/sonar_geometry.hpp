@@ -27,6 +27,11 @@ FrustumShell frustum_shell(const SonarParams& sonar, int azimuth_steps = 16, int
 /// segment end points in pairs, in world coordinates.
 std::vector<glm::vec3> floor_footprint(const SonarParams& sonar, double floor_z, int steps = 48);
 
+/// The fields of view to draw: the imaging sonar's fan; a side-scan's two beams (port, starboard) at the
+/// first ping, each a one-beam sonar at its transducer's pose, so that its floor footprint is the swath; a
+/// scanning sonar's beam at the first and last step of its sector.
+std::vector<SonarParams> fields_of_view(const SceneDesc& scene);
+
 /// The housing: a box behind the transducer face (front face at the sonar origin), in world coordinates.
 TriMesh sonar_body(const SonarParams& sonar);
 
