@@ -252,11 +252,11 @@ BatchSummary run_batch(const std::string& dir, const BatchOptions& options) {
                 PingControl control;
                 control.ground_truth = options.ground_truth;
                 write_ping_files(frame_prefix(dir, k), s, render_pings(s, control));
-            } else if (sim)
-                sim->set_scene(s);
-            else
-                sim.emplace(s);
-            if (s.sonar.kind == SonarKind::Imaging) {
+            } else {
+                if (sim)
+                    sim->set_scene(s);
+                else
+                    sim.emplace(s);
                 sim->request({options.ground_truth, false});
                 const auto f = sim->render();
                 write_render_files(frame_prefix(dir, k), s, *f,

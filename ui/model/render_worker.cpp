@@ -7,6 +7,24 @@
 #include <exception>
 
 namespace sonarsim::ui {
+namespace {
+
+/// A side-scan's or scan's pings of `scene` into `r`, with the image its PNG shows; `cancel` stops them.
+void render_pings_into(RenderResult& r, const SceneDesc& scene, bool preview, bool ground_truth,
+                       const std::atomic<bool>& cancel) {
+    PingControl control;
+    control.cancel = &cancel;
+    control.preview = preview;
+    control.ground_truth = ground_truth && !preview;
+    auto series = std::make_shared<const PingSeries>(render_pings(scene, control));
+    r.ping_image = std::make_shared<const Image8>(ping_image(scene, *series, ping_views(scene, *series)));
+    r.pings = std::move(series);
+    r.preview_pings = preview;
+    r.scene = scene;
+    r.stage = Stage::Trace;
+}
+
+} // namespace
 
 RenderWorker::RenderWorker() : thread_([this] { loop(); }) {}
 
@@ -94,17 +112,7 @@ void RenderWorker::loop() {
         const auto t0 = std::chrono::steady_clock::now();
         try {
             if (job.scene.sonar.kind != SonarKind::Imaging) { // a side-scan's or scan's pings
-                PingControl pings;
-                pings.cancel = &cancel_;
-                pings.preview = job.preview;
-                pings.ground_truth = job.ground_truth && !job.preview;
-                auto series = std::make_shared<const PingSeries>(render_pings(job.scene, pings));
-                r.ping_image = std::make_shared<const Image8>(
-                    ping_image(job.scene, *series, ping_views(job.scene, *series)));
-                r.pings = std::move(series);
-                r.preview_pings = job.preview;
-                r.scene = job.scene;
-                r.stage = Stage::Trace;
+                render_pings_into(r, job.scene, job.preview, job.ground_truth, cancel_);
                 known = false; // the imaging simulator does not hold this scene
             } else {
                 if (!sim) {
