@@ -128,10 +128,12 @@ PolarImage shade_beams(const SceneDesc& s, TraceResult& r, const std::vector<int
     return img;
 }
 
-} // namespace
-
-TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control) {
+/// One adaptive trace, the budget paid first come or (`ordered`) in a fixed order; `refused`: whether the
+/// budget refused a ray (then a first-come trace depends on the threads).
+TraceResult trace_adaptive_once(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control,
+                                bool ordered, bool& refused) {
     Sampler sp(g, s, control);
+    sp.ordered = ordered;
     const int N = s.sonar.beams, T = int(sp.traced.size());
     const int stride = sp.multipath                         ? 1
                        : T >= adaptive::kWideBeams          ? adaptive::kWideEstimateStride
@@ -290,7 +292,21 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
     out.shaded = std::move(shaded);
     out.rays_traced = rays;
     out.multipath_rays = multipath_rays;
+    refused = sp.budget_hit.load();
     return out;
+}
+
+} // namespace
+
+TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control) {
+    // First come is faster (each column refined while in the cache); where the budget refused a ray, which
+    // rays it paid for depends on the threads: that image is traced again with the budget paid in a fixed
+    // order, so that the same scene gives the same bytes.
+    bool refused = false;
+    TraceResult first = trace_adaptive_once(g, s, control, false, refused);
+    if (!refused) return first;
+    first = TraceResult{}; // its memory back before the second trace
+    return trace_adaptive_once(g, s, control, true, refused);
 }
 
 } // namespace sonarsim

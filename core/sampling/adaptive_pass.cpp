@@ -286,8 +286,8 @@ PassCells trace_pass(Sampler& sp, int M0, const BeamGroups& groups, const BumpRu
     std::vector<Column*> columns; // in beam order
     for (auto& cols : beams)
         for (auto& c : cols) columns.push_back(&c);
-    sp.refine_columns(columns, M0);
-    sp.refine_azimuth(beams, M0);
+    sp.refine_columns(columns, M0, sp.ordered);
+    sp.refine_azimuth(beams, M0, sp.ordered);
     if (sp.control.cancelled()) throw TraceCancelled();
     std::vector<int> samples(static_cast<size_t>(G), -1);
     for (int k = 0; k < G; ++k)

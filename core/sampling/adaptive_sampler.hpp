@@ -51,6 +51,9 @@ struct Sampler {
     int elevation_levels, azimuth_levels;
     mutable std::atomic<std::uint64_t> rays{0}; ///< rays traced or reserved in this image, all passes
     mutable std::atomic<bool> budget_hit{false};
+    /// The budget pays in a fixed order (refine_columns, refine_azimuth): a trace that the budget stopped
+    /// first come is traced again so (trace_adaptive), so that it does not depend on the threads.
+    bool ordered = false;
     /// A smooth pattern's first base grid's cell edges [rad], top down (sampling.elevation_rays + 1 of them,
     /// denser where the pattern is strong: pattern_grid); empty for the flat pattern's even grid.
     std::vector<double> first_edges;
@@ -105,13 +108,17 @@ struct Sampler {
     Column trace_column(double a_rad, double da, int M0, int beam, int j0, int j1) const;
     /// A base column at M0 / 3 as one at M0: each cell splits in three, keeping its ray as the middle one.
     void densify_column(Column& col, int M0) const;
-    /// Ternary refinement of the columns' cells down to kElevationLevels, level by level; at the budget
-    /// the columns earlier in `cols` are paid first, whatever the threads.
-    void refine_columns(const std::vector<Column*>& cols, int M0) const;
+    /// Ternary refinement of the columns' cells down to kElevationLevels. `ordered`: level by level over
+    /// all columns, each level's rays paid from the budget in the columns' order (where the budget ends
+    /// does not depend on the threads); else each column through all its levels at once (faster: its nodes
+    /// stay in the cache), the budget paid first come.
+    void refine_columns(const std::vector<Column*>& cols, int M0, bool ordered) const;
+    /// One column through all its levels, the budget paid first come (refine_columns, not ordered).
+    void refine_column(Column& col, int M0) const;
 
     // refine_azimuth.cpp
     /// Splits columns in azimuth (kAzimuthLevels levels) where neighbours disagree or a cell needs it.
-    void refine_azimuth(Beams& beams, int M0) const;
+    void refine_azimuth(Beams& beams, int M0, bool ordered) const;
 
     // adaptive_pass.cpp
     /// Cells of a column at azimuth width da, and their multipath ghosts (with multipath), into up to three

@@ -91,11 +91,11 @@ std::vector<std::pair<int, int>> marked_runs(const Column& c, const std::vector<
 }
 
 /// Splits column c in three over each of `runs` (marked base cells widened by kRunMargin, paid for from the
-/// budget): the middle takes c's rays there, two new columns are traced beside it over that run only, left
-/// `unrefined` for refine_columns. What c keeps outside the runs stays as it is. Appends the results to
-/// `out`.
+/// budget): the middle takes c's rays there, two new columns are traced beside it over that run only and
+/// refined at once (`ordered`: left `unrefined` for refine_columns). What c keeps outside the runs stays as
+/// it is. Appends the results to `out`.
 void split_column(const Sampler& sp, Column&& c, const std::vector<std::pair<int, int>>& runs, int M0,
-                  int& next_group, std::vector<Column>& out) {
+                  bool ordered, int& next_group, std::vector<Column>& out) {
     std::vector<Column> triples;
     std::vector<char> moved(c.nodes.size(), 0);
     const double da = c.da / 3;
@@ -111,8 +111,10 @@ void split_column(const Sampler& sp, Column&& c, const std::vector<std::pair<int
         std::fill(moved.begin() + (first - c.nodes.begin()), moved.begin() + (last - c.nodes.begin()), 1);
         mid.base.assign(c.base.begin() + (lo - c.j0), c.base.begin() + (hi - c.j0));
         Column port = sp.trace_column(c.a + da, da, M0, c.beam, lo, hi); // port side first
+        if (!ordered) sp.refine_column(port, M0);                        // while it is in the cache
         Column starboard = sp.trace_column(c.a - da, da, M0, c.beam, lo, hi);
-        port.unrefined = starboard.unrefined = true;
+        if (!ordered) sp.refine_column(starboard, M0);
+        port.unrefined = starboard.unrefined = ordered;
         const int g = next_group++;
         for (Column* t : {&port, &mid, &starboard}) {
             t->group = g, t->sibling = true;
@@ -141,14 +143,14 @@ using Runs = std::vector<std::vector<std::pair<int, int>>>;
 
 /// Replaces the columns of one beam by their splits over `runs`.
 void split_marked_columns(const Sampler& sp, std::vector<Column>& cols, const Runs& runs, int M0,
-                          int& next_group) {
+                          bool ordered, int& next_group) {
     std::vector<Column> next;
     for (size_t k = 0; k < cols.size(); ++k) {
         if (runs[k].empty()) {
             cols[k].sibling = false;
             next.push_back(std::move(cols[k]));
         } else {
-            split_column(sp, std::move(cols[k]), runs[k], M0, next_group, next);
+            split_column(sp, std::move(cols[k]), runs[k], M0, ordered, next_group, next);
         }
     }
     cols.swap(next);
@@ -156,7 +158,7 @@ void split_marked_columns(const Sampler& sp, std::vector<Column>& cols, const Ru
 
 } // namespace
 
-void Sampler::refine_azimuth(Beams& beams, int M0) const {
+void Sampler::refine_azimuth(Beams& beams, int M0, bool ordered) const {
     const int N = int(beams.size()), K0 = s.sampling.azimuth_rays;
     const double w = frame.grid->narrowest_beam_rad(); // columns split no finer than the narrowest beam's
     const double min_da = w / K0 / std::pow(3.0, kAzimuthLevels) * 1.0001;
@@ -185,13 +187,14 @@ void Sampler::refine_azimuth(Beams& beams, int M0) const {
                     if (reserve(2 * std::uint64_t(run.second - run.first))) runs[size_t(i)][k].push_back(run);
         }
         tbb::parallel_for(0, N, [&](int i) {
-            split_marked_columns(*this, beams[size_t(i)], runs[size_t(i)], M0, next_group[size_t(i)]);
+            split_marked_columns(*this, beams[size_t(i)], runs[size_t(i)], M0, ordered,
+                                 next_group[size_t(i)]);
         });
         std::vector<Column*> fresh; // the new columns beside each split, refined in elevation in order
         for (auto& cols : beams)
             for (auto& c : cols)
                 if (c.unrefined) c.unrefined = false, fresh.push_back(&c);
-        refine_columns(fresh, M0);
+        refine_columns(fresh, M0, ordered);
     }
 }
 

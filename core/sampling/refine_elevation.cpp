@@ -214,15 +214,29 @@ void Sampler::split_marked(Column& col, const Angle& a, size_t marked, int& next
     col.nodes.swap(out);
 }
 
-void Sampler::refine_columns(const std::vector<Column*>& cols, int M0) const {
+void Sampler::refine_column(Column& col, int M0) const {
+    const Angle a(col.a);
+    int next_group = M0 + 3; // above every base group id (j / 3, then one per cell of a partial triple)
+    for (int level = 0; level < elevation_levels; ++level) {
+        if (control.cancelled()) return;
+        const size_t marked = mark_for_split(col, a);
+        if (marked == 0 || !reserve(2 * marked)) break; // done, or the budget is spent
+        split_marked(col, a, marked, next_group);
+    }
+}
+
+void Sampler::refine_columns(const std::vector<Column*>& cols, int M0, bool ordered) const {
     // The finest cell has the same width in every pass (base_de_min): a denser base grid (a later pass)
     // refines fewer levels, so that its rays go to the cells the first pass left coarse, not deeper into
-    // its edges. Level by level over all columns: each level's rays are taken from the budget in the
-    // columns' order (so that where the budget ends does not depend on the threads), then its splits and
-    // the next level's marks are made in parallel. A column refused stays at its level, as one with nothing
-    // marked.
+    // its edges.
     const size_t n = cols.size();
-    std::vector<int> next_group(n, M0 + 3); // above every base group id (j / 3, then one per partial triple)
+    if (!ordered) { // each column through all its levels at once, while its nodes are in the cache
+        tbb::parallel_for(size_t(0), n, [&](size_t k) { refine_column(*cols[k], M0); });
+        return;
+    }
+    // Level by level over all columns: each level's rays are taken from the budget in the columns' order,
+    // then its splits and the next level's marks are made in parallel. A column refused stays at its level.
+    std::vector<int> next_group(n, M0 + 3);
     std::vector<size_t> marked(n, 0);
     std::vector<char> active(n, 1);
     tbb::parallel_for(size_t(0), n,
