@@ -56,9 +56,9 @@ std::string time_of_day(double t) {
     const std::time_t whole = std::time_t(std::floor(t));
     std::tm tm{};
     gmtime_r(&whole, &tm);
-    char buf[16];
+    char buf[48]; // room for any int the compiler cannot rule out; the fields are 2, 2, 2 and 3 digits
     std::snprintf(buf, sizeof buf, "%02d:%02d:%02d.%03d", tm.tm_hour, tm.tm_min, tm.tm_sec,
-                  std::min(999, int(std::floor((t - double(whole)) * 1000))));
+                  std::clamp(int(std::floor((t - double(whole)) * 1000)), 0, 999));
     return buf;
 }
 
