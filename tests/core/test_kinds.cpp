@@ -175,7 +175,8 @@ TEST_CASE("a side-scan that does not move: every ping the same echo, each its ow
     const PingSeries p = render_pings(s);
     const size_t n = size_t(p.channels) * size_t(p.bins);
     for (int ping = 1; ping < p.pings; ++ping) {
-        CHECK(std::equal(p.ideal_db.begin(), p.ideal_db.begin() + long(n), p.ideal_db.begin() + long(ping * n)));
+        CHECK(std::equal(p.ideal_db.begin(), p.ideal_db.begin() + long(n),
+                         p.ideal_db.begin() + long(ping * n)));
         size_t differ = 0;
         for (size_t i = 0; i < n; ++i) differ += p.level_db[i] != p.level_db[size_t(ping) * n + i];
         CHECK(differ > n / 2); // the noise is drawn anew
