@@ -6,6 +6,7 @@
 #include "bench.hpp"
 
 #include "core/base/timing.hpp"
+#include "core/kinds/ping_series.hpp"
 #include "core/pipeline/simulator.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/scene_io.hpp"
@@ -22,6 +23,69 @@ struct Slider {
     const char* key;
     double a, b; ///< the two values the drag alternates between
 };
+
+struct Timing {
+    Stage stage = Stage::None;
+    std::vector<double> ms, shade_ms, image_ms;
+    std::uint64_t rays = 0; ///< traced by the previews
+    double full_ms = 0;     ///< the full image once the slider rests
+};
+
+/// Sets the slider's value of step i of the drag in `s`; returns the stage of the change.
+Stage drag_to(SceneDesc& s, const Slider& sl, int i) {
+    SceneDesc t = s;
+    apply_setting(t, sl.key, i % 2 ? sl.b : sl.a, "bench");
+    const Stage stage = changed_stage(s, t);
+    s = t;
+    return stage;
+}
+
+/// An imaging sonar: the viewer's worker keeps one Simulator.
+Timing time_image(SceneDesc s, const Slider& sl, int repeats) {
+    Timing out;
+    Simulator sim(s);
+    sim.render(); // the full image the drag starts from
+    TraceControl preview;
+    preview.preview = true;
+    const std::uint64_t rays_before = sim.rays_traced();
+    for (int i = 0; i < repeats + 2; ++i) {
+        out.stage = drag_to(s, sl, i);
+        const auto t0 = std::chrono::steady_clock::now();
+        sim.set_scene(s, out.stage);
+        const auto f = sim.render(preview);
+        if (i < 2) continue; // two untimed: buffers warm
+        out.ms.push_back(ms_since(t0));
+        out.shade_ms.push_back(f->shade_ms), out.image_ms.push_back(f->sensor_ms + f->image_ms);
+    }
+    out.rays = sim.rays_traced() - rays_before;
+    const auto t0 = std::chrono::steady_clock::now();
+    sim.render(); // the slider rests: the full image
+    out.full_ms = ms_since(t0);
+    return out;
+}
+
+/// A side-scan's waterfall or a scan's sweep: the viewer's worker keeps the pings' hits (PingTraces). The
+/// stages' times are summed over the pings (on every thread).
+Timing time_pings(SceneDesc s, const Slider& sl, int repeats) {
+    Timing out;
+    PingTraces traces;
+    render_pings(s, {}, &traces);
+    PingControl preview;
+    preview.preview = true;
+    for (int i = 0; i < repeats + 2; ++i) {
+        out.stage = drag_to(s, sl, i);
+        const auto t0 = std::chrono::steady_clock::now();
+        const PingSeries p = render_pings(s, preview, &traces);
+        out.rays += p.rays_traced;
+        if (i < 2) continue;
+        out.ms.push_back(ms_since(t0));
+        out.shade_ms.push_back(p.stage_ms[1]), out.image_ms.push_back(p.stage_ms[2] + p.stage_ms[3]);
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    render_pings(s, {}, &traces);
+    out.full_ms = ms_since(t0);
+    return out;
+}
 
 } // namespace
 
@@ -45,33 +109,15 @@ int run_slider_bench(const std::vector<std::string>& scenes, int repeats) {
             if (sl.key[0] == 'o' && s.objects.empty()) continue;
             if (sl.key[0] == 's' && sl.key[1] == 'e' && !s.seafloor) continue;
             status_line("slider: " + scenes[k] + " " + sl.label + "...");
-            Simulator sim(s);
-            sim.render(); // the full image the drag starts from
-            TraceControl preview;
-            preview.preview = true;
-            std::vector<double> ms, shade_ms, image_ms;
-            Stage stage = Stage::None;
-            const std::uint64_t rays_before = sim.rays_traced();
-            for (int i = 0; i < repeats + 2; ++i) {
-                SceneDesc t = s;
-                apply_setting(t, sl.key, i % 2 ? sl.b : sl.a, "bench");
-                stage = changed_stage(s, t);
-                s = t;
-                const auto t0 = std::chrono::steady_clock::now();
-                sim.set_scene(s, stage);
-                const auto f = sim.render(preview);
-                if (i < 2) continue; // two untimed: buffers warm
-                ms.push_back(ms_since(t0));
-                shade_ms.push_back(f->shade_ms), image_ms.push_back(f->sensor_ms + f->image_ms);
-            }
-            const std::uint64_t rays = sim.rays_traced() - rays_before;
-            const auto t0 = std::chrono::steady_clock::now();
-            sim.render(); // the slider rests: the full image
-            const double full = ms_since(t0);
+            const Timing t =
+                s.sonar.kind == SonarKind::Imaging ? time_image(s, sl, repeats) : time_pings(s, sl, repeats);
             status_line("");
             std::printf("| %s | %s | %s | %.2f | %.2f | %.2f | %llu | %.1f |\n", scenes[k].c_str(), sl.label,
-                        stage == Stage::Place ? "place" : "shade", median(ms), median(shade_ms),
-                        median(image_ms), (unsigned long long)rays, full);
+                        t.stage == Stage::Place   ? "place"
+                        : t.stage <= Stage::Trace ? "trace"
+                                                  : "shade",
+                        median(t.ms), median(t.shade_ms), median(t.image_ms), (unsigned long long)t.rays,
+                        t.full_ms);
             std::fflush(stdout);
         }
     }

@@ -3,6 +3,7 @@
 // side-scan the altitude of its first bottom return.
 #pragma once
 #include "core/grid/sonar_grid.hpp"
+#include "core/kinds/ping_traces.hpp"
 #include "core/kinds/pings.hpp"
 #include "core/shading/ground_truth.hpp"
 
@@ -51,8 +52,11 @@ struct PingControl {
     bool preview = false; ///< each ping traced as a preview (TraceControl::preview: the base grid only)
 };
 
-/// Traces every ping of `scene` (a side-scan or scanning sonar) with its sampler and sensor.
-PingSeries render_pings(const SceneDesc& scene, const PingControl& control = {});
+/// Traces every ping of `scene` (a side-scan or scanning sonar) with its sampler and sensor. Pings heard from
+/// one pose share one trace per channel. `traces`, when given, holds the hits of the series before: a ping
+/// they have is shaded from them and traces nothing; they then hold this series' hits.
+PingSeries render_pings(const SceneDesc& scene, const PingControl& control = {},
+                        PingTraces* traces = nullptr);
 
 /// The first bin of a ping whose L_EN reaches `threshold_db` in any channel, as the range of its near edge
 /// [m]; NaN where none does.

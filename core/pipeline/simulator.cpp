@@ -52,11 +52,24 @@ void Simulator::set_scene(const SceneDesc& scene, Stage s) {
     dirty_ = std::min(dirty_, s == Stage::Geometry ? Stage::Trace : s);
 }
 
+void Simulator::set_hits(std::shared_ptr<const TraceResult> hits) {
+    if (!hits) throw std::invalid_argument("Simulator::set_hits: no hits");
+    frame_.hits_ptr = std::move(hits);
+    frame_.placement_stale = false;
+    frame_.error_estimate = frame_.hits_ptr->error_estimate;
+    dirty_ = Stage::Shade; // every stage from shading on is made anew from these hits
+}
+
 void Simulator::set_fan_height_px(int height_px) {
     if (height_px < 0)
         throw std::invalid_argument("Simulator: a fan height is 0 (the default) or more pixels");
     if (height_px != fan_height_px_) dirty_ = std::min(dirty_, Stage::Display);
     fan_height_px_ = height_px;
+}
+
+void Simulator::set_forms_fan(bool forms_fan) {
+    if (forms_fan && !forms_fan_) dirty_ = std::min(dirty_, Stage::Display);
+    forms_fan_ = forms_fan;
 }
 
 void Simulator::request(const FrameExtras& extras) {
@@ -148,7 +161,7 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
                                                            next.alpha_db_per_m));
         next.sensor_ms = ms_since(t0);
     }
-    if (from <= Stage::Display) {
+    if (from <= Stage::Display && forms_fan_) {
         const auto t0 = std::chrono::steady_clock::now();
         if (!resampler_ || !resampler_->matches(*next.grid_ptr, fan_height_px_))
             resampler_ = std::make_shared<const SectorResampler>(next.grid_ptr, fan_height_px_);

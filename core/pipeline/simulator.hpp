@@ -83,6 +83,10 @@ class Simulator {
     /// The extras the next frames carry; asking for one the last frame lacks re-runs the shading pass for it
     /// alone on the next render() (the image stages are shared).
     void request(const FrameExtras& extras);
+    /// Hand over hits traced earlier for this very scene as it is now (its geometry, pose and placement; a
+    /// ping heard again from the same pose, render_pings): the next render() shades them and traces nothing,
+    /// unless it is a full-quality render and they are a preview's (TraceResult::preview).
+    void set_hits(std::shared_ptr<const TraceResult> hits);
     /// Stage that the next render() starts at.
     Stage pending() const { return dirty_; }
     /// Rays (multipath continuations included) traced by this simulator's renders so far.
@@ -92,6 +96,9 @@ class Simulator {
     /// asks for that: a 512 x 2048 fan is 3721 x 2048 px, its map 160 ms to build. A change re-forms the fan
     /// only.
     void set_fan_height_px(int height_px);
+    /// Whether render() forms the fan (Frame::sector; the default): a side-scan's or scan's ping, a one-beam
+    /// image, needs only its levels.
+    void set_forms_fan(bool forms_fan);
 
   private:
     SceneDesc scene_;
@@ -102,6 +109,7 @@ class Simulator {
     FrameExtras extras_;
     std::uint64_t rays_traced_ = 0;
     int fan_height_px_ = 0;
+    bool forms_fan_ = true;
 };
 
 /// Metadata of a rendered frame: every effective parameter plus derived values and timings.

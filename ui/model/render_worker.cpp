@@ -10,13 +10,14 @@ namespace sonarsim::ui {
 namespace {
 
 /// A side-scan's or scan's pings of `scene` into `r`, with the image its PNG shows; `cancel` stops them.
+/// `traces` keeps the hits from one request to the next: a slider of the mission re-shades them.
 void render_pings_into(RenderResult& r, const SceneDesc& scene, bool preview, bool ground_truth,
-                       const std::atomic<bool>& cancel) {
+                       const std::atomic<bool>& cancel, PingTraces& traces) {
     PingControl control;
     control.cancel = &cancel;
     control.preview = preview;
     control.ground_truth = ground_truth && !preview;
-    auto series = std::make_shared<const PingSeries>(render_pings(scene, control));
+    auto series = std::make_shared<const PingSeries>(render_pings(scene, control, &traces));
     r.ping_image = std::make_shared<const Image8>(ping_image(scene, *series, ping_views(scene, *series)));
     r.pings = std::move(series);
     r.preview_pings = preview;
@@ -93,6 +94,7 @@ void RenderWorker::loop() {
     std::unique_ptr<Simulator> sim; // its own Simulator: core's is not thread-safe
     Stage carried = Stage::None;    // what cancelled renders had started to recompute
     bool known = false;             // the simulator holds the previous request's scene
+    PingTraces ping_traces;         // a side-scan's or scan's hits, from request to request
     for (;;) {
         Job job;
         {
@@ -102,7 +104,8 @@ void RenderWorker::loop() {
             job = std::move(*queued_);
             queued_.reset();
             running_id_ = job.id;
-            // A preview of pings traces every ping: as long as a full image, so a newer request cancels it.
+            // A preview of pings may trace every ping: as long as a full image, so a newer request cancels
+            // its tracing (its re-shading of kept pings finishes).
             running_preview_ = job.preview && job.scene.sonar.kind == SonarKind::Imaging;
             cancel_.store(false, std::memory_order_relaxed); // only requests after this one cancel it
         }
@@ -112,9 +115,10 @@ void RenderWorker::loop() {
         const auto t0 = std::chrono::steady_clock::now();
         try {
             if (job.scene.sonar.kind != SonarKind::Imaging) { // a side-scan's or scan's pings
-                render_pings_into(r, job.scene, job.preview, job.ground_truth, cancel_);
+                render_pings_into(r, job.scene, job.preview, job.ground_truth, cancel_, ping_traces);
                 known = false; // the imaging simulator does not hold this scene
             } else {
+                ping_traces = PingTraces(); // their hits go with the kind
                 if (!sim) {
                     sim = std::make_unique<Simulator>(job.scene);
                     r.stage = Stage::Geometry;

@@ -1,0 +1,57 @@
+#include "core/kinds/ping_traces.hpp"
+
+#include "core/scene/params.hpp"
+
+#include <cstring>
+
+namespace sonarsim {
+
+PingKey::PingKey(int ch, const Pose& p) : channel(ch) {
+    for (int i = 0; i < 3; ++i)
+        pose[size_t(i)] = p.position_m[size_t(i)], pose[size_t(i) + 3] = p.orientation_deg[size_t(i)];
+}
+
+bool PingKey::operator<(const PingKey& o) const {
+    if (channel != o.channel) return channel < o.channel;
+    // Bit for bit: a pose is the same ping's only when it is the same number (-0 and 0 are two poses here,
+    // which costs a trace at most).
+    return std::memcmp(pose.data(), o.pose.data(), sizeof pose) < 0;
+}
+
+std::size_t hits_bytes(const TraceResult& t) {
+    std::size_t n = 0;
+    for (const auto& b : t.cells) n += b.capacity() * sizeof(Cell);
+    for (const auto& b : t.ghosts) n += b.capacity() * sizeof(GhostCell);
+    for (const auto& b : t.stratum_cells) n += b.capacity() * sizeof(Cell);
+    return n + sizeof(TraceResult);
+}
+
+void PingTraces::prepare(const SceneDesc& beam, bool preview) {
+    if (placed_for_) {
+        SceneDesc before = *placed_for_;
+        before.sonar.pose = beam.sonar.pose; // each ping's own pose is its key
+        before.sensor.noise_draw = beam.sensor.noise_draw;
+        const Stage s = changed_stage(before, beam);
+        if (s == Stage::Place && preview) return; // re-shaded as placed for the earlier scene
+        if (s <= Stage::Place) hits_.clear(), kept_bytes_ = 0;
+    }
+    placed_for_ = beam;
+}
+
+std::shared_ptr<const TraceResult> PingTraces::find(const PingKey& key, bool preview) const {
+    const auto it = hits_.find(key);
+    if (it == hits_.end() || (it->second->preview && !preview)) return nullptr;
+    return it->second;
+}
+
+void PingTraces::keep(std::map<PingKey, std::shared_ptr<const TraceResult>> series_hits) {
+    hits_.clear(), kept_bytes_ = 0;
+    for (auto& [key, hits] : series_hits) {
+        const std::size_t bytes = hits_bytes(*hits);
+        if (kept_bytes_ + bytes > budget_bytes_) break;
+        kept_bytes_ += bytes;
+        hits_.emplace(key, std::move(hits));
+    }
+}
+
+} // namespace sonarsim

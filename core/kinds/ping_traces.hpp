@@ -1,0 +1,55 @@
+// The hits of pings traced earlier, kept between render_pings calls by channel and transducer pose: a ping
+// heard again from the same pose, in a scene whose geometry and ray placement are unchanged, is shaded from
+// them and traces nothing (a slider of the mission, a still side-scan's repeated pings).
+#pragma once
+#include "core/data/hits.hpp"
+#include "core/data/scene.hpp"
+
+#include <array>
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <optional>
+
+namespace sonarsim {
+
+/// One channel's transducer pose, bit for bit: the key of a ping's hits.
+struct PingKey {
+    int channel = 0;
+    std::array<double, 6> pose{}; ///< position [m], then orientation [deg]
+    PingKey(int channel, const Pose& p);
+    bool operator<(const PingKey& o) const;
+};
+
+/// Approximate bytes a trace's hits hold (cells, ghosts, strata).
+std::size_t hits_bytes(const TraceResult& hits);
+
+class PingTraces {
+  public:
+    /// What the hits of one series may hold at most; past it the later pings are not kept (they are traced
+    /// again next time).
+    static constexpr std::size_t kDefaultBudgetBytes = std::size_t(512) << 20;
+    explicit PingTraces(std::size_t budget_bytes = kDefaultBudgetBytes) : budget_bytes_(budget_bytes) {}
+
+    /// Before a series of `beam` (the one-beam imaging sonar, render_pings): drops the hits that cannot serve
+    /// it. Geometry or anything the tracer reads changed: all. Ray placement changed (a value the adaptive
+    /// sampler steers by, Stage::Place): all for a full-quality series; a preview re-shades them.
+    void prepare(const SceneDesc& beam, bool preview);
+    /// The kept hits of `key` that a series of the prepared scene may shade, or null. A full-quality series
+    /// does not take a preview's hits.
+    std::shared_ptr<const TraceResult> find(const PingKey& key, bool preview) const;
+    /// After the series: its hits replace the kept ones, as many as the budget holds.
+    void keep(std::map<PingKey, std::shared_ptr<const TraceResult>> series_hits);
+
+    std::size_t kept_bytes() const { return kept_bytes_; }
+    std::size_t kept_pings() const { return hits_.size(); }
+    std::size_t budget_bytes() const { return budget_bytes_; }
+
+  private:
+    std::size_t budget_bytes_;
+    std::size_t kept_bytes_ = 0;
+    std::optional<SceneDesc> placed_for_; ///< the beam scene the kept hits were placed for
+    std::map<PingKey, std::shared_ptr<const TraceResult>> hits_;
+};
+
+} // namespace sonarsim

@@ -1,0 +1,123 @@
+// Kept ping hits (PingTraces): a change of shading re-shades the pings traced before and traces no ray, with
+// the bytes a fresh series has; what moves the sonar or the scene traces again; a still sonar's pings share
+// one trace per channel; the budget bounds what is kept.
+#include "core/kinds/ping_series.hpp"
+#include "core/scene/params.hpp"
+#include "core/scene/scene_io.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace sonarsim;
+
+namespace {
+
+/// A side-scan 5 m over sand with a box on its starboard side, moving at `speed_mps` along x.
+SceneDesc moving_sidescan(double speed_mps, int pings = 6) {
+    SceneDesc s;
+    apply_setting(s, "sonar.kind", "sidescan", "test");
+    s.sonar.pose = {{0, 0, 5}, {0, 0, 0}};
+    s.sonar.azimuth_fov_deg = 1.0, s.sonar.elevation_fov_deg = 60;
+    s.sonar.range_min_m = 0.5, s.sonar.range_max_m = 20, s.sonar.range_bins = 300;
+    s.sonar.velocity_mps = {speed_mps, 0, 0};
+    s.sidescan.pings = pings;
+    s.seafloor = Seafloor{};
+    s.seafloor->material.nu_db = -30;
+    ObjectDesc box;
+    box.box_m = {1, 1, 1}, box.position_m = {0.2, -8, 0.5};
+    box.material.nu_db = -15;
+    s.objects = {box};
+    apply_setting(s, "sensor.model", "device", "test");
+    validate_scene(s, "test");
+    return s;
+}
+
+void check_same_series(const PingSeries& a, const PingSeries& b) {
+    CHECK(a.level_db == b.level_db);
+    CHECK(a.ideal_db == b.ideal_db);
+}
+
+} // namespace
+
+TEST_CASE("kept pings: a shading change traces no ray and gives a fresh series' bytes, a move traces again",
+          "[kinds][traces]") {
+    const SceneDesc s = moving_sidescan(1.0);
+    PingTraces traces;
+    const PingSeries first = render_pings(s, {}, &traces);
+    REQUIRE(first.rays_traced > 0);
+    CHECK(traces.kept_pings() == size_t(first.pings * first.channels));
+    CHECK(traces.kept_bytes() > 0);
+
+    for (const auto& [key, value] : std::vector<std::pair<std::string, double>>{
+             {"sonar.source_level_db", 200}, {"sonar.noise_level_db", 60}, {"sensor.gain_db", 12}}) {
+        SECTION(key) {
+            SceneDesc changed = s;
+            apply_setting(changed, key, value, "test");
+            REQUIRE(changed_stage(s, changed) >= Stage::Shade);
+            const PingSeries again = render_pings(changed, {}, &traces);
+            CHECK(again.rays_traced == 0);
+            CHECK(again.level_db != first.level_db);
+            check_same_series(again, render_pings(changed));
+        }
+    }
+    SECTION("a material's value the adaptive sampler steers by: a preview re-shades, a full series traces") {
+        SceneDesc changed = s;
+        apply_setting(changed, "objects.0.material.nu_db", -5.0, "test");
+        REQUIRE(changed_stage(s, changed) == Stage::Place);
+        PingControl preview;
+        preview.preview = true;
+        const PingSeries quick = render_pings(changed, preview, &traces);
+        CHECK(quick.rays_traced == 0);
+        CHECK(quick.ideal_db != first.ideal_db);
+        const PingSeries full = render_pings(changed, {}, &traces);
+        CHECK(full.rays_traced > 0);
+        check_same_series(full, render_pings(changed));
+    }
+    SECTION("the sonar moved: every ping from a new pose traces; the same bytes as a fresh series") {
+        SceneDesc moved = s;
+        moved.sonar.pose.position_m[0] += 0.5;
+        const PingSeries again = render_pings(moved, {}, &traces);
+        CHECK(again.rays_traced > 0);
+        check_same_series(again, render_pings(moved));
+    }
+    SECTION("an object moved: the geometry changed, every ping traces") {
+        SceneDesc moved = s;
+        moved.objects[0].position_m[1] = -6;
+        const PingSeries again = render_pings(moved, {}, &traces);
+        CHECK(again.rays_traced > first.rays_traced / 2);
+        check_same_series(again, render_pings(moved));
+    }
+}
+
+TEST_CASE("a still side-scan's pings share one trace per channel, a moving one's each trace",
+          "[kinds][traces]") {
+    const PingSeries one = render_pings(moving_sidescan(0.0, 1));
+    const PingSeries still = render_pings(moving_sidescan(0.0, 8));
+    CHECK(still.rays_traced == one.rays_traced);
+    const size_t n = size_t(still.channels) * size_t(still.bins);
+    CHECK(std::equal(one.ideal_db.begin(), one.ideal_db.end(), still.ideal_db.begin() + long(7 * n)));
+    const PingSeries moving = render_pings(moving_sidescan(1.0, 8));
+    CHECK(moving.rays_traced > 4 * one.rays_traced);
+}
+
+TEST_CASE("kept pings stay within their budget, a ping that does not fit traces again", "[kinds][traces]") {
+    const SceneDesc s = moving_sidescan(1.0, 4);
+    PingTraces none(0);
+    const PingSeries first = render_pings(s, {}, &none);
+    CHECK(none.kept_pings() == 0);
+    CHECK(none.kept_bytes() == 0);
+    SceneDesc louder = s;
+    louder.sonar.source_level_db += 3;
+    CHECK(render_pings(louder, {}, &none).rays_traced == first.rays_traced);
+
+    PingTraces all;
+    render_pings(s, {}, &all);
+    PingTraces some(all.kept_bytes() / 2);
+    render_pings(s, {}, &some);
+    CHECK(some.kept_pings() > 0);
+    CHECK(some.kept_pings() < all.kept_pings());
+    CHECK(some.kept_bytes() <= some.budget_bytes());
+    const PingSeries again = render_pings(louder, {}, &some);
+    CHECK(again.rays_traced > 0);
+    CHECK(again.rays_traced < first.rays_traced);
+    check_same_series(again, render_pings(louder));
+}
