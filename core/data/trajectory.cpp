@@ -186,4 +186,22 @@ void set_motion_from_trajectory(SonarParams& sonar, const Trajectory& tr, size_t
     sonar.angular_rate_dps = {rad2deg(w.x), rad2deg(w.y), rad2deg(w.z)};
 }
 
+Pose trajectory_pose_at(const Trajectory& tr, double t) {
+    if (tr.empty()) return Pose{};
+    if (t <= tr.front().t_s) return tr.front().pose;
+    if (t >= tr.back().t_s) return tr.back().pose;
+    const auto it = std::upper_bound(tr.begin(), tr.end(), t,
+                                     [](double v, const TrajectoryPoint& s) { return v < s.t_s; });
+    const TrajectoryPoint &b = *it, &a = *(it - 1);
+    const double span = b.t_s - a.t_s, u = span > 0 ? (t - a.t_s) / span : 1.0;
+    if (u >= 1) return b.pose;
+    Pose p;
+    for (size_t i = 0; i < 3; ++i) {
+        p.position_m[i] = a.pose.position_m[i] + u * (b.pose.position_m[i] - a.pose.position_m[i]);
+        const double d = std::remainder(b.pose.orientation_deg[i] - a.pose.orientation_deg[i], 360.0);
+        p.orientation_deg[i] = std::remainder(a.pose.orientation_deg[i] + u * d, 360.0);
+    }
+    return p;
+}
+
 } // namespace sonarsim

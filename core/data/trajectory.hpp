@@ -48,6 +48,10 @@ Trajectory make_trajectory(const std::string& csv_path, const std::string& circl
 /// single frame or frames at the same time.
 void set_motion_from_trajectory(SonarParams& sonar, const Trajectory& trajectory, size_t k);
 
+/// The pose at time t, linear between samples (angles along the shorter way round), clamped to the ends; the
+/// default pose for an empty trajectory.
+Pose trajectory_pose_at(const Trajectory& trajectory, double t_s);
+
 /// The trajectory as CSV text (kTrajectoryHeader, then one row per frame); parses back to the same poses.
 std::string trajectory_to_csv(const Trajectory& trajectory);
 

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <algorithm>
 #include <cstring>
 #include <limits>
 #include <map>
@@ -31,7 +32,7 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
     PingSeries out;
     out.kind = scene.sonar.kind;
     out.channels = channel_count(scene.sonar.kind);
-    out.schedule = ping_schedule(scene);
+    out.schedule = control.schedule.empty() ? ping_schedule(scene) : control.schedule;
     out.pings = int(out.schedule.size());
     out.bins = scene.sonar.range_bins;
     const SceneDesc beam = beam_scene(scene);
@@ -41,26 +42,40 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
     const size_t n = size_t(out.pings) * size_t(out.channels) * size_t(out.bins);
     out.level_db.resize(n), out.ideal_db.resize(n);
     if (control.ground_truth) out.truth.resize(size_t(out.pings) * size_t(out.channels));
-    // Each ping and channel ("job") is shaded from hits: kept from an earlier series (traces), traced by
-    // the first job of this series heard from its pose (a still sonar's pings share one trace per channel),
-    // or its own. Those that trace run first, then the others; both in parallel, each thread with one
-    // simulator per channel, which keeps its geometry and its stages' buffers from ping to ping. A ping's
-    // image does not depend on which simulator made it, so the series is the same whatever the threads.
+    // Each ping and channel ("job") is copied from the levels an earlier series made (traces, when nothing
+    // but poses changed), or shaded from hits: kept from an earlier series (traces), traced by the first job
+    // of this series heard from its pose (a still sonar's pings share one trace per channel), or its own.
+    // Those that trace run first, then those that shade; both in parallel, each thread with one simulator
+    // per channel, which keeps its geometry and its stages' buffers from ping to ping. A ping's image does
+    // not depend on which simulator made it, so the series is the same whatever the threads.
     const size_t jobs = size_t(out.pings) * size_t(out.channels);
     if (traces) traces->prepare(beam, control.preview);
-    std::vector<Pose> poses(jobs);
+    std::vector<PingKey> keys;
+    std::vector<std::uint64_t> draws(jobs);
     std::vector<std::shared_ptr<const TraceResult>> hits(jobs);
+    std::vector<std::shared_ptr<const PingLevels>> levels(jobs);
     std::vector<size_t> traced_by(jobs); // the job whose trace a job shades (itself: it traces)
     std::map<PingKey, size_t> first;
     std::vector<size_t> tracing, shading;
+    keys.reserve(jobs);
     for (size_t j = 0; j < jobs; ++j) {
         const int ch = int(j % size_t(out.channels));
-        poses[j] = transducer_pose(scene, out.schedule[j / size_t(out.channels)], ch);
-        const PingKey key(ch, poses[j]);
-        if (traces) hits[j] = traces->find(key, control.preview);
-        const auto [it, is_first] = first.emplace(key, j);
+        const Ping& ping = out.schedule[j / size_t(out.channels)];
+        keys.emplace_back(ch, transducer_pose(scene, ping, ch));
+        draws[j] = ping_noise_draw(ping.number); // even from one pose, its own noise
+        traced_by[j] = j;
+        if (traces) {
+            hits[j] = traces->find(keys[j], control.preview);
+            if (!control.ground_truth) levels[j] = traces->find_levels(keys[j], draws[j], control.preview);
+        }
+        if (levels[j]) continue; // copied below
+        if (hits[j]) {
+            shading.push_back(j);
+            continue;
+        }
+        const auto [it, is_first] = first.emplace(keys[j], j);
         traced_by[j] = it->second;
-        (hits[j] || !is_first ? shading : tracing).push_back(j);
+        (is_first ? tracing : shading).push_back(j);
     }
     struct Worker {
         std::vector<std::unique_ptr<Simulator>> sims;
@@ -72,7 +87,7 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
     trace.cancel = control.cancel;
     trace.preview = control.preview;
     std::mutex progress_mutex;
-    size_t done = 0;
+    size_t done = jobs - tracing.size() - shading.size(); // the copied ones
     const auto run = [&](size_t j) {
         Worker& w = workers.local();
         if (w.sims.empty())
@@ -81,10 +96,10 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
                 w.sims.back()->request({control.ground_truth, false});
                 w.sims.back()->set_forms_fan(false); // a ping's levels are all the series needs
             }
-        const size_t p = j / size_t(out.channels), ch = j % size_t(out.channels);
+        const size_t ch = j % size_t(out.channels);
         SceneDesc at = beam;
-        at.sonar.pose = poses[j];
-        at.sensor.noise_draw = std::uint64_t(p) + 1; // each ping its own noise, even from one pose
+        at.sonar.pose = keys[j].as_pose();
+        at.sensor.noise_draw = draws[j];
         Simulator& sim = *w.sims[ch];
         sim.set_scene(at, Stage::Trace);
         const std::shared_ptr<const TraceResult> kept =
@@ -110,10 +125,29 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
         tbb::parallel_for(tbb::blocked_range<size_t>(0, phase->size(), 4), [&](const auto& r) {
             for (size_t i = r.begin(); i != r.end(); ++i) run((*phase)[i]);
         });
+    for (size_t j = 0; j < jobs; ++j) {
+        if (!levels[j]) continue;
+        const size_t off = j * size_t(out.bins);
+        std::copy(levels[j]->level_db.begin(), levels[j]->level_db.end(), out.level_db.begin() + long(off));
+        std::copy(levels[j]->ideal_db.begin(), levels[j]->ideal_db.end(), out.ideal_db.begin() + long(off));
+    }
+    if (control.progress && tracing.empty() && shading.empty()) control.progress(out.pings, out.pings);
     if (traces) {
         std::map<PingKey, std::shared_ptr<const TraceResult>> series_hits;
-        for (const auto& [key, j] : first) series_hits.emplace(key, hits[j] ? hits[j] : hits[traced_by[j]]);
-        traces->keep(std::move(series_hits));
+        std::map<PingTraces::LevelsKey, std::shared_ptr<const PingLevels>> series_levels;
+        for (size_t j = 0; j < jobs; ++j) {
+            if (hits[j]) series_hits.emplace(keys[j], hits[j]);
+            if (!levels[j]) {
+                auto made = std::make_shared<PingLevels>();
+                const auto at = long(j * size_t(out.bins)), end = at + out.bins;
+                made->level_db.assign(out.level_db.begin() + at, out.level_db.begin() + end);
+                made->ideal_db.assign(out.ideal_db.begin() + at, out.ideal_db.begin() + end);
+                made->preview = control.preview;
+                levels[j] = std::move(made);
+            }
+            series_levels.emplace(PingTraces::LevelsKey{keys[j], draws[j]}, levels[j]);
+        }
+        traces->keep(std::move(series_hits), std::move(series_levels));
     }
     for (const Worker& w : workers) {
         out.rays_traced += w.rays;

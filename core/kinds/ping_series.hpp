@@ -50,6 +50,8 @@ struct PingControl {
     const std::atomic<bool>* cancel = nullptr; ///< set: the current ping's trace throws TraceCancelled
     bool ground_truth = false;                 ///< also make PingSeries::truth (in the shading pass)
     bool preview = false; ///< each ping traced as a preview (TraceControl::preview: the base grid only)
+    /// The pings to hear (ping_schedule_along, as many as ping_schedule has); empty: ping_schedule(scene).
+    std::vector<Ping> schedule;
 };
 
 /// Traces every ping of `scene` (a side-scan or scanning sonar) with its sampler and sensor. Pings heard from

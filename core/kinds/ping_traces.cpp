@@ -11,6 +11,12 @@ PingKey::PingKey(int ch, const Pose& p) : channel(ch) {
         pose[size_t(i)] = p.position_m[size_t(i)], pose[size_t(i) + 3] = p.orientation_deg[size_t(i)];
 }
 
+Pose PingKey::as_pose() const {
+    Pose p;
+    for (size_t i = 0; i < 3; ++i) p.position_m[i] = pose[i], p.orientation_deg[i] = pose[i + 3];
+    return p;
+}
+
 bool PingKey::operator<(const PingKey& o) const {
     if (channel != o.channel) return channel < o.channel;
     // Bit for bit: a pose is the same ping's only when it is the same number (-0 and 0 are two poses here,
@@ -32,6 +38,7 @@ void PingTraces::prepare(const SceneDesc& beam, bool preview) {
         before.sonar.pose = beam.sonar.pose; // each ping's own pose is its key
         before.sensor.noise_draw = beam.sensor.noise_draw;
         const Stage s = changed_stage(before, beam);
+        if (s != Stage::None) levels_.clear();    // made with other values
         if (s == Stage::Place && preview) return; // re-shaded as placed for the earlier scene
         if (s <= Stage::Place) hits_.clear(), kept_bytes_ = 0;
     }
@@ -44,13 +51,27 @@ std::shared_ptr<const TraceResult> PingTraces::find(const PingKey& key, bool pre
     return it->second;
 }
 
-void PingTraces::keep(std::map<PingKey, std::shared_ptr<const TraceResult>> series_hits) {
-    hits_.clear(), kept_bytes_ = 0;
+std::shared_ptr<const PingLevels> PingTraces::find_levels(const PingKey& key, std::uint64_t draw,
+                                                          bool preview) const {
+    const auto it = levels_.find({key, draw});
+    if (it == levels_.end() || (it->second->preview && !preview)) return nullptr;
+    return it->second;
+}
+
+void PingTraces::keep(std::map<PingKey, std::shared_ptr<const TraceResult>> series_hits,
+                      std::map<LevelsKey, std::shared_ptr<const PingLevels>> series_levels) {
+    hits_.clear(), levels_.clear(), kept_bytes_ = 0;
     for (auto& [key, hits] : series_hits) {
         const std::size_t bytes = hits_bytes(*hits);
         if (kept_bytes_ + bytes > budget_bytes_) break;
         kept_bytes_ += bytes;
         hits_.emplace(key, std::move(hits));
+    }
+    for (auto& [key, levels] : series_levels) {
+        const std::size_t bytes = (levels->level_db.size() + levels->ideal_db.size()) * sizeof(float);
+        if (kept_bytes_ + bytes > budget_bytes_) break;
+        kept_bytes_ += bytes;
+        levels_.emplace(key, std::move(levels));
     }
 }
 

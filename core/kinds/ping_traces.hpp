@@ -1,15 +1,20 @@
 // The hits of pings traced earlier, kept between render_pings calls by channel and transducer pose: a ping
 // heard again from the same pose, in a scene whose geometry and ray placement are unchanged, is shaded from
-// them and traces nothing (a slider of the mission, a still side-scan's repeated pings).
+// them and traces nothing (a slider of the mission, a still side-scan's repeated pings). While nothing but
+// the poses changes, the pings' levels are kept too: a ping heard again with the same noise draw is copied
+// (a waterfall scrolling along a played trajectory makes only its new pings).
 #pragma once
 #include "core/data/hits.hpp"
 #include "core/data/scene.hpp"
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
+#include <utility>
+#include <vector>
 
 namespace sonarsim {
 
@@ -18,11 +23,19 @@ struct PingKey {
     int channel = 0;
     std::array<double, 6> pose{}; ///< position [m], then orientation [deg]
     PingKey(int channel, const Pose& p);
+    Pose as_pose() const;
     bool operator<(const PingKey& o) const;
 };
 
 /// Approximate bytes a trace's hits hold (cells, ghosts, strata).
 std::size_t hits_bytes(const TraceResult& hits);
+
+/// One ping's and channel's levels as a series made them.
+struct PingLevels {
+    std::vector<float> level_db; ///< through the sensor [dB]
+    std::vector<float> ideal_db; ///< L_EN
+    bool preview = false;        ///< from a preview's hits
+};
 
 class PingTraces {
   public:
@@ -38,8 +51,14 @@ class PingTraces {
     /// The kept hits of `key` that a series of the prepared scene may shade, or null. A full-quality series
     /// does not take a preview's hits.
     std::shared_ptr<const TraceResult> find(const PingKey& key, bool preview) const;
-    /// After the series: its hits replace the kept ones, as many as the budget holds.
-    void keep(std::map<PingKey, std::shared_ptr<const TraceResult>> series_hits);
+    /// The levels of `key` with noise draw `draw` kept from a series of the prepared scene itself (only the
+    /// poses may differ), or null; a full-quality series does not take a preview's.
+    std::shared_ptr<const PingLevels> find_levels(const PingKey& key, std::uint64_t draw, bool preview) const;
+    using LevelsKey = std::pair<PingKey, std::uint64_t>;
+    /// After the series: its hits and levels replace the kept ones, as many as the budget holds (hits
+    /// first).
+    void keep(std::map<PingKey, std::shared_ptr<const TraceResult>> series_hits,
+              std::map<LevelsKey, std::shared_ptr<const PingLevels>> series_levels);
 
     std::size_t kept_bytes() const { return kept_bytes_; }
     std::size_t kept_pings() const { return hits_.size(); }
@@ -50,6 +69,7 @@ class PingTraces {
     std::size_t kept_bytes_ = 0;
     std::optional<SceneDesc> placed_for_; ///< the beam scene the kept hits were placed for
     std::map<PingKey, std::shared_ptr<const TraceResult>> hits_;
+    std::map<LevelsKey, std::shared_ptr<const PingLevels>> levels_;
 };
 
 } // namespace sonarsim

@@ -72,8 +72,33 @@ std::vector<Ping> ping_schedule(const SceneDesc& s) {
         pings[i].time_s = double(i) * dt;
         pings[i].vehicle = pose_at(s.sonar, pings[i].time_s);
         pings[i].head_deg = heads[i];
+        pings[i].number = std::int64_t(i);
     }
     return pings;
+}
+
+std::vector<Ping> ping_schedule_along(const SceneDesc& s, const Trajectory& track, double now_s) {
+    const double c = sound_speed_m_s(s.water.temperature_c, s.water.depth_m);
+    const double dt = kind_ping_interval_s(s, c), t0 = track.empty() ? 0 : track.front().t_s;
+    std::vector<Ping> pings = ping_schedule(s); // its count and head angles
+    const auto n = std::int64_t(pings.size());
+    const auto newest = std::int64_t(std::floor((now_s - t0) / dt + 1e-9));
+    std::vector<double> heads(pings.size());
+    for (size_t i = 0; i < pings.size(); ++i) heads[i] = pings[i].head_deg;
+    for (std::int64_t i = 0; i < n; ++i) {
+        Ping& p = pings[size_t(i)];
+        p.number = newest - n + 1 + i;
+        p.time_s = double(p.number) * dt;
+        p.vehicle = trajectory_pose_at(track, t0 + p.time_s);
+        p.head_deg = heads[size_t(((p.number % n) + n) % n)];
+    }
+    return pings;
+}
+
+std::uint64_t ping_noise_draw(std::int64_t number) {
+    // 1, 2, 3 ... for pings 0, 1, 2 ... (as before trajectories); pings before a trajectory's start from the
+    // top of the range down.
+    return number >= 0 ? std::uint64_t(number) + 1 : std::uint64_t(number); // -1 -> 2^64 - 1
 }
 
 Pose transducer_pose(const SceneDesc& s, const Ping& ping, int channel) {

@@ -4,7 +4,9 @@
 // equation, materials, the sampler, the sensor stage.
 #pragma once
 #include "core/data/scene.hpp"
+#include "core/data/trajectory.hpp"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -16,7 +18,12 @@ struct Ping {
     Pose vehicle;        ///< the sonar's pose at the transmit (sonar.position and orientation moved by the
                          ///< motion rows)
     double head_deg = 0; ///< scanning: the head angle from the sonar's x axis toward port [deg]
+    /// The ping's count from the first (negative: before a played trajectory's start); its noise draw.
+    std::int64_t number = 0;
 };
+
+/// The sensor's noise draw of ping `number` (SensorParams::noise_draw): never 0 (an image's), one per ping.
+std::uint64_t ping_noise_draw(std::int64_t number);
 
 /// Channels of a kind: 2 for a side-scan (0 port, 1 starboard), else 1.
 int channel_count(SonarKind kind);
@@ -37,6 +44,14 @@ std::vector<double> sweep_head_angles_deg(const ScanningParams& scanning);
 
 /// The pings of one image: a side-scan's waterfall (sidescan.pings) or a scanning head's sweep.
 std::vector<Ping> ping_schedule(const SceneDesc& scene);
+
+/// The pings of one image heard along a trajectory being played (the viewer): ping k at t0 + k dt (t0 the
+/// trajectory's first time, dt kind_ping_interval_s), from the trajectory's pose then (its first or last pose
+/// before its start or after its end), the newest the last at or before `now_s`; as many as ping_schedule
+/// has. A scan's step k turns the head to the sweep's step k mod its steps (each sweep from
+/// sector_start_deg). A later time keeps the earlier pings that are still in the image: the waterfall
+/// scrolls, the sweep fills.
+std::vector<Ping> ping_schedule_along(const SceneDesc& scene, const Trajectory& track, double now_s);
 
 /// The pose of channel `channel`'s transducer at ping `ping`: a side-scan's port (+90 deg yaw) or starboard
 /// (-90 deg) transducer pitched down by sidescan.depression_deg; a scanning head turned by head_deg.

@@ -4,6 +4,9 @@
 #include "core/kinds/ping_series.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/scene_io.hpp"
+#include "core/shading/physics.hpp"
+
+#include <cmath>
 
 #include <catch2/catch.hpp>
 
@@ -120,4 +123,65 @@ TEST_CASE("kept pings stay within their budget, a ping that does not fit traces 
     CHECK(again.rays_traced > 0);
     CHECK(again.rays_traced < first.rays_traced);
     check_same_series(again, render_pings(louder));
+}
+
+TEST_CASE("pings along a played trajectory: ping k at k dt from the track's pose then, the newest at now",
+          "[kinds][traces]") {
+    SceneDesc s = moving_sidescan(0.0, 5);
+    const Trajectory line = {{2.0, {{0, 0, 5}, {0, 0, 0}}},
+                             {12.0, {{10, 0, 5}, {0, 0, 0}}}}; // 1 m/s from t 2 s
+    const double dt = kind_ping_interval_s(s, sound_speed_m_s(s.water.temperature_c, s.water.depth_m));
+    const double now = 2.0 + 3.3;
+    const auto pings = ping_schedule_along(s, line, now);
+    REQUIRE(pings.size() == 5);
+    const auto newest = std::int64_t(std::floor(3.3 / dt));
+    for (size_t i = 0; i < pings.size(); ++i) {
+        const std::int64_t k = newest - 4 + std::int64_t(i);
+        CHECK(pings[i].number == k);
+        CHECK(pings[i].time_s == Approx(double(k) * dt).epsilon(1e-12));
+        CHECK(pings[i].vehicle.position_m[0] == Approx(double(k) * dt).epsilon(1e-9));
+    }
+    CHECK(pings.back().time_s <= 3.3);
+    CHECK(pings.back().time_s + dt > 3.3);
+    // Before the track's start every ping is heard from its first pose, each with its own noise draw.
+    const auto early = ping_schedule_along(s, line, 1.0);
+    for (const Ping& p : early) {
+        CHECK(p.number < 0);
+        CHECK(p.vehicle.position_m[0] == 0);
+        CHECK(ping_noise_draw(p.number) != 0);
+    }
+    CHECK(ping_noise_draw(-1) != ping_noise_draw(-2));
+
+    SceneDesc scan;
+    apply_setting(scan, "sonar.device", "ping360", "test");
+    scan.scanning.sector_start_deg = -60, scan.scanning.sector_end_deg = 60, scan.scanning.step_deg = 30;
+    validate_scene(scan, "test");
+    const auto steps = ping_schedule_along(scan, line, 7.0);
+    REQUIRE(steps.size() == 5);
+    for (const Ping& p : steps) CHECK(p.head_deg == -60 + 30 * double(((p.number % 5) + 5) % 5));
+}
+
+TEST_CASE(
+    "a waterfall scrolling along a played trajectory traces only its new pings and keeps the others' bytes",
+    "[kinds][traces]") {
+    const SceneDesc s = moving_sidescan(0.0, 12);
+    const Trajectory line = {{0.0, {{-2, 0, 5}, {0, 0, 0}}}, {5.0, {{8, 0, 5}, {0, 0, 0}}}};
+    const double dt = kind_ping_interval_s(s, sound_speed_m_s(s.water.temperature_c, s.water.depth_m));
+    PingTraces traces;
+    PingControl at;
+    at.schedule = ping_schedule_along(s, line, 1.0);
+    const PingSeries before = render_pings(s, at, &traces);
+    at.schedule = ping_schedule_along(s, line, 1.0 + 3 * dt);
+    REQUIRE(at.schedule.front().number == before.schedule[3].number);
+    const PingSeries after = render_pings(s, at, &traces);
+    // The nine pings both hold are copied: the same bytes, three rows down the series.
+    const size_t row = size_t(after.channels) * size_t(after.bins);
+    CHECK(std::equal(before.level_db.begin() + long(3 * row), before.level_db.end(), after.level_db.begin()));
+    // Only the three new pings traced, and the series is what a fresh one is.
+    PingControl fresh_control;
+    fresh_control.schedule = at.schedule;
+    const PingSeries fresh = render_pings(s, fresh_control);
+    check_same_series(after, fresh);
+    CHECK(after.rays_traced > 0);
+    CHECK(after.rays_traced < fresh.rays_traced / 3);
 }

@@ -10,10 +10,12 @@
 #include "core/io/output.hpp"
 #include "core/io/png.hpp"
 #include "core/scene/scene_io.hpp"
+#include "core/shading/physics.hpp"
 
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <chrono>
+#include <cmath>
 #include <fstream>
 
 using namespace sonarsim;
@@ -343,4 +345,39 @@ TEST_CASE("the viewer's session shows a side-scan's waterfall and a scan's sweep
     REQUIRE(session.wait_full(60s));
     CHECK(session.shown()->frame);
     CHECK_FALSE(session.shown()->pings);
+}
+
+TEST_CASE("a side-scan on a played trajectory: the waterfall's pings follow the track and scroll, the new "
+          "pings traced and the others kept byte for byte",
+          "[ui][session][kinds]") {
+    SceneDesc s = default_scene();
+    apply_setting(s, "sonar.kind", "sidescan", "test");
+    s.sidescan.pings = 10;
+    validate_scene(s, "test");
+    ui::Session session(s);
+    const auto line = std::make_shared<const Trajectory>(
+        Trajectory{{0.0, {{-1, 2, 1.5}, {0, 0, 0}}}, {4.0, {{3, 2, 1.5}, {0, 0, 0}}}});
+    const double dt = kind_ping_interval_s(s, sound_speed_m_s(s.water.temperature_c, s.water.depth_m));
+    session.set_ping_track(line, 1.0);
+    REQUIRE(session.wait_full(60s));
+    const auto before = session.shown()->pings;
+    REQUIRE(before);
+    const auto newest = std::int64_t(std::floor(1.0 / dt + 1e-9));
+    CHECK(before->schedule.back().number == newest);
+    CHECK(before->schedule.back().vehicle.position_m[0] == Approx(-1 + double(newest) * dt).epsilon(1e-9));
+    // Two pings later: two new rows at the top (the end of the series), the rest moved down unchanged.
+    session.set_ping_track(line, 1.0 + 2 * dt);
+    REQUIRE(session.wait_full(60s));
+    const auto after = session.shown()->pings;
+    REQUIRE(after != before);
+    CHECK(after->schedule.back().number == newest + 2);
+    const size_t row = size_t(after->channels) * size_t(after->bins);
+    CHECK(std::equal(before->level_db.begin() + long(2 * row), before->level_db.end(),
+                     after->level_db.begin()));
+    CHECK(after->rays_traced > 0);
+    CHECK(after->rays_traced < before->rays_traced / 3);
+    // Off the track: the scene's own pings again.
+    session.set_ping_track(nullptr, 0);
+    REQUIRE(session.wait_full(60s));
+    CHECK(session.shown()->pings->schedule.back().number == 9);
 }

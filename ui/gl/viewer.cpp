@@ -201,6 +201,11 @@ void Viewer::frame(int index) {
     if (session_.scene().sampling.bounces > 0) last_bounces_ = session_.scene().sampling.bounces;
     if (auto p = trajectory_.update(session_.scene().sonar.pose, last_frame_ms_ / 1000.0))
         session_.edit([&](SceneDesc& s) { s.sonar.pose = *p; });
+    // While the sonar is on the trajectory (played, paused, at its end), a side-scan's or scan's pings are
+    // heard along it: the waterfall scrolls.
+    const bool on_track = trajectory_.track.size() >= 2 &&
+                          trajectory_.track.passes(session_.scene().sonar.pose, trajectory_.t_s);
+    session_.set_ping_track(on_track ? trajectory_.track.shared() : nullptr, trajectory_.t_s);
     if (!sync && session_.submit(interacting_) != 0) extra_frames_ = 2;
     // Keep drawing while a drag is held, and until the full-quality image of a preview has been requested
     // (the input rests for Session::kRest).

@@ -12,8 +12,9 @@ namespace {
 /// A side-scan's or scan's pings of `scene` into `r`, with the image its PNG shows; `cancel` stops them.
 /// `traces` keeps the hits from one request to the next: a slider of the mission re-shades them.
 void render_pings_into(RenderResult& r, const SceneDesc& scene, bool preview, bool ground_truth,
-                       const std::atomic<bool>& cancel, PingTraces& traces) {
+                       std::vector<Ping> pings, const std::atomic<bool>& cancel, PingTraces& traces) {
     PingControl control;
+    control.schedule = std::move(pings);
     control.cancel = &cancel;
     control.preview = preview;
     control.ground_truth = ground_truth && !preview;
@@ -40,7 +41,8 @@ RenderWorker::~RenderWorker() {
 }
 
 std::uint64_t RenderWorker::request(const SceneDesc& scene, bool preview, bool ground_truth,
-                                    std::optional<Stage> changed, int fan_height_px) {
+                                    std::optional<Stage> changed, int fan_height_px,
+                                    std::vector<Ping> pings) {
     std::uint64_t id;
     {
         std::lock_guard<std::mutex> lock(mutex_);
@@ -48,7 +50,7 @@ std::uint64_t RenderWorker::request(const SceneDesc& scene, bool preview, bool g
         // A replaced request's change still has to be made: the earlier of the two stages.
         if (changed && queued_)
             changed = queued_->changed ? std::min(*changed, *queued_->changed) : queued_->changed;
-        queued_ = Job{id, scene, preview, ground_truth, changed, fan_height_px};
+        queued_ = Job{id, scene, preview, ground_truth, changed, fan_height_px, std::move(pings)};
         // Restart on change: a full render of an outdated scene is stopped inside its trace. A running
         // preview is let finish (a few ms): cancelling previews in favour of newer previews while the user
         // drags would show nothing at all.
@@ -115,7 +117,8 @@ void RenderWorker::loop() {
         const auto t0 = std::chrono::steady_clock::now();
         try {
             if (job.scene.sonar.kind != SonarKind::Imaging) { // a side-scan's or scan's pings
-                render_pings_into(r, job.scene, job.preview, job.ground_truth, cancel_, ping_traces);
+                render_pings_into(r, job.scene, job.preview, job.ground_truth, std::move(job.pings), cancel_,
+                                  ping_traces);
                 known = false; // the imaging simulator does not hold this scene
             } else {
                 ping_traces = PingTraces(); // their hits go with the kind

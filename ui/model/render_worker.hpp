@@ -54,8 +54,10 @@ class RenderWorker {
     /// `changed`: changed_stage from the scene of the previous request to this one, when the caller knows it
     /// (computed once per edit); otherwise the worker compares the scenes itself.
     /// `fan_height_px`: Simulator::set_fan_height_px (0: one row per range bin).
+    /// `pings`: a side-scan's or scan's pings to hear (PingControl::schedule; empty: the scene's own).
     std::uint64_t request(const SceneDesc& scene, bool preview = false, bool ground_truth = false,
-                          std::optional<Stage> changed = std::nullopt, int fan_height_px = 0);
+                          std::optional<Stage> changed = std::nullopt, int fan_height_px = 0,
+                          std::vector<Ping> pings = {});
     /// The newest finished result not yet taken, if any (older unread results are dropped).
     std::optional<RenderResult> take();
     /// Waits until the result of request `id` (or a newer one) is done; false on timeout.
@@ -82,6 +84,7 @@ class RenderWorker {
         bool ground_truth = false;
         std::optional<Stage> changed; ///< changed_stage from the previous request's scene, if known
         int fan_height_px = 0;
+        std::vector<Ping> pings;
     };
     std::optional<Job> queued_;
     std::optional<RenderResult> result_;

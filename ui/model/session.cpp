@@ -132,7 +132,8 @@ std::uint64_t Session::submit(bool interacting, Clock::time_point now) {
         dirty_ = false;
         last_change_ = now;
         full_pending_ = interacting;
-        requested_id_ = worker_.request(scene_, interacting, ground_truth_, changed_, fan_height_px_);
+        requested_id_ =
+            worker_.request(scene_, interacting, ground_truth_, changed_, fan_height_px_, requested_pings());
         changed_ = Stage::None;
         return requested_id_;
     }
@@ -140,7 +141,8 @@ std::uint64_t Session::submit(bool interacting, Clock::time_point now) {
         // The input rests: the same scene again, in full quality (the worker re-traces a preview).
         full_pending_ = false;
         // The worker compares the scenes.
-        requested_id_ = worker_.request(scene_, false, ground_truth_, std::nullopt, fan_height_px_);
+        requested_id_ =
+            worker_.request(scene_, false, ground_truth_, std::nullopt, fan_height_px_, requested_pings());
         changed_ = Stage::None;
         return requested_id_;
     }
@@ -191,6 +193,18 @@ void Session::set_ground_truth(bool on) {
     if (on == ground_truth_) return;
     ground_truth_ = on;
     if (on) dirty_ = true; // the shown frame has none: render it again with it
+}
+
+void Session::set_ping_track(std::shared_ptr<const sonarsim::Trajectory> track, double now_s) {
+    if (track == ping_track_ && (!track || now_s == ping_track_now_s_)) return;
+    ping_track_ = std::move(track);
+    ping_track_now_s_ = now_s;
+    if (scene_.sonar.kind != SonarKind::Imaging) dirty_ = true; // other pings: a new waterfall or sweep
+}
+
+std::vector<Ping> Session::requested_pings() const {
+    if (!ping_track_ || scene_.sonar.kind == SonarKind::Imaging) return {};
+    return ping_schedule_along(scene_, *ping_track_, ping_track_now_s_);
 }
 
 void Session::set_fan_height_px(int height_px) {

@@ -7,6 +7,8 @@
 #include "core/geometry/geometry.hpp"
 #include "core/geometry/mesh.hpp"
 #include "core/io/output.hpp"
+#include "core/data/trajectory.hpp"
+#include "core/kinds/pings.hpp"
 #include "core/scene/params.hpp"
 
 #include <chrono>
@@ -91,6 +93,10 @@ class Session {
     /// Height of the fan the worker forms [px] (Simulator::set_fan_height_px; 0: one row per range bin), as
     /// the panel shows it. A change re-forms the shown frame's fan; snapshots still write the full fan.
     void set_fan_height_px(int height_px);
+    /// A side-scan's or scan's pings heard along `track` at its time `now_s` (ping_schedule_along: the
+    /// waterfall scrolls, the sweep fills as a trajectory plays); null: from the scene's pose forward. A
+    /// change goes with the next submit().
+    void set_ping_track(std::shared_ptr<const sonarsim::Trajectory> track, double now_s);
 
   private:
     /// The status after a snapshot: its folder and files.
@@ -111,6 +117,10 @@ class Session {
     std::optional<Stage> changed_;
     bool ground_truth_ = false;
     int fan_height_px_ = 0;
+    std::shared_ptr<const sonarsim::Trajectory> ping_track_;
+    double ping_track_now_s_ = 0;
+    /// The pings to ask the worker for: along ping_track_, or empty (the scene's own).
+    std::vector<Ping> requested_pings() const;
     std::uint64_t requested_id_ = 0, shown_count_ = 0;
     bool full_pending_ = false;       ///< the last request for scene_ was a preview
     Clock::time_point last_change_{}; ///< when the last changed scene was sent

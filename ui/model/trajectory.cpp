@@ -15,24 +15,22 @@ void Trajectory::add(double t_s, const Pose& pose, bool skip_repeat) {
         samples_.back().pose.orientation_deg == pose.orientation_deg)
         return;
     samples_.push_back({t_s, pose});
+    shared_.reset();
 }
 
 Pose Trajectory::at(double t) const {
-    if (samples_.empty()) return Pose{};
-    if (t <= samples_.front().t_s) return samples_.front().pose;
-    if (t >= samples_.back().t_s) return samples_.back().pose;
-    const auto it = std::upper_bound(samples_.begin(), samples_.end(), t,
-                                     [](double v, const TrajectoryPoint& s) { return v < s.t_s; });
-    const TrajectoryPoint &b = *it, &a = *(it - 1);
-    const double span = b.t_s - a.t_s, u = span > 0 ? (t - a.t_s) / span : 1.0;
-    if (u >= 1) return b.pose;
-    Pose p;
-    for (size_t i = 0; i < 3; ++i) {
-        p.position_m[i] = a.pose.position_m[i] + u * (b.pose.position_m[i] - a.pose.position_m[i]);
-        const double d = std::remainder(b.pose.orientation_deg[i] - a.pose.orientation_deg[i], 360.0);
-        p.orientation_deg[i] = std::remainder(a.pose.orientation_deg[i] + u * d, 360.0);
-    }
-    return p;
+    return trajectory_pose_at(samples_, t);
+}
+
+bool Trajectory::passes(const Pose& pose, double t_s) const {
+    if (samples_.empty()) return false;
+    const Pose on = at(t_s);
+    return on.position_m == pose.position_m && on.orientation_deg == pose.orientation_deg;
+}
+
+std::shared_ptr<const sonarsim::Trajectory> Trajectory::shared() const {
+    if (!shared_) shared_ = std::make_shared<const sonarsim::Trajectory>(samples_);
+    return shared_;
 }
 
 std::string trajectory_csv(const Trajectory& tr) {

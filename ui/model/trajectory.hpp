@@ -5,6 +5,7 @@
 #include "core/data/scene.hpp"
 #include "core/data/trajectory.hpp"
 
+#include <memory>
 #include <string>
 #include <utility>
 
@@ -19,16 +20,21 @@ class Trajectory {
     /// Appends a pose at time t (seconds from the first sample); while recording (`skip_repeat`), a pose
     /// equal to the last one is skipped.
     void add(double t_s, const Pose& pose, bool skip_repeat = true);
-    void clear() { samples_.clear(); }
+    void clear() { samples_.clear(), shared_.reset(); }
     bool empty() const { return samples_.empty(); }
     size_t size() const { return samples_.size(); }
     const sonarsim::Trajectory& samples() const { return samples_; }
     double duration_s() const { return samples_.empty() ? 0 : samples_.back().t_s - samples_.front().t_s; }
     /// The pose at time t, linear between samples (angles along the shorter way round), clamped to the ends.
     Pose at(double t_s) const;
+    /// Whether `pose` is the trajectory's at time t (the sonar on it: played, paused or at its end).
+    bool passes(const Pose& pose, double t_s) const;
+    /// The samples, shared: the same object until the trajectory changes (a pings' schedule along it).
+    std::shared_ptr<const sonarsim::Trajectory> shared() const;
 
   private:
     sonarsim::Trajectory samples_;
+    mutable std::shared_ptr<const sonarsim::Trajectory> shared_; ///< made by shared(), reset by a change
 };
 
 /// CSV text with the header and full precision (parsing it gives the same doubles).
