@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace sonarsim {
@@ -79,10 +80,16 @@ Image8 sweep_image(const PingSeries& s, const DisplayParams& d, double range_max
     img.pixels.resize(size_t(size_px) * size_t(size_px) * 3);
     const auto table = colormap_table(d.colormap);
     const auto none = no_echo_rgb(d.colormap);
-    // The steps are evenly spaced (sweep_head_angles_deg): a pixel's step is the nearest by its angle.
+    // The steps are evenly spaced (sweep_head_angles_deg): a pixel's step is the nearest by its angle. The
+    // sweep's step i is the ping whose count is i modulo the steps (a scene's own sweep counts 0 ... n - 1;
+    // one along a trajectory holds the newest n steps, from wherever the sweep was).
     const int n = s.pings;
-    const double start = s.schedule.front().head_deg;
-    const double step = n > 1 ? s.schedule[1].head_deg - start : 360.0;
+    const std::int64_t oldest = s.schedule.front().number;
+    const auto holding = [&](std::int64_t step_index) { // the series' ping of the sweep's step
+        return int((((step_index - oldest) % n) + n) % n);
+    };
+    const double start = s.schedule[size_t(holding(0))].head_deg;
+    const double step = n > 1 ? s.schedule[size_t(holding(1))].head_deg - start : 360.0;
     const double dir = step < 0 ? -1 : 1, pitch = std::abs(step);
     const bool full = n > 1 && std::abs(n * pitch - 360) < 1e-6;
     const double c = 0.5 * size_px, m_per_px = range_max_m / c;
@@ -103,7 +110,7 @@ Image8 sweep_image(const PingSeries& s, const DisplayParams& d, double range_max
                 paint(img, x, y, none);
                 continue;
             }
-            const float v = s.profile(best, 0)[std::min(int(u), s.bins - 1)];
+            const float v = s.profile(holding(best), 0)[std::min(int(u), s.bins - 1)];
             paint(img, x, y, table[size_t(std::lround(gray_level(v, d.lo_db, d.hi_db)))]);
         }
     return img;

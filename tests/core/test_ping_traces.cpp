@@ -1,6 +1,7 @@
 // Kept ping hits (PingTraces): a change of shading re-shades the pings traced before and traces no ray, with
 // the bytes a fresh series has; what moves the sonar or the scene traces again; a still sonar's pings share
 // one trace per channel; the budget bounds what is kept.
+#include "core/kinds/kind_images.hpp"
 #include "core/kinds/ping_series.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/scene_io.hpp"
@@ -184,4 +185,34 @@ TEST_CASE(
     check_same_series(after, fresh);
     CHECK(after.rays_traced > 0);
     CHECK(after.rays_traced < fresh.rays_traced / 3);
+}
+
+TEST_CASE("a sector scan's sweep along a still trajectory, wrapped past its sector's end, is the scene's own "
+          "sweep",
+          "[kinds][traces]") {
+    SceneDesc s;
+    apply_setting(s, "sonar.kind", "scanning", "test");
+    s.sonar.pose = {{0, 0, 2}, {0, 20, 0}};
+    s.sonar.range_min_m = 0.5, s.sonar.range_max_m = 12, s.sonar.range_bins = 200;
+    s.scanning.sector_start_deg = -60, s.scanning.sector_end_deg = 60, s.scanning.step_deg = 30;
+    s.seafloor = Seafloor{};
+    ObjectDesc box;
+    box.box_m = {1, 1, 1}, box.position_m = {6, 3, 0.5};
+    s.objects = {box};
+    validate_scene(s, "test");
+    const double dt = kind_ping_interval_s(s, sound_speed_m_s(s.water.temperature_c, s.water.depth_m));
+    const Trajectory still = {{0.0, s.sonar.pose}, {100.0, s.sonar.pose}};
+    PingControl along;
+    along.schedule = ping_schedule_along(s, still, 7.2 * dt); // counts 3 ... 7: steps 3, 4, 0, 1, 2
+    REQUIRE(along.schedule.front().number == 3);
+    const PingSeries own = render_pings(s), wrapped = render_pings(s, along);
+    CHECK(wrapped.profile(2, 0)[0] == own.profile(0, 0)[0]);
+    DisplayParams d;
+    d.lo_db = 20, d.hi_db = 90;
+    const Image8 a = sweep_image(own, d, s.sonar.range_max_m, 96),
+                 b = sweep_image(wrapped, d, s.sonar.range_max_m, 96);
+    CHECK(a.pixels == b.pixels);
+    size_t lit = 0; // the box and floor echo in the sweep: not an empty picture
+    for (size_t i = 0; i < a.pixels.size(); i += 3) lit += a.pixels[i] > 0;
+    CHECK(lit > a.pixels.size() / 3 / 20);
 }

@@ -6,6 +6,7 @@
 #include "core/display/image.hpp"
 #include "core/data/pose.hpp"
 #include "core/scene/scene_io.hpp"
+#include "core/shading/physics.hpp"
 #include "core/pipeline/simulator.hpp"
 
 #include <catch2/catch.hpp>
@@ -97,4 +98,43 @@ TEST_CASE("image helpers: polar colour image, tick steps, A-scan", "[ui][image]"
     CHECK(nice_step(40, 6) == Approx(5.0));
     CHECK(beam_levels(img, 1) == std::vector<float>{100, 120, 110});
     CHECK(beam_levels(img, 2).empty());
+}
+
+TEST_CASE("the fields of view drawn: a side-scan's swaths at the ping heard from the sonar's pose, a scan's "
+          "beam at its sector's first step and at the head's newest",
+          "[ui][arc][kinds]") {
+    SceneDesc side = default_scene();
+    apply_setting(side, "sonar.kind", "sidescan", "test");
+    side.sonar.pose = {{0, 0, 3}, {0, 0, 0}};
+    side.sonar.velocity_mps = {1, 0, 0};
+    validate_scene(side, "test");
+    auto fovs = fields_of_view(side); // its own pings: the first is heard from the sonar's pose
+    REQUIRE(fovs.size() == 2);
+    CHECK(fovs[0].pose.position_m == side.sonar.pose.position_m);
+    CHECK(fovs[0].pose.orientation_deg[2] == Approx(90));  // port
+    CHECK(fovs[1].pose.orientation_deg[2] == Approx(-90)); // starboard
+    const Trajectory line = {{0.0, {{0, 0, 3}, {0, 0, 0}}}, {10.0, {{10, 0, 3}, {0, 0, 0}}}};
+    const auto along = ping_schedule_along(side, line, 4.0);
+    fovs = fields_of_view(side, &along); // along a track: the newest, at the playback time
+    REQUIRE(fovs.size() == 2);
+    CHECK(fovs[0].pose.position_m[0] == along.back().vehicle.position_m[0]);
+    CHECK(fovs[0].pose.position_m[0] == Approx(4.0).margin(0.1));
+
+    SceneDesc scan = default_scene();
+    apply_setting(scan, "sonar.kind", "scanning", "test");
+    scan.sonar.pose = {{0, 0, 3}, {0, 0, 0}};
+    scan.scanning.sector_start_deg = -60, scan.scanning.sector_end_deg = 60, scan.scanning.step_deg = 30;
+    validate_scene(scan, "test");
+    fovs = fields_of_view(scan);
+    REQUIRE(fovs.size() == 2);
+    CHECK(fovs[0].pose.orientation_deg[2] == Approx(-60));
+    CHECK(fovs[1].pose.orientation_deg[2] == Approx(60));
+    const double dt =
+        kind_ping_interval_s(scan, sound_speed_m_s(scan.water.temperature_c, scan.water.depth_m));
+    const auto steps = ping_schedule_along(scan, line, 7.2 * dt);
+    REQUIRE(steps.back().number == 7); // the sweep's step 2: neither end of the sector
+    fovs = fields_of_view(scan, &steps);
+    REQUIRE(fovs.size() == 2);
+    CHECK(fovs[0].pose.orientation_deg[2] == Approx(-60));
+    CHECK(fovs[1].pose.orientation_deg[2] == Approx(steps.back().head_deg));
 }

@@ -195,6 +195,7 @@ void SceneRenderer::draw(const SceneDesc& scene, const OrbitCamera& cam, int x, 
     glEnable(GL_PROGRAM_POINT_SIZE);
 
     const SonarParams& s = scene.sonar;
+    const std::vector<SonarParams> fields = ov.fields.empty() ? fields_of_view(scene) : ov.fields;
     std::vector<Vertex> v;
 
     // Seafloor and its grid, around the sonar's reach.
@@ -232,7 +233,7 @@ void SceneRenderer::draw(const SceneDesc& scene, const OrbitCamera& cam, int x, 
         grid_.draw(GL_LINES);
         // Where the field of view meets the floor: the outline of the insonified patch.
         v.clear();
-        for (const SonarParams& fov : fields_of_view(scene)) // a side-scan's swaths, a scan's beams
+        for (const SonarParams& fov : fields) // a side-scan's swaths, a scan's beams
             for (const glm::vec3& q : floor_footprint(fov, z)) v.push_back({q, {}, kFootprint});
         footprint_.upload(v);
         glLineWidth(2.0f);
@@ -268,7 +269,7 @@ void SceneRenderer::draw(const SceneDesc& scene, const OrbitCamera& cam, int x, 
 
     // Field of view: translucent faces, then the wireframe (faint where hidden behind surfaces).
     FrustumShell shell;
-    for (const SonarParams& fov : fields_of_view(scene)) {
+    for (const SonarParams& fov : fields) {
         FrustumShell one = frustum_shell(fov);
         shell.triangles.insert(shell.triangles.end(), one.triangles.begin(), one.triangles.end());
         shell.lines.insert(shell.lines.end(), one.lines.begin(), one.lines.end());

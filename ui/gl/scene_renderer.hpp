@@ -26,6 +26,8 @@ struct ViewOverlay {
     std::vector<glm::vec3> hit_points; ///< optional: every traced hit (teaching: shadows)
     std::vector<glm::dvec3> handles;   ///< where the sonar can be grabbed besides its housing
     bool sonar_hot = false;            ///< frustum under the mouse or being dragged
+    /// The fields of view drawn (fields_of_view); empty: those of the scene's own pings.
+    std::vector<SonarParams> fields;
     int selected_object = -1;
 };
 

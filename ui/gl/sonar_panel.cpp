@@ -3,6 +3,7 @@
 #include "ui/gl/sonar_panel.hpp"
 
 #include "ui/model/image_views.hpp"
+#include "core/data/pose.hpp"
 #include "core/display/polar_layout.hpp"
 #include "ui/gl/sonar_panel_style.hpp"
 #include "ui/model/measure.hpp"
@@ -84,6 +85,14 @@ void SonarPanel::draw_pings(const Rect& area, const RenderResult& shown, std::ui
     ImGui::SetCursorScreenPos(top);
     ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(texture_.id())), ImVec2(w, h));
     annotated_ = {top.x, top.y, w, h};
+    if (!side && !p.schedule.empty()) { // the head's newest step: forward up, port (a positive angle) left
+        const double a = deg2rad(p.schedule.back().head_deg);
+        const ImVec2 c(top.x + 0.5f * w, top.y + 0.5f * h);
+        const float r = 0.5f * w;
+        ImGui::GetWindowDrawList()->AddLine(
+            c, ImVec2(c.x - r * float(std::sin(a)), c.y - r * float(std::cos(a))),
+            IM_COL32(90, 220, 255, 230), std::max(1.5f, 0.12f * ImGui::GetFontSize()));
+    }
     if (shown.preview())
         text_at(ImGui::GetWindowDrawList(), ImVec2(top.x + w, top.y + h), IM_COL32(255, 200, 80, 255),
                 "preview (base grid only)", 1.0f, 1.0f);

@@ -27,6 +27,9 @@ ViewOverlay Viewer::overlay() const {
     ov.marker = controller_.surface_hover();
     ov.handles = frustum_handles(session_.scene());
     const RenderResult* shown = session_.shown();
+    const bool along = session_.on_ping_track() && shown && shown->pings &&
+                       shown->scene.sonar.kind == session_.scene().sonar.kind;
+    ov.fields = fields_of_view(session_.scene(), along ? &shown->pings->schedule : nullptr);
     if (shown && shown->frame && sonar_->hovered()) {
         const ImagePlace& p = *sonar_->hovered();
         ov.arc = elevation_arc(shown->scene.sonar, p.range_m, p.azimuth_deg);

@@ -97,6 +97,7 @@ class Session {
     /// waterfall scrolls, the sweep fills as a trajectory plays); null: from the scene's pose forward. A
     /// change goes with the next submit().
     void set_ping_track(std::shared_ptr<const sonarsim::Trajectory> track, double now_s);
+    bool on_ping_track() const { return ping_track_ != nullptr; }
 
   private:
     /// The status after a snapshot: its folder and files.

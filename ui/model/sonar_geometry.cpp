@@ -8,6 +8,7 @@
 #include "core/shading/shade.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 
 namespace sonarsim::ui {
@@ -112,22 +113,27 @@ std::vector<glm::vec3> floor_footprint(const SonarParams& s, double z0, int step
     return out;
 }
 
-std::vector<SonarParams> fields_of_view(const SceneDesc& scene) {
+std::vector<SonarParams> fields_of_view(const SceneDesc& scene, const std::vector<Ping>* along) {
     if (scene.sonar.kind == SonarKind::Imaging) return {scene.sonar};
-    const std::vector<Ping> pings = ping_schedule(scene);
+    const std::vector<Ping> own = along && !along->empty() ? std::vector<Ping>{} : ping_schedule(scene);
+    const std::vector<Ping>& pings = own.empty() ? *along : own;
+    if (pings.empty()) return {};
+    std::vector<const Ping*> drawn;
+    if (scene.sonar.kind == SonarKind::Sidescan) {
+        drawn = {own.empty() ? &pings.back() : &pings.front()}; // the ping heard from the sonar's pose
+    } else { // the sector's first step (the sweep's count 0 modulo its steps) and the head's newest step
+        const auto n = std::int64_t(pings.size());
+        drawn = {&pings[size_t((((-pings.front().number) % n) + n) % n)], &pings.back()};
+        if (drawn[0] == drawn[1]) drawn.pop_back();
+    }
     const SceneDesc beam = beam_scene(scene);
     std::vector<SonarParams> out;
-    if (pings.empty()) return out;
-    const int channels = channel_count(scene.sonar.kind);
-    for (const Ping* p : {&pings.front(), &pings.back()}) {
-        for (int ch = 0; ch < channels; ++ch) {
+    for (const Ping* p : drawn)
+        for (int ch = 0; ch < channel_count(scene.sonar.kind); ++ch) {
             SonarParams s = beam.sonar;
             s.pose = transducer_pose(scene, *p, ch);
             out.push_back(s);
         }
-        if (scene.sonar.kind == SonarKind::Sidescan || pings.size() == 1)
-            break; // a side-scan: its first ping
-    }
     return out;
 }
 

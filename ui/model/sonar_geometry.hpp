@@ -4,6 +4,7 @@
 #include "core/display/image.hpp"
 #include "core/geometry/mesh.hpp"
 #include "core/data/scene.hpp"
+#include "core/kinds/pings.hpp"
 #include "core/sampling/trace.hpp"
 
 #include <glm/glm.hpp>
@@ -27,10 +28,12 @@ FrustumShell frustum_shell(const SonarParams& sonar, int azimuth_steps = 16, int
 /// segment end points in pairs, in world coordinates.
 std::vector<glm::vec3> floor_footprint(const SonarParams& sonar, double floor_z, int steps = 48);
 
-/// The fields of view to draw: the imaging sonar's fan; a side-scan's two beams (port, starboard) at the
-/// first ping, each a one-beam sonar at its transducer's pose, so that its floor footprint is the swath; a
-/// scanning sonar's beam at the first and last step of its sector.
-std::vector<SonarParams> fields_of_view(const SceneDesc& scene);
+/// The fields of view to draw: the imaging sonar's fan; a side-scan's two beams (port, starboard) at the ping
+/// heard from the sonar's pose, each a one-beam sonar at its transducer's pose, so that its floor footprint
+/// is the swath; a scanning sonar's beam at the first step of its sector and at the head's newest step.
+/// `along`: the pings heard along a played trajectory (ping_schedule_along; the newest at the sonar's pose),
+/// or null: the scene's own (ping_schedule: the first at the sonar's pose).
+std::vector<SonarParams> fields_of_view(const SceneDesc& scene, const std::vector<Ping>* along = nullptr);
 
 /// The housing: a box behind the transducer face (front face at the sonar origin), in world coordinates.
 TriMesh sonar_body(const SonarParams& sonar);
