@@ -1,9 +1,13 @@
 #include "core/kinds/kind_images.hpp"
 
+#include "core/base/recent_shared.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
+#include <vector>
 
 namespace sonarsim {
 namespace {
@@ -74,6 +78,58 @@ PolarImage scan_levels(const PingSeries& s) {
     return a;
 }
 
+namespace {
+
+/// Each pixel's step of the sweep (-1: none) and range bin, for one sweep's geometry: made once, read by
+/// every sweep of that geometry (a viewer makes one a frame while a scan fills).
+struct SweepMap {
+    std::vector<std::int32_t> step, bin;
+};
+
+struct SweepKey {
+    int size_px = 0, steps = 0;
+    double start_deg = 0, step_deg = 0, range_max_m = 0;
+    std::shared_ptr<const SonarGrid> grid;
+    bool operator==(const SweepKey& o) const {
+        return size_px == o.size_px && steps == o.steps && start_deg == o.start_deg &&
+               step_deg == o.step_deg && range_max_m == o.range_max_m && grid == o.grid;
+    }
+};
+
+std::shared_ptr<const SweepMap> sweep_map(const SweepKey& k) {
+    static RecentShared<SweepKey, SweepMap, 4> kept;
+    return kept.get(k, [&] {
+        auto m = std::make_shared<SweepMap>();
+        const size_t pixels = size_t(k.size_px) * size_t(k.size_px);
+        m->step.assign(pixels, -1), m->bin.assign(pixels, 0);
+        const int n = k.steps;
+        const double dir = k.step_deg < 0 ? -1 : 1, pitch = std::abs(k.step_deg);
+        const bool full = n > 1 && std::abs(n * pitch - 360) < 1e-6;
+        const double c = 0.5 * k.size_px, m_per_px = k.range_max_m / c;
+        for (int y = 0; y < k.size_px; ++y)
+            for (int x = 0; x < k.size_px; ++x) {
+                const double dx = x + 0.5 - c, dy = c - (y + 0.5); // dx toward starboard, dy forward
+                const double r = std::hypot(dx, dy) * m_per_px;
+                const double angle = std::atan2(-dx, dy) * 180 / 3.14159265358979323846; // toward port
+                // Turned from the start in the sweep's direction, in [-half a step, 360 - half a step).
+                double turned = std::fmod(dir * (angle - k.start_deg), 360.0);
+                if (turned < 0) turned += 360;
+                if (turned >= 360 - 0.5 * pitch) turned -= 360;
+                int best = int(std::lround(turned / pitch));
+                if (full) best %= n;
+                if (n == 1 && std::abs(turned) > 0.5 * pitch) best = -1; // one step: its own width only
+                const double u = k.grid->bin_position(r);
+                if (best < 0 || best >= n || r >= k.range_max_m || u < 0) continue;
+                const size_t at = size_t(y) * size_t(k.size_px) + size_t(x);
+                m->step[at] = best;
+                m->bin[at] = std::min(int(u), k.grid->bins - 1);
+            }
+        return std::shared_ptr<const SweepMap>(std::move(m));
+    });
+}
+
+} // namespace
+
 Image8 sweep_image(const PingSeries& s, const DisplayParams& d, double range_max_m, int size_px) {
     Image8 img;
     img.width = img.height = size_px, img.channels = 3;
@@ -88,29 +144,20 @@ Image8 sweep_image(const PingSeries& s, const DisplayParams& d, double range_max
     const auto holding = [&](std::int64_t step_index) { // the series' ping of the sweep's step
         return int((((step_index - oldest) % n) + n) % n);
     };
-    const double start = s.schedule[size_t(holding(0))].head_deg;
-    const double step = n > 1 ? s.schedule[size_t(holding(1))].head_deg - start : 360.0;
-    const double dir = step < 0 ? -1 : 1, pitch = std::abs(step);
-    const bool full = n > 1 && std::abs(n * pitch - 360) < 1e-6;
-    const double c = 0.5 * size_px, m_per_px = range_max_m / c;
+    SweepKey key;
+    key.size_px = size_px, key.steps = n, key.range_max_m = range_max_m, key.grid = s.grid;
+    key.start_deg = s.schedule[size_t(holding(0))].head_deg;
+    key.step_deg = n > 1 ? s.schedule[size_t(holding(1))].head_deg - key.start_deg : 360.0;
+    const auto map = sweep_map(key);
     for (int y = 0; y < size_px; ++y)
         for (int x = 0; x < size_px; ++x) {
-            const double dx = x + 0.5 - c, dy = c - (y + 0.5); // dx toward starboard, dy forward
-            const double r = std::hypot(dx, dy) * m_per_px;
-            const double angle = std::atan2(-dx, dy) * 180 / 3.14159265358979323846; // toward port
-            // Turned from the start in the sweep's direction, in [-half a step, 360 - half a step).
-            double turned = std::fmod(dir * (angle - start), 360.0);
-            if (turned < 0) turned += 360;
-            if (turned >= 360 - 0.5 * pitch) turned -= 360;
-            int best = int(std::lround(turned / pitch));
-            if (full) best %= n;
-            if (n == 1 && std::abs(turned) > 0.5 * pitch) best = -1; // one step: its own width only
-            const double u = s.grid->bin_position(r);
-            if (best < 0 || best >= n || r >= range_max_m || u < 0) {
+            const size_t at = size_t(y) * size_t(size_px) + size_t(x);
+            const std::int32_t step = map->step[at];
+            if (step < 0) {
                 paint(img, x, y, none);
                 continue;
             }
-            const float v = s.profile(holding(best), 0)[std::min(int(u), s.bins - 1)];
+            const float v = s.profile(holding(step), 0)[map->bin[at]];
             paint(img, x, y, table[size_t(std::lround(gray_level(v, d.lo_db, d.hi_db)))]);
         }
     return img;
