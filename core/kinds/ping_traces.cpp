@@ -32,15 +32,25 @@ std::size_t hits_bytes(const TraceResult& t) {
     return n + sizeof(TraceResult);
 }
 
+namespace {
+
+/// What changed from `before` to `beam` besides the pose and noise draw (each ping's own).
+Stage changed_but_pings(SceneDesc before, const SceneDesc& beam) {
+    before.sonar.pose = beam.sonar.pose;
+    before.sensor.noise_draw = beam.sensor.noise_draw;
+    return changed_stage(before, beam);
+}
+
+} // namespace
+
 void PingTraces::prepare(const SceneDesc& beam, bool preview) {
+    if (levels_for_ && changed_but_pings(*levels_for_, beam) != Stage::None)
+        levels_.clear(), levels_bytes_ = 0;
+    series_ = beam;
     if (placed_for_) {
-        SceneDesc before = *placed_for_;
-        before.sonar.pose = beam.sonar.pose; // each ping's own pose is its key
-        before.sensor.noise_draw = beam.sensor.noise_draw;
-        const Stage s = changed_stage(before, beam);
-        if (s != Stage::None) levels_.clear();    // made with other values
+        const Stage s = changed_but_pings(*placed_for_, beam);
         if (s == Stage::Place && preview) return; // re-shaded as placed for the earlier scene
-        if (s <= Stage::Place) hits_.clear(), kept_bytes_ = 0;
+        if (s <= Stage::Place) hits_.clear(), hits_bytes_ = 0;
     }
     placed_for_ = beam;
 }
@@ -60,19 +70,20 @@ std::shared_ptr<const PingLevels> PingTraces::find_levels(const PingKey& key, st
 
 void PingTraces::keep(std::map<PingKey, std::shared_ptr<const TraceResult>> series_hits,
                       std::map<LevelsKey, std::shared_ptr<const PingLevels>> series_levels) {
-    hits_.clear(), levels_.clear(), kept_bytes_ = 0;
+    hits_.clear(), levels_.clear(), hits_bytes_ = levels_bytes_ = 0;
     for (auto& [key, hits] : series_hits) {
         const std::size_t bytes = hits_bytes(*hits);
-        if (kept_bytes_ + bytes > budget_bytes_) break;
-        kept_bytes_ += bytes;
+        if (hits_bytes_ + bytes > budget_bytes_) break;
+        hits_bytes_ += bytes;
         hits_.emplace(key, std::move(hits));
     }
     for (auto& [key, levels] : series_levels) {
         const std::size_t bytes = (levels->level_db.size() + levels->ideal_db.size()) * sizeof(float);
-        if (kept_bytes_ + bytes > budget_bytes_) break;
-        kept_bytes_ += bytes;
+        if (hits_bytes_ + levels_bytes_ + bytes > budget_bytes_) break;
+        levels_bytes_ += bytes;
         levels_.emplace(key, std::move(levels));
     }
+    levels_for_ = series_; // the levels are this series' own
 }
 
 } // namespace sonarsim

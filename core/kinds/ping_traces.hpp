@@ -60,14 +60,16 @@ class PingTraces {
     void keep(std::map<PingKey, std::shared_ptr<const TraceResult>> series_hits,
               std::map<LevelsKey, std::shared_ptr<const PingLevels>> series_levels);
 
-    std::size_t kept_bytes() const { return kept_bytes_; }
+    std::size_t kept_bytes() const { return hits_bytes_ + levels_bytes_; }
     std::size_t kept_pings() const { return hits_.size(); }
     std::size_t budget_bytes() const { return budget_bytes_; }
 
   private:
     std::size_t budget_bytes_;
-    std::size_t kept_bytes_ = 0;
+    std::size_t hits_bytes_ = 0, levels_bytes_ = 0;
     std::optional<SceneDesc> placed_for_; ///< the beam scene the kept hits were placed for
+    std::optional<SceneDesc> levels_for_; ///< the beam scene the kept levels were made with
+    std::optional<SceneDesc> series_;     ///< the beam scene of the series being made (prepare)
     std::map<PingKey, std::shared_ptr<const TraceResult>> hits_;
     std::map<LevelsKey, std::shared_ptr<const PingLevels>> levels_;
 };

@@ -216,3 +216,24 @@ TEST_CASE("a sector scan's sweep along a still trajectory, wrapped past its sect
     for (size_t i = 0; i < a.pixels.size(); i += 3) lit += a.pixels[i] > 0;
     CHECK(lit > a.pixels.size() / 3 / 20);
 }
+
+TEST_CASE("kept levels are only copied into a series of the scene they were made with, a drag there and back "
+          "included",
+          "[kinds][traces]") {
+    const SceneDesc s = moving_sidescan(1.0, 4);
+    PingTraces traces;
+    const PingSeries first = render_pings(s, {}, &traces);
+    PingControl preview;
+    preview.preview = true;
+    SceneDesc brighter = s;
+    apply_setting(brighter, "objects.0.material.nu_db", -5.0, "test");
+    const PingSeries there = render_pings(brighter, preview, &traces); // the hits placed for s, re-shaded
+    CHECK(there.rays_traced == 0);
+    CHECK(there.ideal_db != first.ideal_db);
+    const PingSeries back = render_pings(s, preview, &traces); // s's own hits and shading: first's bytes
+    CHECK(back.rays_traced == 0);
+    check_same_series(back, first);
+    const PingSeries again = render_pings(s, {}, &traces); // copied: nothing but the scene itself
+    CHECK(again.rays_traced == 0);
+    check_same_series(again, first);
+}
