@@ -111,8 +111,10 @@ void append_ping(le::Bytes& out, const SceneDesc& s, const PingSeries& p, int i,
         le::put<std::uint16_t>(ch_header, 26, std::uint16_t(std::lround(s.sonar.frequency_khz)));
         le::put<std::uint32_t>(ch_header, 42, std::uint32_t(n)); // NumSamples
         out.insert(out.end(), ch_header.begin(), ch_header.end());
+        // Port's samples far first, starboard's near first: the specification reverses the sample order of
+        // odd-numbered (port) sonar channels so that a waterfall shows them as they lie (Rev. 41, 2.3.1).
         const float* profile = p.profile(i, ch);
-        for (size_t k = 0; k < n; ++k) out.push_back(level_byte(profile[k], m));
+        for (size_t k = 0; k < n; ++k) out.push_back(level_byte(profile[ch == 0 ? n - 1 - k : k], m));
     }
 }
 

@@ -2,6 +2,7 @@
 
 #include "core/base/errors.hpp"
 
+#include <algorithm>
 #include <cstring>
 
 namespace sonarsim {
@@ -71,6 +72,14 @@ XtfPing read_ping(const Reader& r, size_t at, const XtfFile& file) {
         if (c + bytes > r.size())
             throw InputError(r.path(), "NumSamples", "the samples run past the file's end");
         ch.data.assign(r.data(c), r.data(c) + bytes);
+        ch.near_first = ch.data;
+        const XtfChannelInfo& info = file.channel_info[size_t(ch.channel)];
+        if (info.type == 1) // port: whole samples in reverse order, each sample's bytes as they are
+            for (size_t k = 0; k < ch.samples; ++k)
+                std::copy_n(ch.data.begin() +
+                                std::ptrdiff_t((ch.samples - 1 - k) * size_t(info.bytes_per_sample)),
+                            info.bytes_per_sample,
+                            ch.near_first.begin() + std::ptrdiff_t(k * size_t(info.bytes_per_sample)));
         c += bytes;
         p.channels.push_back(std::move(ch));
     }

@@ -23,6 +23,9 @@ struct XtfChannelPing {
     float seconds_per_ping = 0;                  ///< SecondsPerPing
     std::uint32_t samples = 0;                   ///< NumSamples
     std::vector<std::uint8_t> data;              ///< samples x bytes per sample, as stored
+    /// The same samples nearest the towfish first: a port channel's (TypeOfChannel 1) are stored far first
+    /// (the specification, Rev. 41, 2.3.1: odd-numbered sonar channels are reversed for the waterfall).
+    std::vector<std::uint8_t> near_first;
 };
 
 struct XtfPing {

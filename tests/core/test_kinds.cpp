@@ -417,18 +417,22 @@ TEST_CASE("a side-scan's XTF file read back field by field by the reader written
             CHECK(xc.time_duration_s == Approx(2 * 19.5 / c));
             CHECK(xc.seconds_per_ping == Approx(p.ping_interval_s));
             REQUIRE(xc.samples == std::uint32_t(p.bins));
-            // Each sample the byte of its level: back to the level within half a byte's step.
+            // Each sample the byte of its level: back to the level within half a byte's step. Port stored far
+            // first, starboard near first (the specification's 2.3.1); near_first in range order for both.
             const double step_db = (m.hi_db - m.lo_db) / 255;
+            const auto holds = [&](int byte, float level) {
+                if (!std::isfinite(level) || level <= m.lo_db) return byte == 0;
+                if (level >= m.hi_db) return byte == 255;
+                return std::abs(m.lo_db + byte * step_db - level) <= 0.5 * step_db + 1e-4;
+            };
+            int stored = 0, ordered = 0;
             for (int k = 0; k < p.bins; ++k) {
-                const float level = p.profile(i, ch)[k];
-                const int byte = xc.data[size_t(k)];
-                if (!std::isfinite(level) || level <= m.lo_db)
-                    CHECK(byte == 0);
-                else if (level >= m.hi_db)
-                    CHECK(byte == 255);
-                else
-                    CHECK(std::abs(m.lo_db + byte * step_db - level) <= 0.5 * step_db + 1e-4);
+                const float* profile = p.profile(i, ch);
+                stored += holds(xc.data[size_t(k)], profile[ch == 0 ? p.bins - 1 - k : k]);
+                ordered += holds(xc.near_first[size_t(k)], profile[k]);
             }
+            CHECK(stored == p.bins);
+            CHECK(ordered == p.bins);
         }
     }
     // Malformed: a truncated record names its field.
