@@ -175,6 +175,9 @@ json ping_metadata(const SceneDesc& s, const PingSeries& p, const PingViews& v) 
         s.sonar.kind == SonarKind::Scanning && !problem.empty())
         j["ping360_log"] = "not written: " + problem;
     j["rays_traced"] = p.rays_traced;
+    j["profiles"] = {{"traced", p.traced_profiles},
+                     {"shaded_from_earlier_hits", p.shaded_profiles},
+                     {"copied", p.copied_profiles}};
     j["render_ms"] = p.trace_ms;
     j["stage_ms"] = {{"trace", p.stage_ms[0]},
                      {"shade", p.stage_ms[1]},

@@ -88,6 +88,8 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
     trace.preview = control.preview;
     std::mutex progress_mutex;
     size_t done = jobs - tracing.size() - shading.size(); // the copied ones
+    out.traced_profiles = int(tracing.size()), out.shaded_profiles = int(shading.size());
+    out.copied_profiles = int(done);
     const auto run = [&](size_t j) {
         Worker& w = workers.local();
         if (w.sims.empty())

@@ -32,6 +32,9 @@ struct PingSeries {
     /// level_db's order, each of the shape (bins, 1): what echoed into each sample, as an imaging sonar's.
     std::vector<GroundTruth> truth;
     std::uint64_t rays_traced = 0;
+    /// Of the pings' profiles (one per ping and channel): traced, shaded from hits traced before (the same
+    /// pose in this series or kept, PingTraces), and copied from kept levels.
+    int traced_profiles = 0, shaded_profiles = 0, copied_profiles = 0;
     double trace_ms = 0; ///< the pings' wall-clock time, all stages included
     /// The stages' times summed over pings and channels, on every thread (Frame's trace, shade, sensor,
     /// image).

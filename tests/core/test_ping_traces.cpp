@@ -59,6 +59,8 @@ TEST_CASE("kept pings: a shading change traces no ray and gives a fresh series' 
             REQUIRE(changed_stage(s, changed) >= Stage::Shade);
             const PingSeries again = render_pings(changed, {}, &traces);
             CHECK(again.rays_traced == 0);
+            CHECK(again.traced_profiles == 0);
+            CHECK(again.shaded_profiles == first.pings * first.channels);
             CHECK(again.level_db != first.level_db);
             check_same_series(again, render_pings(changed));
         }
@@ -97,6 +99,9 @@ TEST_CASE("a still side-scan's pings share one trace per channel, a moving one's
     const PingSeries one = render_pings(moving_sidescan(0.0, 1));
     const PingSeries still = render_pings(moving_sidescan(0.0, 8));
     CHECK(still.rays_traced == one.rays_traced);
+    CHECK(still.traced_profiles == 2);
+    CHECK(still.shaded_profiles == 14);
+    CHECK(still.copied_profiles == 0);
     const size_t n = size_t(still.channels) * size_t(still.bins);
     CHECK(std::equal(one.ideal_db.begin(), one.ideal_db.end(), still.ideal_db.begin() + long(7 * n)));
     const PingSeries moving = render_pings(moving_sidescan(1.0, 8));
@@ -185,6 +190,9 @@ TEST_CASE(
     check_same_series(after, fresh);
     CHECK(after.rays_traced > 0);
     CHECK(after.rays_traced < fresh.rays_traced / 3);
+    CHECK(after.traced_profiles == 6); // three new pings, two channels
+    CHECK(after.copied_profiles == 18);
+    CHECK(after.shaded_profiles == 0);
 }
 
 TEST_CASE("a sector scan's sweep along a still trajectory, wrapped past its sector's end, is the scene's own "

@@ -328,10 +328,14 @@ void stats_section(Session& session, const ControlsUi& ui) {
         const PingSeries& p = *r->pings;
         ImGui::SameLine();
         ImGui::Text("  image %.1f ms%s", r->wall_ms, r->preview() ? " (preview)" : "");
-        ImGui::TextDisabled("%d %s x %d bins, %.2f ms a ping", p.pings, p.channels == 2 ? "pings" : "steps",
-                            p.bins, p.trace_ms / std::max(1, p.pings));
-        ImGui::TextDisabled("%llu rays, a ping every %.1f ms", static_cast<unsigned long long>(p.rays_traced),
-                            1e3 * p.ping_interval_s);
+        ImGui::TextDisabled("%d %s x %d bins, every %.1f ms", p.pings, p.channels == 2 ? "pings" : "steps",
+                            p.bins, 1e3 * p.ping_interval_s);
+        ImGui::TextDisabled("%d traced, %d shaded, %d kept", p.traced_profiles, p.shaded_profiles,
+                            p.copied_profiles);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("Each ping's channels: traced anew (%llu rays), shaded from hits traced before "
+                              "from the same pose, or kept from the last image (only the pose changed)",
+                              static_cast<unsigned long long>(p.rays_traced));
     } else if (r) {
         const Frame& f = *r->frame;
         ImGui::SameLine();
