@@ -13,6 +13,7 @@
 #include "core/pipeline/simulator.hpp"
 
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -30,6 +31,9 @@ struct RenderOptions {
     std::string out;
     std::string view3d; ///< PNG of the 3D view (headless EGL)
     bool ground_truth = false;
+    std::string trajectory;                                 ///< a side-scan's or scan's pings along it
+    double at_s = std::numeric_limits<double>::quiet_NaN(); ///< the newest ping's time on it
+    bool at_given = false;                                  ///< --at was on the command line
 };
 
 /// The 3D view as PNG bytes, drawn without any display (EGL, Mesa surfaceless).
@@ -88,6 +92,8 @@ int run_render_pings(const RenderOptions& o, const SceneDesc& scene) {
     StatusLine status;
     PingControl control;
     control.ground_truth = o.ground_truth;
+    if (!o.trajectory.empty())
+        control.schedule = ping_schedule_along_file(scene, o.trajectory, o.at_s, "--trajectory");
     control.progress = [&](int done, int all) {
         if (done % 16 == 0 || done == all)
             status.show("ping " + std::to_string(done) + " of " + std::to_string(all));
@@ -110,6 +116,17 @@ int run_render_pings(const RenderOptions& o, const SceneDesc& scene) {
 
 int run_render(const RenderOptions& o) {
     const SceneDesc scene = load_scene_from_options(o.scene);
+    if (!o.trajectory.empty() && scene.sonar.kind == SonarKind::Imaging)
+        throw InputError(
+            "--trajectory", "",
+            "render takes a trajectory for a side-scan's or scan's pings (sonar.kind sidescan or "
+            "scanning); an imaging sonar's frames along one: sonarsim batch --trajectory");
+    if (!o.trajectory.empty() && !o.view3d.empty())
+        throw InputError("--trajectory", "", "draws no 3D view; leave out --view3d");
+    if (o.at_given && o.trajectory.empty())
+        throw InputError("--at", "", "is a time on a trajectory: give --trajectory FILE too");
+    if (o.at_given && !std::isfinite(o.at_s))
+        throw InputError("--at", "", "the time on the trajectory must be a finite number of seconds");
     if (scene.sonar.kind != SonarKind::Imaging && !o.out.empty() && o.view3d.empty()) {
         check_parent_dir(o.out, "--out");
         return run_render_pings(o, scene);
@@ -152,9 +169,16 @@ void register_render(CLI::App& app, std::function<int()>& run) {
                   "point, object id, incidence, number of surfaces behind it and reflections (multipath); a "
                   "side-scan or scan: per ping, channel and sample");
     cmd->add_option(
+        "--trajectory", o->trajectory,
+        "A side-scan or scan: its pings heard along this trajectory CSV (batch's format): ping k at "
+        "k x the ping interval after its start, from its pose then; the newest at --at");
+    cmd->add_option("--at", o->at_s,
+                    "With --trajectory: the newest ping's time on it [s] (default: its end)");
+    cmd->add_option(
         "--view3d", o->view3d,
         "Also draw the 3D view (scene, sonar, field of view) into this PNG, with no display (EGL)");
-    cmd->callback([o, &run] {
+    cmd->callback([o, cmd, &run] {
+        o->at_given = cmd->count("--at") > 0;
         if (o->out.empty() && o->view3d.empty()) throw CLI::RequiredError("--out");
         run = [o] { return run_render(*o); };
     });

@@ -11,7 +11,9 @@
 #include "core/scene/scene_io.hpp"
 #include "core/pipeline/simulator.hpp"
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -199,7 +201,8 @@ PYBIND11_MODULE(sonarsim, m) {
 
     m.def(
         "render_pings",
-        [](const py::object& scene, const py::object& set, bool ground_truth) {
+        [](const py::object& scene, const py::object& set, bool ground_truth, const std::string& trajectory,
+           const py::object& at_s) {
             SceneDesc s = scene_from(scene);
             std::vector<std::string> keys;
             if (!set.is_none())
@@ -213,11 +216,18 @@ PYBIND11_MODULE(sonarsim, m) {
                 throw InputError(
                     s.source_file, "sonar.kind",
                     "render_pings takes sonar.kind sidescan or scanning; an imaging sonar: render()");
+            PingControl control;
+            control.ground_truth = ground_truth;
+            if (!at_s.is_none() && !std::isfinite(at_s.cast<double>()))
+                throw InputError("at_s", "", "the time on the trajectory must be a finite number of seconds");
+            if (!trajectory.empty())
+                control.schedule = ping_schedule_along_file(
+                    s, trajectory,
+                    at_s.is_none() ? std::numeric_limits<double>::quiet_NaN() : at_s.cast<double>(),
+                    "trajectory");
             PingSeries p;
             {
                 py::gil_scoped_release release;
-                PingControl control;
-                control.ground_truth = ground_truth;
                 p = render_pings(s, control);
             }
             auto array = [](const std::vector<float>& v, std::vector<py::ssize_t> shape) {
@@ -259,10 +269,12 @@ PYBIND11_MODULE(sonarsim, m) {
             return d;
         },
         py::arg("scene") = py::none(), py::arg("set") = py::none(), py::arg("ground_truth") = false,
+        py::arg("trajectory") = "", py::arg("at_s") = py::none(),
         "a side-scan's waterfall or a scanning sonar's sweep: {'level_db': (pings, channels, bins) or "
-        "(steps, "
-        "bins), 'ideal_db', 'waterfall_db' (side-scan), 'image' (RGB), 'metadata', with ground_truth=True "
-        "'ground_truth' (arrays by name, shaped as level_db)}, as `sonarsim render` writes them");
+        "(steps, bins), 'ideal_db', 'waterfall_db' (side-scan), 'image' (RGB), 'metadata', with "
+        "ground_truth=True 'ground_truth' (arrays by name, shaped as level_db)}, as `sonarsim render` writes "
+        "them; trajectory='line.csv', at_s=12.0: the pings heard along that trajectory, the newest at 12 s "
+        "(render's --trajectory, --at)");
 
     m.def(
         "prepare_dataset",

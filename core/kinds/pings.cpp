@@ -1,5 +1,6 @@
 #include "core/kinds/pings.hpp"
 
+#include "core/base/errors.hpp"
 #include "core/data/pose.hpp"
 #include "core/sampling/acquisition.hpp"
 #include "core/shading/physics.hpp"
@@ -93,6 +94,20 @@ std::vector<Ping> ping_schedule_along(const SceneDesc& s, const Trajectory& trac
         p.head_deg = heads[size_t(((p.number % n) + n) % n)];
     }
     return pings;
+}
+
+std::vector<Ping> ping_schedule_along_file(const SceneDesc& s, const std::string& path, double at_s,
+                                           const std::string& origin) {
+    if (s.sonar.kind == SonarKind::Imaging)
+        throw InputError(
+            origin, "",
+            "a side-scan's or scan's pings along a trajectory (sonar.kind sidescan or scanning); an "
+            "imaging sonar's frames along one: sonarsim batch --trajectory");
+    if (!std::isnan(at_s) && !std::isfinite(at_s))
+        throw InputError(origin, "", "the time on the trajectory must be a finite number of seconds");
+    const Trajectory track = load_trajectory_csv(path);
+    if (track.empty()) throw InputError(path, "", "the trajectory has no poses");
+    return ping_schedule_along(s, track, std::isnan(at_s) ? track.back().t_s : at_s);
 }
 
 std::uint64_t ping_noise_draw(std::int64_t number) {

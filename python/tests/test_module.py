@@ -173,6 +173,31 @@ def test_render_pings_equals_render_files(sonarsim_exe, scratch, source_dir):
         sonarsim.render_pings(None)
 
 
+def test_render_pings_along_a_trajectory(sonarsim_exe, scratch, source_dir):
+    """Pings heard along a survey line (render's --trajectory, --at): ping k at k dt after the line's start, from
+    its pose then, the newest at the time asked; Python's arrays are render's files."""
+    scene = str(source_dir / "assets/scenes/sidescan_wreck.json")
+    sets = {"sidescan.pings": 20, "sonar.range_bins": 200}
+    line = scratch / "line.csv"
+    line.write_text("t,x,y,z,roll_deg,pitch_deg,yaw_deg\n2.0,-20,16,9,0,0,0\n12.0,0,16,9,0,0,0\n")  # 2 m/s
+    subprocess.run([sonarsim_exe, "render", "--scene", scene, *[f"--set={k}={v}" for k, v in sets.items()],
+                    "--trajectory", str(line), "--at", "7.3", "--out", str(scratch / "al")], check=True,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    out = sonarsim.render_pings(scene, set=sets, trajectory=str(line), at_s=7.3)
+    assert np.array_equal(out["level_db"], read_npy(scratch / "al.npy"))
+    pings = out["metadata"]["pings"]
+    assert len(pings) == 20
+    dt = out["metadata"]["ping_interval_s"]
+    newest = pings[-1]["time_s"]
+    assert newest <= 5.3 + 1e-9 < newest + dt  # seconds after the line's start
+    for p in pings:  # on the line: x = -20 + 2 t
+        assert p["position_m"][0] == pytest.approx(-20 + 2 * p["time_s"], abs=1e-9)
+        assert p["position_m"][1] == 16
+    for bad in (float("nan"), float("inf")):
+        with pytest.raises(ValueError, match="at_s: the time on the trajectory must be a finite number"):
+            sonarsim.render_pings(scene, set=sets, trajectory=str(line), at_s=bad)
+
+
 def test_render_pings_ground_truth_per_sample(sonarsim_exe, scratch, source_dir):
     """render_pings(ground_truth=True) gives the arrays `render --ground-truth` writes, shaped as level_db."""
     scene = str(source_dir / "assets/scenes/scan_tank.json")
