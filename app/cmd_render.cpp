@@ -93,7 +93,7 @@ int run_render_pings(const RenderOptions& o, const SceneDesc& scene) {
     PingControl control;
     control.ground_truth = o.ground_truth;
     if (!o.trajectory.empty())
-        control.schedule = ping_schedule_along_file(scene, o.trajectory, o.at_s, "--trajectory");
+        control.schedule = ping_schedule_along_file(scene, o.trajectory, o.at_s, "--trajectory", "--at");
     control.progress = [&](int done, int all) {
         if (done % 16 == 0 || done == all)
             status.show("ping " + std::to_string(done) + " of " + std::to_string(all));

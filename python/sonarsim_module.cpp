@@ -224,7 +224,7 @@ PYBIND11_MODULE(sonarsim, m) {
                 control.schedule = ping_schedule_along_file(
                     s, trajectory,
                     at_s.is_none() ? std::numeric_limits<double>::quiet_NaN() : at_s.cast<double>(),
-                    "trajectory");
+                    "trajectory", "at_s");
             PingSeries p;
             {
                 py::gil_scoped_release release;
