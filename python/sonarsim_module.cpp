@@ -218,13 +218,21 @@ PYBIND11_MODULE(sonarsim, m) {
                     "render_pings takes sonar.kind sidescan or scanning; an imaging sonar: render()");
             PingControl control;
             control.ground_truth = ground_truth;
-            if (!at_s.is_none() && !std::isfinite(at_s.cast<double>()))
-                throw InputError("at_s", "", "the time on the trajectory must be a finite number of seconds");
+            double at = std::numeric_limits<double>::quiet_NaN();
+            if (!at_s.is_none()) {
+                if (trajectory.empty())
+                    throw InputError("at_s", "", "is a time on a trajectory: give trajectory= too");
+                try {
+                    at = at_s.cast<double>();
+                } catch (const py::cast_error&) {
+                    throw InputError("at_s", "", "expected a number of seconds");
+                }
+                if (!std::isfinite(at))
+                    throw InputError("at_s", "",
+                                     "the time on the trajectory must be a finite number of seconds");
+            }
             if (!trajectory.empty())
-                control.schedule = ping_schedule_along_file(
-                    s, trajectory,
-                    at_s.is_none() ? std::numeric_limits<double>::quiet_NaN() : at_s.cast<double>(),
-                    "trajectory", "at_s");
+                control.schedule = ping_schedule_along_file(s, trajectory, at, "trajectory", "at_s");
             PingSeries p;
             {
                 py::gil_scoped_release release;

@@ -15,6 +15,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 namespace sonarsim {
 
@@ -123,10 +124,28 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
             if (++done % size_t(out.channels) == 0) control.progress(int(done) / out.channels, out.pings);
         }
     };
-    for (const std::vector<size_t>* phase : {&tracing, &shading})
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, phase->size(), 4), [&](const auto& r) {
-            for (size_t i = r.begin(); i != r.end(); ++i) run((*phase)[i]);
+    const auto run_phase = [&](const std::vector<size_t>& phase) {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, phase.size(), 4), [&](const auto& r) {
+            // Isolated: a thread waiting in a render's own parallel loops takes no other ping, which would
+            // use this thread's simulator while that render is on its stack.
+            for (size_t i = r.begin(); i != r.end(); ++i)
+                tbb::this_task_arena::isolate([&] { run(phase[i]); });
         });
+    };
+    try {
+        run_phase(tracing);
+    } catch (const TraceCancelled&) {
+        // The traces finished before the cancel are kept (every task has ended once parallel_for throws): a
+        // series cancelled again and again, as along a played trajectory, still gets on.
+        if (traces) {
+            std::map<PingKey, std::shared_ptr<const TraceResult>> finished;
+            for (size_t j : tracing)
+                if (hits[j]) finished.emplace(keys[j], hits[j]);
+            traces->add(std::move(finished));
+        }
+        throw;
+    }
+    run_phase(shading);
     for (size_t j = 0; j < jobs; ++j) {
         if (!levels[j]) continue;
         const size_t off = j * size_t(out.bins);

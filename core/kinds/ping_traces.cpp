@@ -44,7 +44,8 @@ Stage changed_but_pings(SceneDesc before, const SceneDesc& beam) {
 } // namespace
 
 void PingTraces::prepare(const SceneDesc& beam, bool preview) {
-    if (levels_for_ && changed_but_pings(*levels_for_, beam) != Stage::None)
+    // A display value (colour map, display range) does not touch the levels.
+    if (levels_for_ && changed_but_pings(*levels_for_, beam) < Stage::Display)
         levels_.clear(), levels_bytes_ = 0;
     series_ = beam;
     if (placed_for_) {
@@ -66,6 +67,16 @@ std::shared_ptr<const PingLevels> PingTraces::find_levels(const PingKey& key, st
     const auto it = levels_.find({key, draw});
     if (it == levels_.end() || (it->second->preview && !preview)) return nullptr;
     return it->second;
+}
+
+void PingTraces::add(std::map<PingKey, std::shared_ptr<const TraceResult>> hits) {
+    for (auto& [key, h] : hits) {
+        if (hits_.count(key)) continue;
+        const std::size_t bytes = hits_bytes(*h);
+        if (hits_bytes_ + levels_bytes_ + bytes > budget_bytes_) break;
+        hits_bytes_ += bytes;
+        hits_.emplace(key, std::move(h));
+    }
 }
 
 void PingTraces::keep(std::map<PingKey, std::shared_ptr<const TraceResult>> series_hits,

@@ -52,13 +52,17 @@ class PingTraces {
     /// does not take a preview's hits.
     std::shared_ptr<const TraceResult> find(const PingKey& key, bool preview) const;
     /// The levels of `key` with noise draw `draw` kept from a series of the prepared scene itself (only the
-    /// poses may differ), or null; a full-quality series does not take a preview's.
+    /// poses and display values may differ), or null; a full-quality series does not take a preview's.
     std::shared_ptr<const PingLevels> find_levels(const PingKey& key, std::uint64_t draw, bool preview) const;
     using LevelsKey = std::pair<PingKey, std::uint64_t>;
     /// After the series: its hits and levels replace the kept ones, as many as the budget holds (hits
     /// first).
     void keep(std::map<PingKey, std::shared_ptr<const TraceResult>> series_hits,
               std::map<LevelsKey, std::shared_ptr<const PingLevels>> series_levels);
+
+    /// Hits of the prepared scene traced by a series that did not finish (cancelled): kept beside the others,
+    /// as many as the budget holds.
+    void add(std::map<PingKey, std::shared_ptr<const TraceResult>> hits);
 
     std::size_t kept_bytes() const { return hits_bytes_ + levels_bytes_; }
     std::size_t kept_pings() const { return hits_.size(); }

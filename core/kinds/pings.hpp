@@ -14,7 +14,8 @@ namespace sonarsim {
 
 /// One ping of a side-scan (both channels) or of a scanning head (one channel).
 struct Ping {
-    double time_s = 0;   ///< transmit time after the first ping's [s]
+    double time_s = 0;   ///< transmit time after the first ping's [s]; along a trajectory, after its start
+                         ///< (negative before it)
     Pose vehicle;        ///< the sonar's pose at the transmit (sonar.position and orientation moved by the
                          ///< motion rows)
     double head_deg = 0; ///< scanning: the head angle from the sonar's x axis toward port [deg]

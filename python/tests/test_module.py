@@ -193,6 +193,10 @@ def test_render_pings_along_a_trajectory(sonarsim_exe, scratch, source_dir):
     for p in pings:  # on the line: x = -20 + 2 t
         assert p["position_m"][0] == pytest.approx(-20 + 2 * p["time_s"], abs=1e-9)
         assert p["position_m"][1] == 16
+    with pytest.raises(ValueError, match="at_s: is a time on a trajectory: give trajectory= too"):
+        sonarsim.render_pings(scene, set=sets, at_s=3.0)
+    with pytest.raises(ValueError, match="at_s: expected a number of seconds"):
+        sonarsim.render_pings(scene, set=sets, trajectory=str(line), at_s="soon")
     for bad in (float("nan"), float("inf")):
         with pytest.raises(ValueError, match="at_s: the time on the trajectory must be a finite number"):
             sonarsim.render_pings(scene, set=sets, trajectory=str(line), at_s=bad)

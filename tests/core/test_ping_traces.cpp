@@ -7,6 +7,7 @@
 #include "core/scene/scene_io.hpp"
 #include "core/shading/physics.hpp"
 
+#include <atomic>
 #include <cmath>
 
 #include <catch2/catch.hpp>
@@ -242,6 +243,40 @@ TEST_CASE("kept levels are only copied into a series of the scene they were made
     CHECK(back.rays_traced == 0);
     check_same_series(back, first);
     const PingSeries again = render_pings(s, {}, &traces); // copied: nothing but the scene itself
+    CHECK(again.rays_traced == 0);
+    check_same_series(again, first);
+}
+
+TEST_CASE("a cancelled series keeps the traces it finished, so the next one traces only the rest",
+          "[kinds][traces]") {
+    const SceneDesc s = moving_sidescan(1.0, 12);
+    const PingSeries fresh = render_pings(s);
+    PingTraces traces;
+    std::atomic<bool> cancel{false};
+    PingControl control;
+    control.cancel = &cancel;
+    control.progress = [&](int done, int) {
+        if (done >= 4) cancel = true; // four pings' channels traced
+    };
+    CHECK_THROWS_AS(render_pings(s, control, &traces), TraceCancelled);
+    const auto finished = int(traces.kept_pings());
+    CHECK(finished >= 8);
+    CHECK(finished < 24);
+    const PingSeries rest = render_pings(s, {}, &traces);
+    CHECK(rest.traced_profiles == 24 - finished);
+    CHECK(rest.rays_traced < fresh.rays_traced);
+    check_same_series(rest, fresh);
+}
+
+TEST_CASE("a display value keeps the kept levels: the series is copied", "[kinds][traces]") {
+    const SceneDesc s = moving_sidescan(1.0, 4);
+    PingTraces traces;
+    const PingSeries first = render_pings(s, {}, &traces);
+    SceneDesc shown = s;
+    apply_setting(shown, "display.colormap", "viridis", "test");
+    REQUIRE(changed_stage(s, shown) == Stage::Display);
+    const PingSeries again = render_pings(shown, {}, &traces);
+    CHECK(again.copied_profiles == first.pings * first.channels);
     CHECK(again.rays_traced == 0);
     check_same_series(again, first);
 }

@@ -203,7 +203,7 @@ void Viewer::frame(int index) {
         session_.edit([&](SceneDesc& s) { s.sonar.pose = *p; });
     // While the sonar is on the trajectory (played, paused, at its end), a side-scan's or scan's pings are
     // heard along it: the waterfall scrolls.
-    const bool on_track = trajectory_.track.size() >= 2 &&
+    const bool on_track = !trajectory_.recording && trajectory_.track.size() >= 2 &&
                           trajectory_.track.passes(session_.scene().sonar.pose, trajectory_.t_s);
     session_.set_ping_track(on_track ? trajectory_.track.shared() : nullptr, trajectory_.t_s);
     if (!sync && session_.submit(interacting_) != 0) extra_frames_ = 2;

@@ -115,12 +115,13 @@ std::vector<glm::vec3> floor_footprint(const SonarParams& s, double z0, int step
 
 std::vector<SonarParams> fields_of_view(const SceneDesc& scene, const std::vector<Ping>* along) {
     if (scene.sonar.kind == SonarKind::Imaging) return {scene.sonar};
-    const std::vector<Ping> own = along && !along->empty() ? std::vector<Ping>{} : ping_schedule(scene);
-    const std::vector<Ping>& pings = own.empty() ? *along : own;
+    const bool is_along = along && !along->empty();
+    const std::vector<Ping> own = is_along ? std::vector<Ping>{} : ping_schedule(scene);
+    const std::vector<Ping>& pings = is_along ? *along : own;
     if (pings.empty()) return {};
     std::vector<const Ping*> drawn;
     if (scene.sonar.kind == SonarKind::Sidescan) {
-        drawn = {own.empty() ? &pings.back() : &pings.front()}; // the ping heard from the sonar's pose
+        drawn = {is_along ? &pings.back() : &pings.front()}; // the ping heard from the sonar's pose
     } else { // the sector's first step (the sweep's count 0 modulo its steps) and the head's newest step
         const auto n = std::int64_t(pings.size());
         drawn = {&pings[size_t((((-pings.front().number) % n) + n) % n)], &pings.back()};
