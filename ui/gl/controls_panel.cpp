@@ -1,4 +1,5 @@
 #include "ui/gl/controls_panel.hpp"
+#include "ui/gl/readout.hpp"
 
 #include "core/scene/devices.hpp"
 #include "core/scene/params.hpp"
@@ -8,8 +9,6 @@
 #include "ui/model/scene_labels.hpp"
 
 #include "core/meshfile/mesh_formats.hpp"
-#include "core/pipeline/memory_report.hpp"
-#include "core/shading/physics.hpp"
 
 #include <imgui.h>
 #include <imgui_internal.h>
@@ -18,7 +17,6 @@
 #include <algorithm>
 #include <filesystem>
 #include <cmath>
-#include <cstdio>
 
 namespace sonarsim::ui {
 namespace {
@@ -274,93 +272,6 @@ void material_section(Session& session, ControlsUi& ui) {
     }
 }
 
-void estimate_tooltip(const SceneDesc& s, const TraceResult::ErrorEstimate& est) {
-    if (s.sampling.placement == RayPlacement::Jittered) {
-        ImGui::SetTooltip(
-            "The jittered grid's estimate of this image's error: rel L1 of the linear image and "
-            "median |dB| over echoing bins,\nagainst sampling.tolerance_rel_l1 (%.2f %%) and "
-            "tolerance_db (%.3f dB): its two independent halves' difference (%.2f %%) and\nits "
-            "footprint's bias (%.2f %%), added in quadrature bin by bin (docs/model.md). The grid "
-            "does not refine: more rays lower it.",
-            100 * s.sampling.tolerance_rel_l1, s.sampling.tolerance_db, 100 * est.variance_rel_l1,
-            100 * est.footprint_rel_l1);
-        return;
-    }
-    ImGui::SetTooltip("The sampler's estimate of this image's error: rel L1 of the linear image and median "
-                      "|dB| over echoing bins,\nagainst sampling.tolerance_rel_l1 (%.2f %%) and tolerance_db "
-                      "(%.3f dB); %.2f %% of it is one ray column's error across a beam's\nwidth, which "
-                      "sampling.estimate fast reports and does not refine (strict adds ray columns for it; "
-                      "docs/model.md).",
-                      100 * s.sampling.tolerance_rel_l1, s.sampling.tolerance_db, 100 * est.azimuth_rel_l1);
-}
-
-/// The sampler's estimate of the shown image's error (adaptive, jittered), against its tolerances (none for
-/// a plain grid or a preview).
-void estimate_line(const SceneDesc& s, const TraceResult::ErrorEstimate& est) {
-    if (!est.valid) return;
-    const bool met = est.meets(s.sampling);
-    // Short enough for the panel's narrowest width; the tooltip says the rest.
-    const char* mode = est.strict ? " strict" : "";
-    if (met)
-        ImGui::TextDisabled("estimate %.2f %% %.3f dB%s", 100 * est.rel_l1, est.median_abs_db, mode);
-    else
-        ImGui::TextColored(ImVec4(1.0f, 0.65f, 0.3f, 1.0f), "estimate %.2f %% %.3f dB%s, %s",
-                           100 * est.rel_l1, est.median_abs_db, mode,
-                           est.budget_reached ? "budget" : "> tol.");
-    // Fast stops once what it refines meets the tolerances; what its probe sees across the beams it reports.
-    const bool azimuth_left = !met && !est.budget_reached && est.azimuth_rel_l1 > 0;
-    if (azimuth_left) {
-        if (ImGui::IsItemHovered()) estimate_tooltip(s, est);
-        ImGui::TextColored(ImVec4(1.0f, 0.65f, 0.3f, 1.0f), "  %.2f %% of it across beams",
-                           100 * est.azimuth_rel_l1);
-    }
-    if (ImGui::IsItemHovered()) estimate_tooltip(s, est);
-}
-
-void stats_section(Session& session, const ControlsUi& ui) {
-    const SceneDesc& s = session.scene();
-    ImGui::Text("alpha = %.3f dB/m",
-                absorption_db_per_m(s.sonar.frequency_khz, s.water.temperature_c, s.water.depth_m));
-    if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("Absorption (eq. 7) at f, T, D; the paper's Table II gives 3.04 dB/m");
-    ImGui::Text("frame %.1f ms", ui.frame_ms);
-    if (const RenderResult* r = session.shown(); r && r->pings) { // a side-scan's or scan's pings
-        const PingSeries& p = *r->pings;
-        ImGui::SameLine();
-        ImGui::Text("  image %.1f ms%s", r->wall_ms, r->preview() ? " (preview)" : "");
-        ImGui::TextDisabled("%d %s x %d bins, every %.1f ms", p.pings, p.channels == 2 ? "pings" : "steps",
-                            p.bins, 1e3 * p.ping_interval_s);
-        ImGui::TextDisabled("%d traced, %d shaded, %d kept", p.traced_profiles, p.shaded_profiles,
-                            p.copied_profiles);
-        if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("Each ping's channels: traced anew (%llu rays), shaded from hits traced before "
-                              "from the same pose, or kept from the last image (only the pose changed)",
-                              static_cast<unsigned long long>(p.rays_traced));
-    } else if (r) {
-        const Frame& f = *r->frame;
-        ImGui::SameLine();
-        ImGui::Text("  image %.1f ms%s", r->wall_ms, f.preview() ? " (preview)" : "");
-        // This image's own work per stage: a stage it shares with the image before is "kept"; an adaptive
-        // trace shades its cells itself.
-        auto stage_ms = [](double ms, const char* none) {
-            char b[32];
-            if (ms > 0) std::snprintf(b, sizeof b, "%.1f", ms);
-            return ms > 0 ? std::string(b) : std::string(none);
-        };
-        ImGui::TextDisabled("trace %s  shade %s  map %s ms", stage_ms(f.trace_ms, "kept").c_str(),
-                            stage_ms(f.shade_ms, f.trace_ms > 0 ? "in trace" : "kept").c_str(),
-                            stage_ms(f.image_ms, "kept").c_str());
-        const MemoryReport m = memory_report();
-        ImGui::TextDisabled("%llu rays  kept %s MiB", static_cast<unsigned long long>(f.hits().rays_traced),
-                            mib_text(m.mesh_bytes + m.kept_bytes).c_str());
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Kept between images: %s", to_string(m).c_str());
-        estimate_line(s, f.error_estimate);
-    } else {
-        ImGui::SameLine();
-        ImGui::TextDisabled("  image: rendering...");
-    }
-}
-
 void footer(Session& session) {
     if (!session.error().empty()) {
         ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
@@ -403,7 +314,7 @@ void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, Tra
     ControlsWidgets& w = ui.widgets;
     w.labels_above = label_w > 0.5f * avail;
     ImGui::PushItemWidth(w.labels_above ? -1.0f : -label_w);
-    stats_section(session, ui);
+    draw_readout(session, ui.frame_ms);
     const std::string snapshot = "Snapshot (" + shortcut_text(KeyAction::Snapshot) + ")"; // the bindings' key
     if (is_paper_fig9_scene(session.scene())) {
         if (ImGui::Button("Reset to paper values")) session.reset_to_paper();
