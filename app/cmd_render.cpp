@@ -13,11 +13,11 @@
 #include "core/pipeline/simulator.hpp"
 
 #include <cmath>
-#include <limits>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #ifdef SONARSIM_HAVE_VIEWER
 #include "ui/gl/view3d.hpp"
@@ -31,9 +31,9 @@ struct RenderOptions {
     std::string out;
     std::string view3d; ///< PNG of the 3D view (headless EGL)
     bool ground_truth = false;
-    std::string trajectory;                                 ///< a side-scan's or scan's pings along it
-    double at_s = std::numeric_limits<double>::quiet_NaN(); ///< the newest ping's time on it
-    bool at_given = false;                                  ///< --at was on the command line
+    std::string trajectory; ///< a side-scan's or scan's pings along it
+    double at_s = 0;        ///< the newest ping's time on it (when at_given)
+    bool at_given = false;  ///< --at was on the command line
 };
 
 /// The 3D view as PNG bytes, drawn without any display (EGL, Mesa surfaceless).
@@ -93,7 +93,9 @@ int run_render_pings(const RenderOptions& o, const SceneDesc& scene) {
     PingControl control;
     control.ground_truth = o.ground_truth;
     if (!o.trajectory.empty())
-        control.schedule = ping_schedule_along_file(scene, o.trajectory, o.at_s, "--trajectory", "--at");
+        control.schedule = ping_schedule_along_file(scene, o.trajectory,
+                                                    o.at_given ? std::optional<double>(o.at_s) : std::nullopt,
+                                                    "--trajectory", "--at");
     control.progress = [&](int done, int all) {
         if (done % 16 == 0 || done == all)
             status.show("ping " + std::to_string(done) + " of " + std::to_string(all));
@@ -125,8 +127,6 @@ int run_render(const RenderOptions& o) {
         throw InputError("--trajectory", "", "draws no 3D view; leave out --view3d");
     if (o.at_given && o.trajectory.empty())
         throw InputError("--at", "", "is a time on a trajectory: give --trajectory FILE too");
-    if (o.at_given && !std::isfinite(o.at_s))
-        throw InputError("--at", "", "the time on the trajectory must be a finite number of seconds");
     if (scene.sonar.kind != SonarKind::Imaging && !o.out.empty() && o.view3d.empty()) {
         check_parent_dir(o.out, "--out");
         return run_render_pings(o, scene);

@@ -11,10 +11,9 @@
 #include "core/scene/scene_io.hpp"
 #include "core/pipeline/simulator.hpp"
 
-#include <cmath>
 #include <filesystem>
-#include <limits>
 #include <memory>
+#include <optional>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -218,7 +217,7 @@ PYBIND11_MODULE(sonarsim, m) {
                     "render_pings takes sonar.kind sidescan or scanning; an imaging sonar: render()");
             PingControl control;
             control.ground_truth = ground_truth;
-            double at = std::numeric_limits<double>::quiet_NaN();
+            std::optional<double> at;
             if (!at_s.is_none()) {
                 if (trajectory.empty())
                     throw InputError("at_s", "", "is a time on a trajectory: give trajectory= too");
@@ -227,9 +226,6 @@ PYBIND11_MODULE(sonarsim, m) {
                 } catch (const py::cast_error&) {
                     throw InputError("at_s", "", "expected a number of seconds");
                 }
-                if (!std::isfinite(at))
-                    throw InputError("at_s", "",
-                                     "the time on the trajectory must be a finite number of seconds");
             }
             if (!trajectory.empty())
                 control.schedule = ping_schedule_along_file(s, trajectory, at, "trajectory", "at_s");

@@ -168,7 +168,7 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
             }
             series_levels.emplace(PingTraces::LevelsKey{keys[j], draws[j]}, levels[j]);
         }
-        traces->keep(std::move(series_hits), std::move(series_levels));
+        traces->keep(beam, std::move(series_hits), std::move(series_levels));
     }
     for (const Worker& w : workers) {
         out.rays_traced += w.rays;

@@ -47,7 +47,6 @@ void PingTraces::prepare(const SceneDesc& beam, bool preview) {
     // A display value (colour map, display range) does not touch the levels.
     if (levels_for_ && changed_but_pings(*levels_for_, beam) < Stage::Display)
         levels_.clear(), levels_bytes_ = 0;
-    series_ = beam;
     if (placed_for_) {
         const Stage s = changed_but_pings(*placed_for_, beam);
         if (s == Stage::Place && preview) return; // re-shaded as placed for the earlier scene
@@ -79,7 +78,8 @@ void PingTraces::add(std::map<PingKey, std::shared_ptr<const TraceResult>> hits)
     }
 }
 
-void PingTraces::keep(std::map<PingKey, std::shared_ptr<const TraceResult>> series_hits,
+void PingTraces::keep(const SceneDesc& beam,
+                      std::map<PingKey, std::shared_ptr<const TraceResult>> series_hits,
                       std::map<LevelsKey, std::shared_ptr<const PingLevels>> series_levels) {
     hits_.clear(), levels_.clear(), hits_bytes_ = levels_bytes_ = 0;
     for (auto& [key, hits] : series_hits) {
@@ -94,7 +94,7 @@ void PingTraces::keep(std::map<PingKey, std::shared_ptr<const TraceResult>> seri
         levels_bytes_ += bytes;
         levels_.emplace(key, std::move(levels));
     }
-    levels_for_ = series_; // the levels are this series' own
+    levels_for_ = beam; // the levels are this series' own
 }
 
 } // namespace sonarsim

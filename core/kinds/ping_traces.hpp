@@ -55,9 +55,9 @@ class PingTraces {
     /// poses and display values may differ), or null; a full-quality series does not take a preview's.
     std::shared_ptr<const PingLevels> find_levels(const PingKey& key, std::uint64_t draw, bool preview) const;
     using LevelsKey = std::pair<PingKey, std::uint64_t>;
-    /// After the series: its hits and levels replace the kept ones, as many as the budget holds (hits
-    /// first).
-    void keep(std::map<PingKey, std::shared_ptr<const TraceResult>> series_hits,
+    /// After the series of `beam`: its hits and levels replace the kept ones, as many as the budget holds
+    /// (hits first).
+    void keep(const SceneDesc& beam, std::map<PingKey, std::shared_ptr<const TraceResult>> series_hits,
               std::map<LevelsKey, std::shared_ptr<const PingLevels>> series_levels);
 
     /// Hits of the prepared scene traced by a series that did not finish (cancelled): kept beside the others,
@@ -73,7 +73,6 @@ class PingTraces {
     std::size_t hits_bytes_ = 0, levels_bytes_ = 0;
     std::optional<SceneDesc> placed_for_; ///< the beam scene the kept hits were placed for
     std::optional<SceneDesc> levels_for_; ///< the beam scene the kept levels were made with
-    std::optional<SceneDesc> series_;     ///< the beam scene of the series being made (prepare)
     std::map<PingKey, std::shared_ptr<const TraceResult>> hits_;
     std::map<LevelsKey, std::shared_ptr<const PingLevels>> levels_;
 };

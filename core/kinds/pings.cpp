@@ -96,18 +96,19 @@ std::vector<Ping> ping_schedule_along(const SceneDesc& s, const Trajectory& trac
     return pings;
 }
 
-std::vector<Ping> ping_schedule_along_file(const SceneDesc& s, const std::string& path, double at_s,
-                                           const std::string& origin, const std::string& at_origin) {
+std::vector<Ping> ping_schedule_along_file(const SceneDesc& s, const std::string& path,
+                                           std::optional<double> at_s, const std::string& origin,
+                                           const std::string& at_origin) {
     if (s.sonar.kind == SonarKind::Imaging)
         throw InputError(
             origin, "",
             "a side-scan's or scan's pings along a trajectory (sonar.kind sidescan or scanning); an "
             "imaging sonar's frames along one: sonarsim batch --trajectory");
-    if (!std::isnan(at_s) && !std::isfinite(at_s))
+    if (at_s && !std::isfinite(*at_s))
         throw InputError(at_origin, "", "the time on the trajectory must be a finite number of seconds");
     const Trajectory track = load_trajectory_csv(path);
     if (track.empty()) throw InputError(path, "", "the trajectory has no poses");
-    const double at = std::isnan(at_s) ? track.back().t_s : at_s;
+    const double at = at_s ? *at_s : track.back().t_s;
     if (std::abs(at - track.front().t_s) > kMaxPingTrackSpan_s) {
         char b[160];
         std::snprintf(b, sizeof b, "%g s is more than %g s from the trajectory's start (%g s)", at,

@@ -7,6 +7,7 @@
 #include "core/data/trajectory.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,11 +60,12 @@ std::vector<Ping> ping_schedule_along(const SceneDesc& scene, const Trajectory& 
 constexpr double kMaxPingTrackSpan_s = 1e9;
 
 /// ping_schedule_along the trajectory in CSV file `path` (load_trajectory_csv), the newest ping at its time
-/// `at_s`, or at its end when `at_s` is NaN. InputError(origin, ...) for a sonar that is not a side-scan or
+/// `at_s`, or at its end when none is given. InputError(origin, ...) for a sonar that is not a side-scan or
 /// scan; InputError(at_origin, ...) for a time that is not finite or farther than kMaxPingTrackSpan_s from
 /// the trajectory's start.
-std::vector<Ping> ping_schedule_along_file(const SceneDesc& scene, const std::string& path, double at_s,
-                                           const std::string& origin, const std::string& at_origin);
+std::vector<Ping> ping_schedule_along_file(const SceneDesc& scene, const std::string& path,
+                                           std::optional<double> at_s, const std::string& origin,
+                                           const std::string& at_origin);
 
 /// The pose of channel `channel`'s transducer at ping `ping`: a side-scan's port (+90 deg yaw) or starboard
 /// (-90 deg) transducer pitched down by sidescan.depression_deg; a scanning head turned by head_deg.
