@@ -20,7 +20,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <fstream>
+#include <sstream>
 
 using namespace sonarsim;
 using sonarsim::test::out_path;
@@ -62,8 +62,9 @@ int first_bin_at_least(const float* profile, int bins, double threshold_db, int 
 
 /// A vertical cylinder wall of radius r_m from z = 0 to 2 m, 720 faces, as an OBJ file.
 std::string tank_obj(double r_m) {
-    const std::string path = out_path("kinds_tank.obj");
-    std::ofstream f(path);
+    const std::string path =
+        out_path("kinds_tank_" + std::to_string(int(std::lround(r_m * 1000))) + "mm.obj");
+    std::ostringstream f;
     const int n = 720;
     for (int i = 0; i < n; ++i) {
         const double a = 2 * 3.14159265358979323846 * i / n;
@@ -74,6 +75,7 @@ std::string tank_obj(double r_m) {
         const int a = 2 * i + 1, b = 2 * i + 2, c = 2 * ((i + 1) % n) + 1, d = 2 * ((i + 1) % n) + 2;
         f << "f " << a << " " << c << " " << d << "\nf " << a << " " << d << " " << b << "\n";
     }
+    sonarsim::test::write_text_atomically(path, f.str());
     return path;
 }
 
