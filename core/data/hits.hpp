@@ -116,6 +116,9 @@ struct TraceControl {
     /// The beams to trace (one flag per beam), or null for all: the others are left without cells (motion
     /// during a frame traces each ping's beams from its own pose).
     const std::vector<char>* beams = nullptr;
+    /// Adaptive scheme: every pass pays the ray budget in a fixed order. By default only a pass likely to
+    /// reach the budget, or refused a ray first come, does; the image is the same bytes either way.
+    bool ordered_budget = false;
     bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
     bool traces(int beam) const { return !beams || (*beams)[size_t(beam)]; }
     /// How many of n beams are traced.

@@ -31,6 +31,10 @@ constexpr double kRefinedShare = 1.0 / 3;
 /// The groups taken after an estimate aim at this fraction of each tolerance, so that one more pass is
 /// rarely needed.
 constexpr double kAim = 0.75;
+/// A pass whose base grid times this is more than the budget has left is ordered from the start: refinement
+/// adds up to about 2-4 times a pass's base grid where the budget does not bind, so such a pass would likely
+/// be refused first come and traced twice.
+constexpr double kLikelyRefinement = 8;
 
 struct Choice {
     std::vector<char> take;    ///< per group
@@ -128,12 +132,11 @@ PolarImage shade_beams(const SceneDesc& s, TraceResult& r, const std::vector<int
     return img;
 }
 
-/// One adaptive trace, the budget paid first come or (`ordered`) in a fixed order; `refused`: whether the
-/// budget refused a ray (then a first-come trace depends on the threads).
-TraceResult trace_adaptive_once(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control,
-                                bool ordered, bool& refused) {
+} // namespace
+
+TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control) {
     Sampler sp(g, s, control);
-    sp.ordered = ordered;
+    sp.ordered = control.ordered_budget;
     const int N = s.sonar.beams, T = int(sp.traced.size());
     const int stride = sp.multipath                         ? 1
                        : T >= adaptive::kWideBeams          ? adaptive::kWideEstimateStride
@@ -191,8 +194,26 @@ TraceResult trace_adaptive_once(const SceneGeometry& g, const SceneDesc& s, cons
             };
             const bool may_bump = denser(L) && !control.preview && !sp.multipath;
             ++passes;
+            // First come is faster (each column refined while in the cache), but where the budget refuses a
+            // ray, which rays it paid for depends on the threads: such a pass is traced again from where it
+            // started with the budget paid in a fixed order, so that the same scene gives the same bytes.
+            // The passes before it were not refused, so they are what an ordered pass would have made. A
+            // pass likely to reach the budget is ordered from the start.
+            double base = 0;
+            for (size_t k : idx) base += sp.base_rays(M0_of(L), int(groups[k].size())) * az_mult[k];
+            if (kLikelyRefinement * base > budget_left()) sp.ordered = true;
+            const std::uint64_t rays_before = sp.rays.load();
+            const adaptive::Beams carried_before = sp.ordered ? adaptive::Beams{} : carried;
             adaptive::PassCells pc =
                 adaptive::trace_pass(sp, M0_of(L), sel, may_bump ? &bump : nullptr, &carried);
+            if (!sp.ordered && sp.budget_hit.load()) {
+                pc = adaptive::PassCells{}; // its memory back first
+                carried = carried_before;
+                sp.rays.store(rays_before), sp.budget_hit.store(false);
+                sp.ordered = true;
+                ++passes;
+                pc = adaptive::trace_pass(sp, M0_of(L), sel, may_bump ? &bump : nullptr, &carried);
+            }
             rays += pc.fine.rays_traced;
             multipath_rays += pc.fine.multipath_rays;
             if (sp.multipath) out.ghosts = std::move(pc.fine.ghosts);
@@ -292,21 +313,7 @@ TraceResult trace_adaptive_once(const SceneGeometry& g, const SceneDesc& s, cons
     out.shaded = std::move(shaded);
     out.rays_traced = rays;
     out.multipath_rays = multipath_rays;
-    refused = sp.budget_hit.load();
     return out;
-}
-
-} // namespace
-
-TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control) {
-    // First come is faster (each column refined while in the cache); where the budget refused a ray, which
-    // rays it paid for depends on the threads: that image is traced again with the budget paid in a fixed
-    // order, so that the same scene gives the same bytes.
-    bool refused = false;
-    TraceResult first = trace_adaptive_once(g, s, control, false, refused);
-    if (!refused) return first;
-    first = TraceResult{}; // its memory back before the second trace
-    return trace_adaptive_once(g, s, control, true, refused);
 }
 
 } // namespace sonarsim

@@ -51,7 +51,7 @@ struct Sampler {
     int elevation_levels, azimuth_levels;
     mutable std::atomic<std::uint64_t> rays{0}; ///< rays traced or reserved in this image, all passes
     mutable std::atomic<bool> budget_hit{false};
-    /// The budget pays in a fixed order (refine_columns, refine_azimuth): a trace that the budget stopped
+    /// The budget pays in a fixed order (refine_columns, refine_azimuth): a pass that the budget stopped
     /// first come is traced again so (trace_adaptive), so that it does not depend on the threads.
     bool ordered = false;
     /// A smooth pattern's first base grid's cell edges [rad], top down (sampling.elevation_rays + 1 of them,
