@@ -29,6 +29,7 @@ struct BatchCliOptions {
     double rate_hz = 10.0;
     bool resume = false;
     bool ground_truth = false;
+    bool ground_truth_maps = false;
     bool start_now = false;
 };
 
@@ -71,6 +72,11 @@ int run_batch_command(const BatchCliOptions& o) {
     if (!o.shard.empty()) options.frames = shard_frames(o.shard, trajectory.size(), "--shard");
     options.resume = o.resume;
     options.ground_truth = o.ground_truth;
+    options.ground_truth_maps = o.ground_truth_maps;
+    if (o.ground_truth_maps && scene.sonar.kind != SonarKind::Imaging)
+        throw InputError("--ground-truth-png", "sonar.kind",
+                         "maps an imaging sonar's range bins and beams; a side-scan's or scan's ground truth "
+                         "per sample: --ground-truth");
     StatusLine status;
     options.progress = [&](const BatchProgress& p) { status.show(progress_text(p)); };
     if (scene.sonar.kind != SonarKind::Imaging) { // each frame a waterfall or sweep: the timing said once
@@ -185,6 +191,10 @@ void register_batch(CLI::App& app, std::function<int()>& run) {
         "Also write each frame's NNNNNN_gt_<name>.npy (elevation, point, object id, incidence, "
         "surfaces and reflections per range bin and beam; a side-scan or scan: per ping, channel and "
         "sample)");
+    cmd->add_flag("--ground-truth-png", o->ground_truth_maps,
+                  "Also write each frame's ground truth as 16-bit gray PNG maps laid out as its _polar.png: "
+                  "NNNNNN_gt_range_m.png and NNNNNN_gt_elevation_deg.png, their scale in NNNNNN.json and in "
+                  "each PNG's text");
     cmd->add_option(
         "--aris", o->aris,
         "Also write the dataset as an ARIS recording (.aris; 48, 64, 96 or 128 beams); needs every frame");

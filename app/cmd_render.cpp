@@ -31,9 +31,10 @@ struct RenderOptions {
     std::string out;
     std::string view3d; ///< PNG of the 3D view (headless EGL)
     bool ground_truth = false;
-    std::string trajectory; ///< a side-scan's or scan's pings along it
-    double at_s = 0;        ///< the newest ping's time on it (when at_given)
-    bool at_given = false;  ///< --at was on the command line
+    bool ground_truth_maps = false; ///< also the 16-bit PNG maps (implies ground_truth)
+    std::string trajectory;         ///< a side-scan's or scan's pings along it
+    double at_s = 0;                ///< the newest ping's time on it (when at_given)
+    bool at_given = false;          ///< --at was on the command line
 };
 
 /// The 3D view as PNG bytes, drawn without any display (EGL, Mesa surfaceless).
@@ -127,6 +128,10 @@ int run_render(const RenderOptions& o) {
         throw InputError("--trajectory", "", "draws no 3D view; leave out --view3d");
     if (o.at_given && o.trajectory.empty())
         throw InputError("--at", "", "is a time on a trajectory: give --trajectory FILE too");
+    if (o.ground_truth_maps && scene.sonar.kind != SonarKind::Imaging)
+        throw InputError("--ground-truth-png", "",
+                         "maps an imaging sonar's range bins and beams; a side-scan's or scan's ground truth "
+                         "per sample: --ground-truth");
     if (scene.sonar.kind != SonarKind::Imaging && !o.out.empty() && o.view3d.empty()) {
         check_parent_dir(o.out, "--out");
         return run_render_pings(o, scene);
@@ -146,8 +151,15 @@ int run_render(const RenderOptions& o) {
     const auto f = sim.render();
     if (o.ground_truth)
         for (auto& file : ground_truth_files(o.out, *f->truth_ptr)) extra.push_back(std::move(file));
-    write_render_files(o.out, scene, *f, std::move(extra));
+    if (o.ground_truth_maps)
+        for (auto& file : ground_truth_map_files(o.out, *f->truth_ptr, scene))
+            extra.push_back(std::move(file));
+    write_render_files(o.out, scene, *f, std::move(extra),
+                       o.ground_truth_maps ? ground_truth_maps_metadata(scene) : json(nullptr));
     if (o.ground_truth) std::cout << "wrote " << o.out << "_gt_*.npy (ground truth per range bin and beam)\n";
+    if (o.ground_truth_maps)
+        std::cout << "wrote " << o.out << "_gt_range_m.png, " << o.out
+                  << "_gt_elevation_deg.png (16-bit maps; their scale in " << o.out << ".json)\n";
     if (!o.view3d.empty()) std::cout << "wrote " << o.view3d << " (3D view)\n";
     std::cout << "wrote " << render_outputs_text(o.out, &scene) << "; image " << f->polar().bins << " x "
               << f->polar().beams << ", sector " << f->sector().width << "x" << f->sector().height << "\n"
@@ -168,6 +180,10 @@ void register_render(CLI::App& app, std::function<int()>& run) {
                   "Also write PREFIX_gt_<name>.npy: per range bin and beam the elevation (mean, min, max), "
                   "point, object id, incidence, number of surfaces behind it and reflections (multipath); a "
                   "side-scan or scan: per ping, channel and sample");
+    cmd->add_flag("--ground-truth-png", o->ground_truth_maps,
+                  "Also write the ground truth as 16-bit gray PNG maps laid out as PREFIX_polar.png: "
+                  "PREFIX_gt_range_m.png (distance to what echoes) and PREFIX_gt_elevation_deg.png, their "
+                  "scale in PREFIX.json and in each PNG's text (implies --ground-truth)");
     cmd->add_option(
         "--trajectory", o->trajectory,
         "A side-scan or scan: its pings heard along this trajectory CSV (batch's format): ping k at "
@@ -179,6 +195,7 @@ void register_render(CLI::App& app, std::function<int()>& run) {
         "Also draw the 3D view (scene, sonar, field of view) into this PNG, with no display (EGL)");
     cmd->callback([o, cmd, &run] {
         o->at_given = cmd->count("--at") > 0;
+        o->ground_truth = o->ground_truth || o->ground_truth_maps;
         if (o->out.empty() && o->view3d.empty()) throw CLI::RequiredError("--out");
         run = [o] { return run_render(*o); };
     });

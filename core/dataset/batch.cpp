@@ -74,6 +74,9 @@ std::string index_row(const std::string& dir, const SceneDesc& scene, const Traj
         if (f.always || fs::is_regular_file(prefix + f.suffix, ec)) add(prefix + f.suffix);
     for (auto& name : ground_truth_names()) // batch --ground-truth
         if (fs::is_regular_file(prefix + "_gt_" + name + ".npy", ec)) add(prefix + "_gt_" + name + ".npy");
+    for (const GroundTruthMap& m : ground_truth_maps(scene)) // batch --ground-truth-png
+        if (fs::is_regular_file(prefix + "_gt_" + m.name + ".png", ec))
+            add(prefix + "_gt_" + m.name + ".png");
     std::string ms, err_median, err_p95, rays;
     if (meta.is_object()) {
         if (meta.contains("time_ms")) ms = fmt(meta["time_ms"].value("total", 0.0));
@@ -257,12 +260,17 @@ BatchSummary run_batch(const std::string& dir, const BatchOptions& options) {
                     sim->set_scene(s);
                 else
                     sim.emplace(s);
-                sim->request({options.ground_truth, false});
+                const bool truth = options.ground_truth || options.ground_truth_maps;
+                sim->request({truth, false});
                 const auto f = sim->render();
-                write_render_files(frame_prefix(dir, k), s, *f,
-                                   options.ground_truth
-                                       ? ground_truth_files(frame_prefix(dir, k), *f->truth_ptr)
-                                       : std::vector<std::pair<std::string, Bytes>>{});
+                const std::string prefix = frame_prefix(dir, k);
+                std::vector<std::pair<std::string, Bytes>> extra;
+                if (options.ground_truth) extra = ground_truth_files(prefix, *f->truth_ptr);
+                if (options.ground_truth_maps)
+                    for (auto& file : ground_truth_map_files(prefix, *f->truth_ptr, s))
+                        extra.push_back(std::move(file));
+                write_render_files(prefix, s, *f, std::move(extra),
+                                   options.ground_truth_maps ? ground_truth_maps_metadata(s) : json(nullptr));
             }
             ++progress.rendered;
         }

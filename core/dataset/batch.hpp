@@ -79,6 +79,9 @@ struct BatchOptions {
     std::function<void(const BatchProgress&)> progress; ///< after each frame
     bool index = true; ///< rebuild index.csv at the end (a distributed run does it once, after all tasks)
     bool ground_truth = false; ///< also write each frame's PREFIX_gt_<name>.npy (ground_truth.hpp)
+    /// also write each frame's 16-bit PNG maps PREFIX_gt_<map>.png (ground_truth_files.hpp; an imaging
+    /// sonar's)
+    bool ground_truth_maps = false;
     /// Checked before each frame: once true (e.g. set by a SIGINT handler), no further frame is started and
     /// the run ends as if those were its last frames (the index rebuilt, BatchSummary::interrupted set).
     const std::atomic<bool>* stop = nullptr;

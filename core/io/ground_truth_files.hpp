@@ -1,5 +1,5 @@
 // The ground truth's files: one NumPy array per field (shading/ground_truth.hpp), as render, batch and the
-// viewer's snapshots write them.
+// viewer's snapshots write them; and 16-bit PNG maps of the range and elevation that image tools open.
 #pragma once
 #include "core/io/output.hpp"
 #include "core/shading/ground_truth.hpp"
@@ -20,5 +20,26 @@ std::vector<std::pair<std::string, Bytes>> ground_truth_files(const std::string&
 std::vector<std::pair<std::string, Bytes>> ground_truth_files(const std::string& prefix,
                                                               const std::vector<GroundTruth>& parts,
                                                               const std::vector<std::size_t>& shape);
+
+/// One 16-bit map of the ground truth, PREFIX_gt_<name>.png, laid out as PREFIX_polar.png (range bins
+/// upward, the nearest at the bottom; beams from port on the left): pixel value v is 0 where nothing echoes,
+/// else the quantity offset + (v - 1) * scale [unit].
+struct GroundTruthMap {
+    std::string name; ///< range_m, elevation_deg
+    std::string unit, what;
+    double offset = 0, scale = 1;
+};
+
+/// The maps of `scene`'s images: GroundTruth::range_m, 0 to 2 sonar.range_max_m (a ghost's scatterer may lie
+/// beyond the window it shows in); elevation_deg, -90 to 90.
+std::vector<GroundTruthMap> ground_truth_maps(const SceneDesc& scene);
+
+/// PREFIX_gt_<name>.png of each map, each with tEXt chunks saying what it holds and its scale.
+std::vector<std::pair<std::string, Bytes>>
+ground_truth_map_files(const std::string& prefix, const GroundTruth& gt, const SceneDesc& scene);
+
+/// The maps' descriptions for the metadata: {"ground_truth_maps": [{file, quantity, unit, offset, scale,
+/// zero, layout}, ...]}.
+json ground_truth_maps_metadata(const SceneDesc& scene);
 
 } // namespace sonarsim

@@ -87,8 +87,14 @@ Bytes ideal_npy(const SceneDesc&, const Frame& f) {
 bool sensor_applied(const SceneDesc& s) {
     return !sensor_is_ideal(s);
 }
+/// The metadata with `more`'s keys added (ground_truth_maps_metadata: what only some writers add).
+Bytes metadata_bytes(const SceneDesc& s, const Frame& f, const json& more) {
+    json j = frame_metadata(s, f);
+    if (more.is_object()) j.update(more);
+    return to_bytes(j.dump(2) + "\n");
+}
 Bytes metadata_json(const SceneDesc& s, const Frame& f) {
-    return to_bytes(frame_metadata(s, f).dump(2) + "\n");
+    return metadata_bytes(s, f, nullptr);
 }
 
 } // namespace
@@ -125,10 +131,13 @@ std::string render_outputs_text(const std::string& prefix, const SceneDesc* scen
 }
 
 void write_render_files(const std::string& prefix, const SceneDesc& scene, const Frame& frame,
-                        std::vector<std::pair<std::string, Bytes>> extra) {
+                        std::vector<std::pair<std::string, Bytes>> extra, const json& metadata_more) {
     std::vector<std::pair<std::string, Bytes>> files;
     for (auto& o : render_outputs())
-        if (o.written_for(scene)) files.emplace_back(prefix + o.suffix, o.encode(scene, frame));
+        if (o.written_for(scene))
+            files.emplace_back(prefix + o.suffix, o.encode == metadata_json
+                                                      ? metadata_bytes(scene, frame, metadata_more)
+                                                      : o.encode(scene, frame));
     for (auto& e : extra) files.push_back(std::move(e));
     write_files_atomically(files);
 }

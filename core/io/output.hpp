@@ -78,9 +78,10 @@ std::vector<std::string> render_output_paths(const std::string& prefix, const Sc
 std::string render_outputs_text(const std::string& prefix, const SceneDesc* scene = nullptr);
 
 /// Writes every file of render_outputs() for `prefix`, and the `extra` files (a 3D view PNG, a scene file),
-/// in one atomic step.
+/// in one atomic step; `metadata_more`: keys added to the metadata (about extra files).
 void write_render_files(const std::string& prefix, const SceneDesc& scene, const Frame& frame,
-                        std::vector<std::pair<std::string, Bytes>> extra = {});
+                        std::vector<std::pair<std::string, Bytes>> extra = {},
+                        const json& metadata_more = nullptr);
 
 Bytes to_bytes(const std::string& text);
 

@@ -25,18 +25,46 @@ void append_chunk(Bytes& out, const char (&type)[5], const std::uint8_t* data, s
 }
 
 /// The scanlines as PNG filters them: a filter byte (1, Sub) before each row, each byte less the byte one
-/// pixel to its left (modulo 256; the first pixel as it is).
-std::vector<std::uint8_t> sub_filtered(const Image8& img) {
-    const size_t c = size_t(img.channels), stride = size_t(img.width) * c;
-    std::vector<std::uint8_t> raw((stride + 1) * size_t(img.height));
-    for (size_t y = 0; y < size_t(img.height); ++y) {
-        const std::uint8_t* row = img.pixels.data() + y * stride;
+/// pixel (`c` bytes) to its left (modulo 256; the first pixel as it is).
+std::vector<std::uint8_t> sub_filtered(const std::uint8_t* pixels, int width, int height, size_t c) {
+    const size_t stride = size_t(width) * c;
+    std::vector<std::uint8_t> raw((stride + 1) * size_t(height));
+    for (size_t y = 0; y < size_t(height); ++y) {
+        const std::uint8_t* row = pixels + y * stride;
         std::uint8_t* out = raw.data() + y * (stride + 1);
         out[0] = 1;
         std::memcpy(out + 1, row, c);
         for (size_t i = c; i < stride; ++i) out[1 + i] = std::uint8_t(row[i] - row[i - c]);
     }
     return raw;
+}
+
+/// The PNG of filtered scanlines `raw`: IHDR (bit depth, colour type), tEXt chunks, one IDAT, IEND.
+Bytes assemble(int width, int height, std::uint8_t bit_depth, std::uint8_t colour_type,
+               const std::vector<std::uint8_t>& raw,
+               const std::vector<std::pair<std::string, std::string>>& text) {
+    uLongf packed_n = compressBound(uLong(raw.size()));
+    std::vector<std::uint8_t> packed(packed_n);
+    if (compress2(packed.data(), &packed_n, raw.data(), uLong(raw.size()), kPngDeflateLevel) != Z_OK)
+        throw std::runtime_error("PNG encoding: zlib could not compress " + std::to_string(raw.size()) +
+                                 " bytes");
+    Bytes out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    out.reserve(out.size() + packed_n + 64);
+    Bytes ihdr;
+    append_be32(ihdr, std::uint32_t(width));
+    append_be32(ihdr, std::uint32_t(height));
+    // bit depth, colour type, deflate, adaptive filtering (per-row filter bytes), no interlace
+    ihdr.insert(ihdr.end(), {bit_depth, colour_type, 0, 0, 0});
+    append_chunk(out, "IHDR", ihdr.data(), ihdr.size());
+    for (const auto& [keyword, value] : text) { // keyword, a NUL, the text (Latin-1)
+        Bytes t(keyword.begin(), keyword.end());
+        t.push_back(0);
+        t.insert(t.end(), value.begin(), value.end());
+        append_chunk(out, "tEXt", t.data(), t.size());
+    }
+    append_chunk(out, "IDAT", packed.data(), packed_n);
+    append_chunk(out, "IEND", nullptr, 0);
+    return out;
 }
 
 } // namespace
@@ -52,25 +80,29 @@ Bytes encode_png(const Image8& img) {
         throw std::invalid_argument("PNG encoding: " + std::to_string(img.pixels.size()) + " bytes for " +
                                     std::to_string(img.width) + " x " + std::to_string(img.height) + " x " +
                                     std::to_string(img.channels));
-    const std::vector<std::uint8_t> raw = sub_filtered(img);
-    uLongf packed_n = compressBound(uLong(raw.size()));
-    std::vector<std::uint8_t> packed(packed_n);
-    if (compress2(packed.data(), &packed_n, raw.data(), uLong(raw.size()), kPngDeflateLevel) != Z_OK)
-        throw std::runtime_error("PNG encoding: zlib could not compress " + std::to_string(raw.size()) +
-                                 " bytes");
-
-    Bytes out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    out.reserve(out.size() + packed_n + 64);
-    Bytes ihdr;
-    append_be32(ihdr, std::uint32_t(img.width));
-    append_be32(ihdr, std::uint32_t(img.height));
     const std::uint8_t colour_type = img.channels == 1 ? 0 : img.channels == 3 ? 2 : 6;
-    // bit depth 8, colour type, deflate, adaptive filtering (per-row filter bytes), no interlace
-    ihdr.insert(ihdr.end(), {8, colour_type, 0, 0, 0});
-    append_chunk(out, "IHDR", ihdr.data(), ihdr.size());
-    append_chunk(out, "IDAT", packed.data(), packed_n);
-    append_chunk(out, "IEND", nullptr, 0);
-    return out;
+    return assemble(img.width, img.height, 8, colour_type,
+                    sub_filtered(img.pixels.data(), img.width, img.height, size_t(img.channels)), {});
+}
+
+Bytes encode_png_gray16(int width, int height, const std::vector<std::uint16_t>& values,
+                        const std::vector<std::pair<std::string, std::string>>& text) {
+    if (width <= 0 || height <= 0)
+        throw std::invalid_argument("PNG encoding: the image is empty (" + std::to_string(width) + " x " +
+                                    std::to_string(height) + ")");
+    if (values.size() != size_t(width) * size_t(height))
+        throw std::invalid_argument("PNG encoding: " + std::to_string(values.size()) + " values for " +
+                                    std::to_string(width) + " x " + std::to_string(height));
+    for (const auto& [keyword, value] : text)
+        if (keyword.empty() || keyword.size() > 79 || keyword.find('\0') != std::string::npos ||
+            value.find('\0') != std::string::npos)
+            throw std::invalid_argument("PNG encoding: a tEXt keyword is 1-79 characters, neither it nor its "
+                                        "text holds a NUL ('" +
+                                        keyword + "')");
+    std::vector<std::uint8_t> be(values.size() * 2); // PNG samples are big-endian
+    for (size_t i = 0; i < values.size(); ++i)
+        be[2 * i] = std::uint8_t(values[i] >> 8), be[2 * i + 1] = std::uint8_t(values[i]);
+    return assemble(width, height, 16, 0, sub_filtered(be.data(), width, height, 2), text);
 }
 
 } // namespace sonarsim

@@ -94,13 +94,14 @@ template <bool Img, bool Sens, bool Gt, bool Ord, bool Str> class BeamPass {
             [[maybe_unused]] const GhostCell* ghost = cells_.ghost(n);
             [[maybe_unused]] std::uint64_t key = 0;
             [[maybe_unused]] unsigned bit = 0;
-            [[maybe_unused]] double inc = 0, cos_a = 0, sin_a = 0;
+            [[maybe_unused]] double inc = 0, cos_a = 0, sin_a = 0, ghost_range = 0;
             [[maybe_unused]] double inside = 0; // the share of the echo inside the window
             if constexpr (Gt) { // the azimuth's sine and cosine once per cell (sonar_direction's products)
                 cos_a = std::cos(double(c.azimuth_rad)), sin_a = std::sin(double(c.azimuth_rad));
                 key = std::uint64_t(ghost ? ghost->order() : 0) << 32 | c.material;
                 bit = c.material == kSurfaceMaterial ? 63u : std::min(c.material, 62u);
                 inc = rad2deg(std::acos(std::clamp(double(c.cos_incidence), 0.0, 1.0)));
+                if (ghost) ghost_range = glm::length(glm::dvec3(c.point_m) - p_.origin); // the scatterer's
             }
             detail::for_each_bin(c, p_.spread, p_.K, p_.r_min, p_.r_max, p_.dr, [&](int b, double frac) {
                 const size_t bb = size_t(b);
@@ -119,7 +120,7 @@ template <bool Img, bool Sens, bool Gt, bool Ord, bool Str> class BeamPass {
                         const glm::dvec3 point =
                             ghost ? glm::dvec3(c.point_m)
                                   : p_.origin + r * (p_.R * glm::dvec3(ce * cos_a, ce * sin_a, std::sin(e)));
-                        truth_[bb].add(v, e, inc, point, key, bit);
+                        truth_[bb].add(v, e, inc, point, ghost ? ghost_range : r, key, bit);
                     }
                 if constexpr (Str)
                     if (v > best_[bb]) best_[bb] = v, best_n_[bb] = std::int32_t(n);

@@ -18,6 +18,7 @@ const std::vector<GroundTruthField>& ground_truth_fields() {
         {"elevation_min_deg", &G::elevation_min_deg, nullptr, 1, nan},
         {"elevation_max_deg", &G::elevation_max_deg, nullptr, 1, nan},
         {"point_m", &G::point_m, nullptr, 3, nan},
+        {"range_m", &G::range_m, nullptr, 1, nan},
         {"object_id", nullptr, &G::object_id, 1, -1},
         {"incidence_deg", &G::incidence_deg, nullptr, 1, nan},
         {"surfaces", nullptr, &G::surfaces, 1, 0},

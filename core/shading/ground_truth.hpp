@@ -23,6 +23,9 @@ struct GroundTruth {
     std::vector<float> elevation_min_deg; ///< lowest elevation echoing into the cell [deg]: the ambiguity
     std::vector<float> elevation_max_deg; ///< highest [deg]
     std::vector<float> point_m;           ///< echo-weighted centroid, world coordinates [m], x y z per cell
+    /// echo-weighted mean distance from the sonar to what echoes [m]: the bin's centre range for direct
+    /// echoes; a multipath ghost's is its scatterer's, nearer than where it shows
+    std::vector<float> range_m;
     /// Strongest contribution: -1 nothing, 0 seafloor, i + 1 objects[i], -2 the water surface.
     std::vector<std::int32_t> object_id;
     std::vector<float> incidence_deg;   ///< echo-weighted mean incidence angle [deg]
@@ -41,8 +44,8 @@ struct GroundTruthField {
     float empty;                                 ///< where nothing echoes: NaN, -1 (object_id) or 0
 };
 
-/// The arrays in file order: elevation_deg, elevation_min_deg, elevation_max_deg, point_m, object_id,
-/// incidence_deg, surfaces, bounces.
+/// The arrays in file order: elevation_deg, elevation_min_deg, elevation_max_deg, point_m, range_m,
+/// object_id, incidence_deg, surfaces, bounces.
 const std::vector<GroundTruthField>& ground_truth_fields();
 
 /// Ground truth of the stored hits alone (accumulate() with the ground-truth channel); a Simulator asked for

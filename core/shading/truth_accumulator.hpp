@@ -14,7 +14,7 @@
 namespace sonarsim {
 
 struct TruthAccumulator {
-    double w = 0, e = 0, inc = 0;
+    double w = 0, e = 0, inc = 0, range = 0;
     double e_min = std::numeric_limits<double>::infinity(), e_max = -e_min;
     glm::dvec3 p{0};
     std::bitset<64>
@@ -24,10 +24,11 @@ struct TruthAccumulator {
     std::array<std::pair<std::uint64_t, double>, 8> share{};
     int shares = 0;
 
-    /// A contribution of echo v at elevation e [rad], incidence inc [deg], world point `point`.
-    void add(double v, double e_rad, double inc_deg, const glm::dvec3& point, std::uint64_t key,
-             unsigned bit) {
-        w += v, e += v * e_rad, inc += v * inc_deg;
+    /// A contribution of echo v at elevation e [rad], incidence inc [deg], world point `point` at
+    /// `range_m` from the sonar.
+    void add(double v, double e_rad, double inc_deg, const glm::dvec3& point, double range_m,
+             std::uint64_t key, unsigned bit) {
+        w += v, e += v * e_rad, inc += v * inc_deg, range += v * range_m;
         e_min = std::min(e_min, e_rad), e_max = std::max(e_max, e_rad);
         p += v * point;
         add_share(key, v);
@@ -57,6 +58,7 @@ struct TruthAccumulator {
         gt.elevation_min_deg[at] = float(rad2deg(e_min));
         gt.elevation_max_deg[at] = float(rad2deg(e_max));
         for (int axis = 0; axis < 3; ++axis) gt.point_m[at * 3 + axis] = float(p[axis] / w);
+        gt.range_m[at] = float(range / w);
         std::tie(gt.object_id[at], gt.bounces[at]) = strongest(); // 0 the floor, i + 1 objects[i]
         gt.incidence_deg[at] = float(inc / w);
         gt.surfaces[at] = std::int32_t(materials.count());

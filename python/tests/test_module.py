@@ -39,7 +39,7 @@ def test_ground_truth_arrays_match_the_render_files(scratch):
     """render(ground_truth=True) gives the arrays render --ground-truth writes, with the image's shape."""
     frame = sonarsim.render(small_scene_dict(), ground_truth=True)
     gt = frame.ground_truth
-    assert sorted(gt) == sorted(["elevation_deg", "elevation_min_deg", "elevation_max_deg", "point_m",
+    assert sorted(gt) == sorted(["elevation_deg", "elevation_min_deg", "elevation_max_deg", "point_m", "range_m",
                                  "object_id", "incidence_deg", "surfaces", "bounces"])
     level = frame.level_db
     assert gt["point_m"].shape == level.shape + (3,)

@@ -12,6 +12,9 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstring>
+#include <map>
+#include <zlib.h>
 
 using namespace sonarsim;
 
@@ -28,6 +31,66 @@ double floor_elevation(const SceneDesc& s, double a, double r) {
     if (std::abs(want) > C) return std::nan("");
     const double e = delta - std::acos(want / C);
     return std::abs(e) <= kPi / 2 ? e : delta + std::acos(want / C);
+}
+
+/// A 16-bit gray PNG read back with zlib's inflate and the PNG specification's filters (none, Sub, Up,
+/// Average, Paeth), independently of the encoder: its values row by row and its tEXt chunks.
+struct Gray16 {
+    int width = 0, height = 0;
+    std::vector<std::uint16_t> v;
+    std::map<std::string, std::string> text;
+};
+Gray16 read_gray16(const Bytes& b) {
+    Gray16 out;
+    REQUIRE(b.size() > 8);
+    REQUIRE(std::memcmp(b.data(), "\x89PNG\r\n\x1a\n", 8) == 0);
+    auto be32 = [&](size_t at) {
+        return std::uint32_t(b[at]) << 24 | std::uint32_t(b[at + 1]) << 16 | std::uint32_t(b[at + 2]) << 8 |
+               b[at + 3];
+    };
+    Bytes idat;
+    for (size_t at = 8; at + 12 <= b.size();) {
+        const size_t n = be32(at);
+        const std::string type(b.begin() + long(at) + 4, b.begin() + long(at) + 8);
+        const std::uint8_t* d = b.data() + at + 8;
+        CHECK(std::uint32_t(::crc32(0, b.data() + at + 4, uInt(n + 4))) == be32(at + 8 + n));
+        if (type == "IHDR") {
+            out.width = int(be32(at + 8)), out.height = int(be32(at + 12));
+            CHECK(int(d[8]) == 16); // bit depth
+            CHECK(int(d[9]) == 0);  // gray
+        } else if (type == "IDAT") {
+            idat.insert(idat.end(), d, d + n);
+        } else if (type == "tEXt") {
+            const std::string t(d, d + n);
+            out.text[t.substr(0, t.find('\0'))] = t.substr(t.find('\0') + 1);
+        }
+        at += 12 + n;
+    }
+    const size_t stride = size_t(out.width) * 2;
+    std::vector<std::uint8_t> raw((stride + 1) * size_t(out.height));
+    uLongf raw_n = uLongf(raw.size());
+    REQUIRE(::uncompress(raw.data(), &raw_n, idat.data(), uLong(idat.size())) == Z_OK);
+    REQUIRE(raw_n == raw.size());
+    std::vector<std::uint8_t> prev(stride, 0), row(stride);
+    for (int y = 0; y < out.height; ++y) {
+        const std::uint8_t* in = raw.data() + size_t(y) * (stride + 1);
+        for (size_t i = 0; i < stride; ++i) {
+            const int a = i >= 2 ? row[i - 2] : 0, up = prev[i], c = i >= 2 ? prev[i - 2] : 0;
+            const int p = a + up - c, pa = std::abs(p - a), pb = std::abs(p - up), pc = std::abs(p - c);
+            const int pred = in[0] == 0   ? 0
+                             : in[0] == 1 ? a
+                             : in[0] == 2 ? up
+                             : in[0] == 3 ? (a + up) / 2
+                                          : (pa <= pb && pa <= pc ? a
+                                             : pb <= pc           ? up
+                                                                  : c);
+            row[i] = std::uint8_t(in[1 + i] + pred);
+        }
+        for (int x = 0; x < out.width; ++x)
+            out.v.push_back(std::uint16_t(row[2 * size_t(x)] << 8 | row[2 * size_t(x) + 1]));
+        prev = row;
+    }
+    return out;
 }
 
 } // namespace
@@ -121,5 +184,75 @@ TEST_CASE("ground truth files have the image's shape", "[ground_truth]") {
         const bool integer = ground_truth_names()[n] == "object_id" ||
                              ground_truth_names()[n] == "surfaces" || ground_truth_names()[n] == "bounces";
         CHECK(header.find(integer ? "'<i4'" : "'<f4'") != std::string::npos);
+    }
+}
+
+TEST_CASE("range_m: the bin's centre range for direct echoes, a ghost's scatterer nearer than it shows",
+          "[ground_truth]") {
+    SceneDesc s = load_scene(SONARSIM_ASSETS "/scenes/tank.json"); // walls and a surface as mirrors
+    for (const int bounces : {0, 1}) {
+        s.sampling.bounces = bounces;
+        Simulator sim(s);
+        sim.request({true, false});
+        const GroundTruth& gt = *sim.render()->truth_ptr;
+        const SonarGrid grid(s.sonar);
+        int direct = 0, ghosts = 0;
+        for (int k = 0; k < gt.bins; ++k)
+            for (int b = 0; b < gt.beams; ++b) {
+                const size_t c = size_t(k) * size_t(gt.beams) + size_t(b);
+                INFO("bin " << k << ", beam " << b << ", bounces " << bounces);
+                CHECK(std::isnan(gt.range_m[c]) == std::isnan(gt.elevation_deg[c]));
+                if (std::isnan(gt.range_m[c])) continue;
+                const double r = grid.bin_centre_m(k);
+                if (bounces == 0) {
+                    CHECK(gt.range_m[c] == Approx(r).epsilon(1e-6));
+                    ++direct;
+                } else if (gt.bounces[c] > 0 && gt.range_m[c] < r - 2 * grid.bin_m) {
+                    ++ghosts;
+                }
+            }
+        CHECK((bounces == 0 ? direct : ghosts) > 100);
+    }
+}
+
+TEST_CASE("the ground truth's 16-bit PNG maps hold range_m and elevation_deg at their scale, laid out as the "
+          "polar image",
+          "[ground_truth]") {
+    SceneDesc s = default_scene();
+    Simulator sim(s);
+    sim.request({true, false});
+    const GroundTruth& gt = *sim.render()->truth_ptr;
+    const auto files = ground_truth_map_files("x", gt, s);
+    const auto maps = ground_truth_maps(s);
+    REQUIRE(files.size() == 2);
+    const json meta = ground_truth_maps_metadata(s)["ground_truth_maps"];
+    for (size_t n = 0; n < files.size(); ++n) {
+        const GroundTruthMap& m = maps[n];
+        CHECK(files[n].first == "x_gt_" + m.name + ".png");
+        const Gray16 png = read_gray16(files[n].second);
+        REQUIRE(png.width == gt.beams);
+        REQUIRE(png.height == gt.bins);
+        // The scale as the metadata and the PNG's text say it, read back to the same doubles.
+        CHECK(meta[n]["scale"].get<double>() == m.scale);
+        CHECK(meta[n]["offset"].get<double>() == m.offset);
+        CHECK(std::stod(png.text.at("sonarsim:scale")) == m.scale);
+        CHECK(std::stod(png.text.at("sonarsim:offset")) == m.offset);
+        const std::vector<float>& want = m.name == "range_m" ? gt.range_m : gt.elevation_deg;
+        int echoing = 0;
+        for (int k = 0; k < gt.bins; ++k)
+            for (int b = 0; b < gt.beams; ++b) {
+                const std::uint16_t v =
+                    png.v[size_t(gt.bins - 1 - k) * size_t(gt.beams) + size_t(b)]; // range up
+                const float x = want[size_t(k) * size_t(gt.beams) + size_t(b)];
+                INFO(m.name << " bin " << k << " beam " << b);
+                if (std::isnan(x)) {
+                    CHECK(v == 0);
+                    continue;
+                }
+                REQUIRE(v > 0);
+                CHECK(std::abs(m.offset + (v - 1) * m.scale - double(x)) <= 0.5 * m.scale * (1 + 1e-9));
+                ++echoing;
+            }
+        CHECK(echoing > 1000);
     }
 }
