@@ -123,7 +123,7 @@ PolarImage shade_beams(const SceneDesc& s, TraceResult& r, const std::vector<int
         sub.cells[k] = std::move(r.cells[size_t(beams[k])]);
         if (ghosts) sub.ghosts[k] = std::move(r.ghosts[size_t(beams[k])]);
     }
-    PolarImage img = shade(sub, adaptive::sampled_beams_scene(s, sub.beams));
+    PolarImage img = shade_columns(sub, s, sub.beams);
     for (size_t k = 0; k < beams.size(); ++k) {
         if (beams[k] < 0) continue;
         r.cells[size_t(beams[k])] = std::move(sub.cells[k]);
@@ -240,14 +240,15 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
                 fine_img = shade_beams(s, out, samples);
             }
             sp.set_ref_db(fine_img);
-            const SceneDesc sampled_scene = adaptive::sampled_beams_scene(s, int(idx.size()));
-            const PolarImage edges_img = shade(pc.coarse_edges, sampled_scene);
+            const int sampled = int(idx.size());
+            const PolarImage edges_img = shade_columns(pc.coarse_edges, s, sampled);
             PolarImage az_one, az_three;
             const bool probed = !pc.az_one.cells.empty();
             if (probed)
-                az_one = shade(pc.az_one, sampled_scene), az_three = shade(pc.az_three, sampled_scene);
+                az_one = shade_columns(pc.az_one, s, sampled),
+                az_three = shade_columns(pc.az_three, s, sampled);
             std::vector<SampleError> shares =
-                adaptive::sample_errors(shade(pc.coarse, sampled_scene), fine_img, sp.ref_db,
+                adaptive::sample_errors(shade_columns(pc.coarse, s, sampled), fine_img, sp.ref_db,
                                         {&edges_img, probed ? &az_one : nullptr, probed ? &az_three : nullptr,
                                          sp.strict, sp.probe_every});
             for (size_t k = 0; k < idx.size(); ++k)

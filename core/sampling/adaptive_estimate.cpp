@@ -11,13 +11,6 @@
 
 namespace sonarsim::adaptive {
 
-SceneDesc sampled_beams_scene(const SceneDesc& s, int n) {
-    SceneDesc out = s;
-    out.sonar.beams = n;
-    out.sonar.beam_table = kUniformBeams;
-    return out;
-}
-
 std::vector<SampleError> sample_errors(const PolarImage& coarse, const PolarImage& fine, double ref_db,
                                        const EstimateImages& images) {
     const int N = fine.beams, K = fine.bins;

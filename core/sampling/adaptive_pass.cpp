@@ -140,9 +140,8 @@ static BaseImages base_images(Sampler& sp, const Beams& beams, const BeamGroups&
             sp.cells_of(c, c.da, {&fine.cells[size_t(k)]}, {&coarse.cells[size_t(k)]},
                         {&coarse_edges.cells[size_t(k)]});
     });
-    const SceneDesc sampled_scene = sampled_beams_scene(sp.s, sampled);
-    BaseImages out{shade(fine, sampled_scene), shade(coarse, sampled_scene),
-                   shade(coarse_edges, sampled_scene)};
+    BaseImages out{shade_columns(fine, sp.s, sampled), shade_columns(coarse, sp.s, sampled),
+                   shade_columns(coarse_edges, sp.s, sampled)};
     sp.set_ref_db(out.fine);
     return out;
 }
@@ -158,7 +157,7 @@ static PolarImage lasting_edges_image(const Sampler& sp, const Beams& beams, con
         for (const auto& c : beams[size_t(groups[size_t(k)].front())])
             sp.cells_of(c, c.da, {}, {}, {&lasting.cells[size_t(k)]}, true);
     });
-    return shade(lasting, sampled_beams_scene(sp.s, sampled));
+    return shade_columns(lasting, sp.s, sampled);
 }
 
 /// Whether the azimuth probe looks at column c of a sample beam: it is still at the beam's base width

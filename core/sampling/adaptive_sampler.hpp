@@ -237,8 +237,4 @@ std::vector<SampleError> sample_errors(const PolarImage& coarse, const PolarImag
 /// as reported; without it, what the sampler's choices and stopping rule use.
 TraceResult::ErrorEstimate combine_errors(const std::vector<const SampleError*>& errors, bool seen = false);
 
-/// The scene of n of its beams as an image of their own (shade() sums beam by beam, so a beam's image does
-/// not depend on the others; the image channel needs no beam angles, so they are even).
-SceneDesc sampled_beams_scene(const SceneDesc& s, int n);
-
 } // namespace sonarsim::adaptive

@@ -31,7 +31,8 @@ struct Pass {
     const TraceResult& hits;
     const SceneDesc& s;
     ShadeConstants k;
-    SonarGrid grid;
+    std::shared_ptr<const SonarGrid> held; ///< the scene's grid (the registry's, held while the pass runs)
+    const SonarGrid& grid;
     int K, N, S;
     double r_min, r_max, dr;
     bool spread;
@@ -46,9 +47,11 @@ struct Pass {
     SceneTexture texture_field;
     const SceneTexture* texture = nullptr; ///< null when no material has a texture
 
-    Pass(const TraceResult& h, const SceneDesc& scene)
-        : hits(h), s(scene), k(shade_constants(scene)), grid(scene.sonar), K(grid.bins), N(grid.beams),
-          S(azimuth_subcolumns(scene)), r_min(grid.range_min_m), r_max(grid.range_max_m), dr(grid.bin_m),
+    /// `columns`: the output's columns (0: the grid's beams; otherwise column k is hits' beam k).
+    Pass(const TraceResult& h, const SceneDesc& scene, int columns = 0)
+        : hits(h), s(scene), k(shade_constants(scene)), held(sonar_grid(scene.sonar)), grid(*held),
+          K(grid.bins), N(columns > 0 ? columns : grid.beams), S(azimuth_subcolumns(scene)),
+          r_min(grid.range_min_m), r_max(grid.range_max_m), dr(grid.bin_m),
           spread(scene.sampling.binning == EchoBinning::Footprint),
           R(rotation_matrix(scene.sonar.pose.orientation_deg)), origin(to_glm(scene.sonar.pose.position_m)),
           texture_field(scene), texture(texture_field.none() ? nullptr : &texture_field) {}
@@ -312,14 +315,26 @@ Accumulation accumulate(const TraceResult& hits, const SceneDesc& s, const Chann
     return out;
 }
 
-PolarImage shade(const TraceResult& hits, const SceneDesc& s) {
-    Pass p(hits, s);
+namespace {
+
+PolarImage shade_image(const TraceResult& hits, const SceneDesc& s, int columns) {
+    Pass p(hits, s, columns);
     PolarImage image = empty_image(p.K, p.N);
     p.image = &image;
     Channels c;
     c.image = true;
     run_beams<>(p, c);
     return image;
+}
+
+} // namespace
+
+PolarImage shade(const TraceResult& hits, const SceneDesc& s) {
+    return shade_image(hits, s, 0);
+}
+
+PolarImage shade_columns(const TraceResult& hits, const SceneDesc& s, int columns) {
+    return shade_image(hits, s, std::max(1, columns));
 }
 
 GroundTruth compute_ground_truth(const TraceResult& hits, const SceneDesc& s) {

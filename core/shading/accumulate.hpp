@@ -55,4 +55,9 @@ Accumulation accumulate(const TraceResult& hits, const SceneDesc& scene, const C
 /// The L_EN image of the stored hits alone: accumulate() with the image channel.
 PolarImage shade(const TraceResult& hits, const SceneDesc& scene);
 
+/// The L_EN image of some of the scene's beams as an image of their own: `columns` columns, column k hits'
+/// beam k (e.g. the sample beams of an error estimate), shaded with the scene's physics and range bins. A
+/// beam's image does not depend on the others, and the image needs no beam angles.
+PolarImage shade_columns(const TraceResult& hits, const SceneDesc& scene, int columns);
+
 } // namespace sonarsim

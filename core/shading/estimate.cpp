@@ -1,7 +1,6 @@
 #include "core/shading/estimate.hpp"
 
 #include "core/base/units.hpp"
-#include "core/grid/beam_tables.hpp"
 #include "core/shading/accumulate.hpp"
 
 #include <algorithm>
@@ -55,10 +54,8 @@ TraceResult::ErrorEstimate estimate_error(const TraceResult& hits, const SceneDe
     const int n = int(whole.cells.size());
     if (n == 0) return est;
     half[0].beams = half[1].beams = whole.beams = n;
-    SceneDesc sub = s;
-    sub.sonar.beams = n;
-    sub.sonar.beam_table = kUniformBeams; // the image channel needs no beam angles
-    const PolarImage a = shade(half[0], sub), b = shade(half[1], sub), w = shade(whole, sub);
+    const PolarImage a = shade_columns(half[0], s, n), b = shade_columns(half[1], s, n),
+                     w = shade_columns(whole, s, n);
 
     double peak = -INFINITY; // linear sums relative to the strongest level, far from double's limits
     for (const PolarImage* img : {&a, &b})
