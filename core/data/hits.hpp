@@ -110,6 +110,11 @@ struct TraceControl {
     /// Adaptive scheme: the base grid only (no refinement, no error estimate), for an image within a
     /// frame budget while the user drags; uniform and spread ignore it.
     bool preview = false;
+    /// With preview, the adaptive scheme: a Simulator traces a jittered grid instead of the base grid, one
+    /// whose estimated median |dB| error over the echoing bins is about this [dB] (the screen's precision:
+    /// half a grey level of the display range, half_grey_level_db), sized from its last such preview's
+    /// estimate, so the preview carries its own error estimate; 0: the base grid.
+    double preview_median_db = 0;
     /// The channels the caller will shade from the traced cells: a tracer that shades its cells anyway
     /// (adaptive) fills them in the same pass (TraceResult::shaded), so no cell's echo is evaluated twice.
     Channels channels;

@@ -2,7 +2,6 @@
 #pragma once
 #include "core/grid/sonar_grid.hpp"
 #include "core/data/polar_image.hpp"
-#include "core/data/polar_image.hpp"
 
 namespace sonarsim {
 
@@ -18,6 +17,12 @@ inline DisplayParams effective_display(const PolarImage& img, const DisplayParam
 
 /// The same for an image whose every sample shows as one pixel (a side-scan waterfall, a scan's raw array).
 DisplayParams effective_display(const PolarImage& img, const DisplayParams& display);
+
+/// Half a grey level of a display range shown in 256 levels [dB]: the screen's precision, the error below
+/// which a level shows as the same grey.
+inline double half_grey_level_db(const DisplayParams& shown) {
+    return 0.5 * (shown.hi_db - shown.lo_db) / 255;
+}
 
 /// Widest automatic display range [dB]: a scene whose echoes stand 100 dB above its noise still shows the
 /// texture of its echoes (speckle spans about 20 dB).

@@ -99,8 +99,17 @@ class Simulator {
     /// Whether render() forms the fan (Frame::sector; the default): a side-scan's or scan's ping, a one-beam
     /// image, needs only its levels.
     void set_forms_fan(bool forms_fan);
+    /// The display range the last frame was shown with (display.auto: the one chosen from its image); the
+    /// scene's before the first.
+    const DisplayParams& display() const { return frame_.polar_ptr ? frame_.display : scene_.display; }
+    /// Elevation strata per beam of the next screen-precision preview (TraceControl::preview_median_db).
+    int preview_strata() const { return preview_strata_; }
 
   private:
+    /// A preview at TraceControl::preview_median_db: a jittered grid of preview_strata_ strata per beam.
+    TraceResult trace_screen_preview(const TraceControl& control);
+    /// Sizes the next screen-precision preview from this one's estimate.
+    void resize_preview(const TraceResult::ErrorEstimate& estimate, double target_db);
     SceneDesc scene_;
     std::unique_ptr<SceneGeometry> geometry_;
     Frame frame_;
@@ -110,6 +119,7 @@ class Simulator {
     std::uint64_t rays_traced_ = 0;
     int fan_height_px_ = 0;
     bool forms_fan_ = true;
+    int preview_strata_ = 32;
 };
 
 /// Metadata of a rendered frame: every effective parameter plus derived values and timings.

@@ -4,7 +4,10 @@
 #include "floor_reference.hpp"
 #include "support.hpp"
 
+#include "core/analysis/reference.hpp"
+#include "core/display/display_range.hpp"
 #include "core/pipeline/simulator.hpp"
+#include "core/scene/scene_io.hpp"
 #include "core/scene/params.hpp"
 #include "core/scene/sampling_scheme.hpp"
 #include "core/base/errors.hpp"
@@ -122,4 +125,47 @@ TEST_CASE("jittered: a sonar moving during its frame keeps its halves and its es
     REQUIRE(f->error_estimate.valid);
     CHECK(f->error_estimate.rel_l1 > 0);
     CHECK(f->error_estimate.rel_l1 < 0.2);
+}
+
+TEST_CASE("a drag's preview at the screen's precision: a jittered grid sized from its own estimate, measured "
+          "within it",
+          "[jittered]") {
+    // The wreck (adaptive, the default) dragged about: each preview asks for half a grey level of its display
+    // range (55-110 dB: 0.108 dB). The simulator sizes its jittered grid from the last preview's estimate.
+    SceneDesc s = load_scene(SONARSIM_ASSETS "/scenes/shipwreck.json");
+    s.sonar.beams = 64, s.sonar.range_bins = 500;
+    const double target = half_grey_level_db(s.display);
+    Simulator sim(s);
+    TraceControl control;
+    control.preview = true, control.preview_median_db = target;
+    std::shared_ptr<const Frame> f;
+    std::vector<int> strata;
+    for (int k = 0; k < 6; ++k) {
+        s.sonar.pose.position_m[0] += 0.02; // a drag: every preview traces its own pose
+        sim.set_scene(s);
+        strata.push_back(sim.preview_strata());
+        f = sim.render(control);
+        REQUIRE(f->preview());
+        REQUIRE(f->hits().halves);
+        REQUIRE(f->error_estimate.valid);
+    }
+    INFO("strata: first " << strata.front() << ", last " << strata.back());
+    // Sized to the target: estimated at most it, and not with more than half to spare.
+    CHECK(f->error_estimate.median_abs_db <= target);
+    CHECK(f->error_estimate.median_abs_db >= 0.45 * target);
+    // Measured against a dense grid of the same pose: within the screen's precision, and the estimate tracks
+    // it.
+    SceneDesc dense = s;
+    set_scheme(dense.sampling, SamplingScheme::Spread);
+    dense.sampling.elevation_rays = 2187, dense.sampling.azimuth_rays = 9;
+    Simulator ref(dense);
+    const ImageError e = compare_images(f->ideal(), ref.render()->ideal());
+    std::printf("screen preview: %d strata, estimated median %.4f dB, measured %.4f dB, target %.4f dB\n",
+                strata.back(), f->error_estimate.median_abs_db, e.median_abs_db, target);
+    CHECK(e.median_abs_db <= 1.25 * target);
+    CHECK(f->error_estimate.median_abs_db == Approx(e.median_abs_db).epsilon(0.4));
+    // The full-quality image after it is the adaptive sampler's, traced anew.
+    const auto full = sim.render();
+    CHECK_FALSE(full->preview());
+    CHECK_FALSE(full->hits().halves);
 }

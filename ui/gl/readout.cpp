@@ -1,5 +1,7 @@
 #include "ui/gl/readout.hpp"
 
+#include "core/display/display_range.hpp"
+
 #include "core/pipeline/memory_report.hpp"
 #include "core/shading/physics.hpp"
 
@@ -93,7 +95,19 @@ void draw_readout(Session& session, double frame_ms) {
         ImGui::TextDisabled("%llu rays  kept %s MiB", static_cast<unsigned long long>(f.hits().rays_traced),
                             mib_text(m.mesh_bytes + m.kept_bytes).c_str());
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("Kept between images: %s", to_string(m).c_str());
-        estimate_line(s, f.error_estimate);
+        if (f.preview() && f.hits().halves && f.error_estimate.valid) { // at the screen's precision
+            const double screen = half_grey_level_db(f.display);
+            ImGui::TextDisabled("preview %.3f dB, screen %.3f dB", f.error_estimate.median_abs_db, screen);
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip(
+                    "A preview at the screen's precision: a jittered grid whose median |dB| "
+                    "error over echoing bins\nis estimated at %.3f dB (rel L1 %.2f %%), against "
+                    "half a grey level of the display range, %.3f dB.\nThe full-quality image "
+                    "follows when the pose rests.",
+                    f.error_estimate.median_abs_db, 100 * f.error_estimate.rel_l1, screen);
+        } else {
+            estimate_line(s, f.error_estimate);
+        }
     } else {
         ImGui::SameLine();
         ImGui::TextDisabled("  image: rendering...");

@@ -4,6 +4,8 @@
 
 #include "ui/gl/viewer_app.hpp"
 
+#include "core/display/display_range.hpp"
+
 #include "ui/model/display_mesh.hpp"
 #include "ui/model/layout.hpp"
 #include "ui/model/panel_layout.hpp"
@@ -126,6 +128,11 @@ int Viewer::run() {
     if (opt_.orbit) {
         // The first frame includes start-up (first trace, shader compiles): leave it out.
         stats_.preview = opt_.orbit_preview;
+        if (opt_.orbit_preview) { // then the last pose held: its full-quality image (the research tolerance)
+            session_.submit(false);
+            if (session_.wait_full(std::chrono::milliseconds(60000)) && session_.shown())
+                stats_.full_image_ms = session_.shown()->wall_ms;
+        }
         std::printf("%s\n", stats_.json_line(1).c_str());
         std::fflush(stdout);
     }
@@ -169,7 +176,14 @@ void Viewer::frame(int index) {
     if (pending_snapshots_ > 0) session_.wait_full(std::chrono::milliseconds(60000));
     if (session_.shown() && session_.shown_count() != counted_images_) {
         counted_images_ = session_.shown_count();
-        if (index > 0 || !opt_.orbit) stats_.image_ms.push_back(session_.shown()->wall_ms);
+        if (index > 0 || !opt_.orbit) {
+            const RenderResult& shown = *session_.shown();
+            stats_.image_ms.push_back(shown.wall_ms);
+            if (shown.frame && shown.frame->error_estimate.valid) {
+                stats_.estimate_median_db.push_back(shown.frame->error_estimate.median_abs_db);
+                stats_.screen_median_db.push_back(half_grey_level_db(shown.frame->display));
+            }
+        }
     }
 
     int fb_w = 0, fb_h = 0, win_w = 0, win_h = 0;

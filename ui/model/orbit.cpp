@@ -41,9 +41,25 @@ std::string FrameStats::json_line(size_t skip) const {
     char buf[256];
     std::snprintf(buf, sizeof buf,
                   "{\"frames\":%zu,\"frame_ms_mean\":%.2f,\"frame_ms_p95\":%.2f,\"image_ms_mean\":%.2f,"
-                  "\"image_ms_p95\":%.2f,\"images\":\"%s\"}",
+                  "\"image_ms_p95\":%.2f,\"images\":\"%s\"",
                   f.size(), mean(f), p95(f), mean(image_ms), p95(image_ms), preview ? "preview" : "full");
-    return buf;
+    std::string out = buf;
+    if (!estimate_median_db.empty()) {
+        size_t met = 0;
+        for (size_t k = 0; k < estimate_median_db.size(); ++k)
+            met += estimate_median_db[k] <= screen_median_db[k];
+        std::snprintf(
+            buf, sizeof buf,
+            ",\"estimate_median_db_mean\":%.4f,\"screen_median_db_mean\":%.4f,\"at_screen_precision\":%.3f",
+            mean(estimate_median_db), mean(screen_median_db),
+            double(met) / double(estimate_median_db.size()));
+        out += buf;
+    }
+    if (full_image_ms >= 0) {
+        std::snprintf(buf, sizeof buf, ",\"full_image_ms\":%.2f", full_image_ms);
+        out += buf;
+    }
+    return out + "}";
 }
 
 } // namespace sonarsim::ui

@@ -27,9 +27,15 @@ class Orbiter {
 struct FrameStats {
     std::vector<double> frame_ms, image_ms;
     bool preview = false; ///< the images were previews (--orbit-preview)
+    /// Per image with an error estimate: its estimated median |dB| error and the screen's precision then
+    /// (half a grey level of the display range it was shown with).
+    std::vector<double> estimate_median_db, screen_median_db;
+    double full_image_ms = -1; ///< after the run: the full-quality image of the last pose (-1: not timed)
     /// One JSON line {"frames":N,"frame_ms_mean":..,"frame_ms_p95":..,"image_ms_mean":..,"image_ms_p95":..,
     /// "images":"full"|"preview"} over the frames after the first `skip` (start-up: first trace, shader
-    /// compiles).
+    /// compiles), with "estimate_median_db_mean", "screen_median_db_mean" and "at_screen_precision" (the
+    /// share of images estimated at or below it) when images carried estimates, and "full_image_ms" when
+    /// timed.
     std::string json_line(size_t skip = 1) const;
 };
 

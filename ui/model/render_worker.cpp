@@ -1,5 +1,7 @@
 #include "ui/model/render_worker.hpp"
 
+#include "core/display/display_range.hpp"
+
 #include "core/io/ping_output.hpp"
 #include "core/base/timing.hpp"
 
@@ -135,6 +137,8 @@ void RenderWorker::loop() {
                 TraceControl control;
                 control.cancel = &cancel_;
                 control.preview = job.preview;
+                // A drag's preview at the screen's precision (the adaptive scheme), with its estimate.
+                if (job.preview) control.preview_median_db = half_grey_level_db(sim->display());
                 // Full-quality frames carry each cell's strongest contribution (hovering draws its path
                 // without shading anything) and, when asked for, the ground truth, all made in the shading
                 // pass.
