@@ -115,6 +115,10 @@ struct TraceControl {
     /// half a grey level of the display range, half_grey_level_db), sized from its last such preview's
     /// estimate, so the preview carries its own error estimate; 0: the base grid.
     double preview_median_db = 0;
+    /// The time such a preview's trace and shading may take [ms] (a frame of 33 ms also forms the fan and
+    /// draws): its grid grows no larger than that allows, and its estimate then says what it reaches; 0: no
+    /// limit.
+    double preview_budget_ms = 15;
     /// The channels the caller will shade from the traced cells: a tracer that shades its cells anyway
     /// (adaptive) fills them in the same pass (TraceResult::shaded), so no cell's echo is evaluated twice.
     Channels channels;

@@ -109,9 +109,6 @@ namespace {
 /// Rays a screen-precision preview takes at most (four per stratum): about 60 ms on two cores.
 constexpr double kPreviewRays = 262144;
 constexpr int kMinPreviewStrata = 8;
-/// A screen-precision preview's trace and shading take at most about this [ms] (a frame of 33 ms also forms
-/// the fan and draws).
-constexpr double kPreviewBudgetMs = 15;
 
 /// Whether `control` asks for a preview at the screen's precision that `scene` can have (the adaptive
 /// scheme with the footprints and true normals a jittered grid needs).
@@ -132,7 +129,8 @@ TraceResult Simulator::trace_screen_preview(const TraceControl& control) {
     return t;
 }
 
-void Simulator::resize_preview(const TraceResult::ErrorEstimate& e, double target_db, double took_ms) {
+void Simulator::resize_preview(const TraceResult::ErrorEstimate& e, double target_db, double took_ms,
+                               double budget_ms) {
     // The jittered grid's median error falls about as 1 / strata (the wreck: 0.43, 0.19, 0.084 dB at 12, 24,
     // 48): a grid that missed the target, or met it with more than half to spare, is resized to reach 0.9 of
     // it, but no larger than the time a preview may take allows (its estimate then says what it reaches).
@@ -142,8 +140,8 @@ void Simulator::resize_preview(const TraceResult::ErrorEstimate& e, double targe
         const double ratio = e.median_abs_db / target_db;
         if (ratio > 1 || ratio < 0.5) want = int(std::ceil(preview_strata_ * ratio / 0.9));
     }
-    if (took_ms > 0)
-        want = std::min(want, int(preview_strata_ * kPreviewBudgetMs / took_ms)); // time ~ strata
+    if (budget_ms > 0 && took_ms > 0) // time ~ strata
+        want = std::min(want, int(preview_strata_ * budget_ms / took_ms));
     preview_strata_ = std::clamp(want, kMinPreviewStrata, most);
 }
 
@@ -200,7 +198,8 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
         next.shade_ms += ms_since(t0);
     }
     if (retrace && screen_preview(scene_, control))
-        resize_preview(next.error_estimate, control.preview_median_db, next.trace_ms + next.shade_ms);
+        resize_preview(next.error_estimate, control.preview_median_db, next.trace_ms + next.shade_ms,
+                       control.preview_budget_ms);
     if (from <= Stage::Sensor) {
         const auto t0 = std::chrono::steady_clock::now();
         next.polar_ptr = sensor_is_ideal(scene_)

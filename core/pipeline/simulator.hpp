@@ -109,7 +109,8 @@ class Simulator {
     /// A preview at TraceControl::preview_median_db: a jittered grid of preview_strata_ strata per beam.
     TraceResult trace_screen_preview(const TraceControl& control);
     /// Sizes the next screen-precision preview from this one's estimate and time.
-    void resize_preview(const TraceResult::ErrorEstimate& estimate, double target_db, double took_ms);
+    void resize_preview(const TraceResult::ErrorEstimate& estimate, double target_db, double took_ms,
+                        double budget_ms);
     SceneDesc scene_;
     std::unique_ptr<SceneGeometry> geometry_;
     Frame frame_;

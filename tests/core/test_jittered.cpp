@@ -138,6 +138,7 @@ TEST_CASE("a drag's preview at the screen's precision: a jittered grid sized fro
     Simulator sim(s);
     TraceControl control;
     control.preview = true, control.preview_median_db = target;
+    control.preview_budget_ms = 0; // sized by precision alone, however slow the machine (sanitizers)
     std::shared_ptr<const Frame> f;
     std::vector<int> strata;
     for (int k = 0; k < 6; ++k) {
@@ -168,4 +169,20 @@ TEST_CASE("a drag's preview at the screen's precision: a jittered grid sized fro
     const auto full = sim.render();
     CHECK_FALSE(full->preview());
     CHECK_FALSE(full->hits().halves);
+}
+
+TEST_CASE("a screen-precision preview grows no larger than its time allows", "[jittered]") {
+    // A budget far below what the target needs: the grid shrinks to what fits and stays there.
+    SceneDesc s = load_scene(SONARSIM_ASSETS "/scenes/shipwreck.json");
+    s.sonar.beams = 64, s.sonar.range_bins = 500;
+    Simulator sim(s);
+    TraceControl control;
+    control.preview = true, control.preview_median_db = 1e-4, control.preview_budget_ms = 1e-3;
+    for (int k = 0; k < 3; ++k) {
+        s.sonar.pose.position_m[0] += 0.02;
+        sim.set_scene(s);
+        const auto f = sim.render(control);
+        CHECK(f->error_estimate.median_abs_db > control.preview_median_db); // says it is not there
+    }
+    CHECK(sim.preview_strata() == 8); // the fewest strata a preview takes
 }
