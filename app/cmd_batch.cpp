@@ -71,10 +71,11 @@ int run_batch_command(const BatchCliOptions& o) {
     BatchOptions options;
     if (!o.shard.empty()) options.frames = shard_frames(o.shard, trajectory.size(), "--shard");
     options.resume = o.resume;
-    options.ground_truth = o.ground_truth;
+    options.ground_truth =
+        o.ground_truth || o.ground_truth_maps; // the maps come with the arrays, as in render
     options.ground_truth_maps = o.ground_truth_maps;
     if (o.ground_truth_maps && scene.sonar.kind != SonarKind::Imaging)
-        throw InputError("--ground-truth-png", "sonar.kind",
+        throw InputError("--ground-truth-png", "",
                          "maps an imaging sonar's range bins and beams; a side-scan's or scan's ground truth "
                          "per sample: --ground-truth");
     StatusLine status;
@@ -194,7 +195,7 @@ void register_batch(CLI::App& app, std::function<int()>& run) {
     cmd->add_flag("--ground-truth-png", o->ground_truth_maps,
                   "Also write each frame's ground truth as 16-bit gray PNG maps laid out as its _polar.png: "
                   "NNNNNN_gt_range_m.png and NNNNNN_gt_elevation_deg.png, their scale in NNNNNN.json and in "
-                  "each PNG's text");
+                  "each PNG's text (implies --ground-truth)");
     cmd->add_option(
         "--aris", o->aris,
         "Also write the dataset as an ARIS recording (.aris; 48, 64, 96 or 128 beams); needs every frame");

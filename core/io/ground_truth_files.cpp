@@ -77,7 +77,8 @@ std::vector<std::pair<std::string, Bytes>> ground_truth_map_files(const std::str
                 if (std::isnan(gt.elevation_deg[c])) continue; // nothing echoes
                 const double x = m.name == "range_m" ? double(gt.range_m[c]) : double(gt.elevation_deg[c]);
                 // Within the map's span: an elevation; a distance at most the bin's range give or take a
-                // ghost's footprint (the span is twice the window). Held at its ends should one not be.
+                // multipath echo's footprint (the span is twice the window). Held at its ends should one not
+                // be.
                 const double q = std::clamp(std::round((x - m.offset) / m.scale), 0.0, kLevels);
                 v[size_t(K - 1 - k) * size_t(N) + size_t(b)] = std::uint16_t(1 + q);
             }
@@ -99,7 +100,7 @@ std::vector<std::pair<std::string, Bytes>> ground_truth_map_files(const std::str
 json ground_truth_maps_metadata(const SceneDesc& s) {
     json maps = json::array();
     for (const GroundTruthMap& m : ground_truth_maps(s))
-        maps.push_back({{"file", "PREFIX_gt_" + m.name + ".png"},
+        maps.push_back({{"suffix", "_gt_" + m.name + ".png"},
                         {"quantity", m.what},
                         {"unit", m.unit},
                         {"offset", m.offset},

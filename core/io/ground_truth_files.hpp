@@ -30,16 +30,17 @@ struct GroundTruthMap {
     double offset = 0, scale = 1;
 };
 
-/// The maps of `scene`'s images: GroundTruth::range_m, 0 to 2 sonar.range_max_m (a ghost's scatterer may lie
-/// beyond the window it shows in); elevation_deg, -90 to 90.
+/// The maps of `scene`'s images: GroundTruth::range_m, 0 to 2 sonar.range_max_m (a multipath echo spread over
+/// its footprint may put its scatterer's distance a little past the bin, and past the window's end: twice the
+/// window leaves room); elevation_deg, -90 to 90.
 std::vector<GroundTruthMap> ground_truth_maps(const SceneDesc& scene);
 
 /// PREFIX_gt_<name>.png of each map, each with tEXt chunks saying what it holds and its scale.
 std::vector<std::pair<std::string, Bytes>>
 ground_truth_map_files(const std::string& prefix, const GroundTruth& gt, const SceneDesc& scene);
 
-/// The maps' descriptions for the metadata: {"ground_truth_maps": [{file, quantity, unit, offset, scale,
-/// zero, layout}, ...]}.
+/// The maps' descriptions for the metadata: {"ground_truth_maps": [{suffix (PREFIX + it is the file),
+/// quantity, unit, offset, scale, zero, layout}, ...]}.
 json ground_truth_maps_metadata(const SceneDesc& scene);
 
 } // namespace sonarsim

@@ -93,12 +93,19 @@ Bytes encode_png_gray16(int width, int height, const std::vector<std::uint16_t>&
     if (values.size() != size_t(width) * size_t(height))
         throw std::invalid_argument("PNG encoding: " + std::to_string(values.size()) + " values for " +
                                     std::to_string(width) + " x " + std::to_string(height));
-    for (const auto& [keyword, value] : text)
-        if (keyword.empty() || keyword.size() > 79 || keyword.find('\0') != std::string::npos ||
-            value.find('\0') != std::string::npos)
-            throw std::invalid_argument("PNG encoding: a tEXt keyword is 1-79 characters, neither it nor its "
-                                        "text holds a NUL ('" +
-                                        keyword + "')");
+    // tEXt (PNG specification 11.3.4.3): a keyword of 1-79 printable Latin-1 characters, no leading, trailing
+    // or double space; text of printable Latin-1 and newlines.
+    auto printable = [](unsigned char c) { return (c >= 32 && c <= 126) || c >= 161; };
+    for (const auto& [keyword, value] : text) {
+        bool ok = !keyword.empty() && keyword.size() <= 79 && keyword.front() != ' ' &&
+                  keyword.back() != ' ' && keyword.find("  ") == std::string::npos;
+        for (unsigned char c : keyword) ok = ok && printable(c);
+        for (unsigned char c : value) ok = ok && (printable(c) || c == '\n');
+        if (!ok)
+            throw std::invalid_argument("PNG encoding: tEXt keyword '" + keyword +
+                                        "' or its text is not what PNG allows (printable Latin-1; a keyword "
+                                        "of 1-79 characters, no leading, trailing or double space)");
+    }
     std::vector<std::uint8_t> be(values.size() * 2); // PNG samples are big-endian
     for (size_t i = 0; i < values.size(); ++i)
         be[2 * i] = std::uint8_t(values[i] >> 8), be[2 * i + 1] = std::uint8_t(values[i]);

@@ -110,6 +110,11 @@ namespace {
 constexpr double kPreviewRays = 262144;
 constexpr int kMinPreviewStrata = 8;
 
+/// The most strata a preview of `beams` beams takes.
+int most_preview_strata(int beams) {
+    return std::max(kMinPreviewStrata, int(kPreviewRays / (4.0 * std::max(1, beams))));
+}
+
 /// Whether `control` asks for a preview at the screen's precision that `scene` can have (the adaptive
 /// scheme with the footprints and true normals a jittered grid needs).
 bool screen_preview(const SceneDesc& s, const TraceControl& control) {
@@ -123,6 +128,8 @@ bool screen_preview(const SceneDesc& s, const TraceControl& control) {
 TraceResult Simulator::trace_screen_preview(const TraceControl& control) {
     SceneDesc s = scene_;
     set_scheme(s.sampling, SamplingScheme::Jittered);
+    // Sized for an earlier scene, perhaps of fewer beams: within this one's cap.
+    preview_strata_ = std::min(preview_strata_, most_preview_strata(s.sonar.beams));
     s.sampling.elevation_rays = preview_strata_, s.sampling.azimuth_rays = 1;
     TraceResult t = trace(*geometry_, s, control);
     t.preview = true;
@@ -134,15 +141,15 @@ void Simulator::resize_preview(const TraceResult::ErrorEstimate& e, double targe
     // The jittered grid's median error falls about as 1 / strata (the wreck: 0.43, 0.19, 0.084 dB at 12, 24,
     // 48): a grid that missed the target, or met it with more than half to spare, is resized to reach 0.9 of
     // it, but no larger than the time a preview may take allows (its estimate then says what it reaches).
-    const int most = std::max(kMinPreviewStrata, int(kPreviewRays / (4.0 * std::max(1, scene_.sonar.beams))));
-    int want = preview_strata_;
+    const double most = most_preview_strata(scene_.sonar.beams);
+    double want = preview_strata_;
     if (e.valid && e.median_abs_db > 0) {
         const double ratio = e.median_abs_db / target_db;
-        if (ratio > 1 || ratio < 0.5) want = int(std::ceil(preview_strata_ * ratio / 0.9));
+        if (ratio > 1 || ratio < 0.5) want = std::ceil(preview_strata_ * ratio / 0.9);
     }
     if (budget_ms > 0 && took_ms > 0) // time ~ strata
-        want = std::min(want, int(preview_strata_ * budget_ms / took_ms));
-    preview_strata_ = std::clamp(want, kMinPreviewStrata, most);
+        want = std::min(want, preview_strata_ * budget_ms / took_ms);
+    preview_strata_ = int(std::clamp(want, double(kMinPreviewStrata), most)); // NaN-free: e and times finite
 }
 
 std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {

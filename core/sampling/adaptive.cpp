@@ -210,8 +210,7 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
                 pc = adaptive::PassCells{}; // its memory back first
                 carried = carried_before;
                 sp.rays.store(rays_before), sp.budget_hit.store(false);
-                sp.ordered = true;
-                ++passes;
+                sp.ordered = true; // the same pass (passes counts it once, as an ordered trace does)
                 pc = adaptive::trace_pass(sp, M0_of(L), sel, may_bump ? &bump : nullptr, &carried);
             }
             rays += pc.fine.rays_traced;

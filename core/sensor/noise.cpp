@@ -8,23 +8,16 @@
 #include "core/sensor/sensor.hpp"
 
 #include <cmath>
-#include <cstring>
 
 namespace sonarsim {
 namespace {
-
-std::uint64_t bits_of(double x) {
-    std::uint64_t u;
-    std::memcpy(&u, &x, sizeof u);
-    return u;
-}
 
 /// A key for everything that decides where the sonar looks from (and which ping it is): noise stays put
 /// while nothing moves.
 std::uint64_t pose_key(const SceneDesc& s) {
     std::uint64_t h = mix64(std::uint64_t(s.sensor.seed) ^ 0x6e6f697365ULL); // "noise"
-    for (double v : s.sonar.pose.position_m) h = mix64(h ^ bits_of(v));
-    for (double v : s.sonar.pose.orientation_deg) h = mix64(h ^ bits_of(v));
+    for (double v : s.sonar.pose.position_m) h = mix64(h ^ fast::bits_of(v));
+    for (double v : s.sonar.pose.orientation_deg) h = mix64(h ^ fast::bits_of(v));
     if (s.sensor.noise_draw) h = mix64(h ^ s.sensor.noise_draw); // a ping's own draw (an image has none)
     return h;
 }

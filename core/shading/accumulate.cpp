@@ -12,6 +12,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <tbb/parallel_for.h>
 
 namespace sonarsim {
@@ -334,6 +336,9 @@ PolarImage shade(const TraceResult& hits, const SceneDesc& s) {
 }
 
 PolarImage shade_columns(const TraceResult& hits, const SceneDesc& s, int columns) {
+    if (columns > s.sonar.beams) // each column is one of the scene's beams
+        throw std::invalid_argument("shade_columns: " + std::to_string(columns) + " columns of " +
+                                    std::to_string(s.sonar.beams) + " beams");
     return shade_image(hits, s, std::max(1, columns));
 }
 

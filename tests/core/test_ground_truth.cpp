@@ -226,6 +226,10 @@ TEST_CASE("the ground truth's 16-bit PNG maps hold range_m and elevation_deg at 
     const auto maps = ground_truth_maps(s);
     REQUIRE(files.size() == 2);
     const json meta = ground_truth_maps_metadata(s)["ground_truth_maps"];
+    // Text PNG does not allow is refused, not written.
+    CHECK_THROWS_AS(encode_png_gray16(1, 1, {1}, {{" lead", "x"}}), std::invalid_argument);
+    CHECK_THROWS_AS(encode_png_gray16(1, 1, {1}, {{"k", std::string("a\x01b")}}), std::invalid_argument);
+    CHECK_THROWS_AS(encode_png_gray16(2, 1, {1}, {}), std::invalid_argument);
     for (size_t n = 0; n < files.size(); ++n) {
         const GroundTruthMap& m = maps[n];
         CHECK(files[n].first == "x_gt_" + m.name + ".png");

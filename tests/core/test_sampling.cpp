@@ -155,6 +155,10 @@ TEST_CASE("at the ray budget the same scene gives the same bytes, however many t
             const TraceResult t = trace(g, s, ordered);
             images.push_back(t.shaded->image->level_db);
             rays.push_back(t.rays_traced);
+            const TraceResult again = trace(g, s); // and the estimate the metadata carries
+            CHECK(again.error_estimate.passes == t.error_estimate.passes);
+            CHECK(again.error_estimate.rel_l1 == t.error_estimate.rel_l1);
+            CHECK(again.error_estimate.median_abs_db == t.error_estimate.median_abs_db);
             INFO("elevation rays " << s.sampling.elevation_rays << ", budget " << share << " of "
                                    << full.rays_traced << " rays");
             for (size_t k = 1; k < images.size(); ++k) {

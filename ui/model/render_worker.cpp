@@ -137,7 +137,8 @@ void RenderWorker::loop() {
                 TraceControl control;
                 control.cancel = &cancel_;
                 control.preview = job.preview;
-                // A drag's preview at the screen's precision (the adaptive scheme), with its estimate.
+                // A preview that traces (a drag; a slider of the sonar's geometry) is made to the screen's
+                // precision (the adaptive scheme), with its estimate; one that re-shades traces nothing.
                 if (job.preview) control.preview_median_db = half_grey_level_db(sim->display());
                 // Full-quality frames carry each cell's strongest contribution (hovering draws its path
                 // without shading anything) and, when asked for, the ground truth, all made in the shading
