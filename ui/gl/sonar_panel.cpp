@@ -192,8 +192,10 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
                  ImVec2(L.image.w, L.image.h));
     if (f.preview()) // a drag's image: the full-quality one follows when the input rests
         text_at(dl, ImVec2(L.readout.x + L.readout.w, L.readout.y + L.readout.h), IM_COL32(255, 200, 80, 255),
-                f.placement_stale ? "preview (re-shaded, no ray traced)" : "preview (base grid only)", 1.0f,
-                1.0f);
+                f.placement_stale ? "preview (re-shaded, no ray traced)"
+                : f.hits().halves ? "preview (the screen's precision)"
+                                  : "preview (base grid only)",
+                1.0f, 1.0f);
 
     // Hover: the place under the mouse.
     const ImVec2 mouse = ImGui::GetIO().MousePos;
