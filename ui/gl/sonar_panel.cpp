@@ -2,6 +2,8 @@
 // 3D-marker feedback. Plots and measurement are in sonar_plots.cpp.
 #include "ui/gl/sonar_panel.hpp"
 
+#include "core/display/display_range.hpp"
+
 #include "ui/model/image_views.hpp"
 #include "core/data/pose.hpp"
 #include "core/display/polar_layout.hpp"
@@ -192,9 +194,11 @@ void SonarPanel::draw(const Rect& area, Session& session, const std::optional<gl
                  ImVec2(L.image.w, L.image.h));
     if (f.preview()) // a drag's image: the full-quality one follows when the input rests
         text_at(dl, ImVec2(L.readout.x + L.readout.w, L.readout.y + L.readout.h), IM_COL32(255, 200, 80, 255),
-                f.placement_stale ? "preview (re-shaded, no ray traced)"
-                : f.hits().halves ? "preview (the screen's precision)"
-                                  : "preview (base grid only)",
+                f.placement_stale  ? "preview (re-shaded, no ray traced)"
+                : !f.hits().halves ? "preview (base grid only)"
+                : f.error_estimate.valid && f.error_estimate.median_abs_db <= half_grey_level_db(f.display)
+                    ? "preview (the screen's precision)"
+                    : "preview (coarser than the screen)",
                 1.0f, 1.0f);
 
     // Hover: the place under the mouse.
