@@ -149,13 +149,13 @@ int run_render(const RenderOptions& o) {
     Simulator sim(scene);
     sim.request({o.ground_truth, false});
     const auto f = sim.render();
-    if (o.ground_truth)
-        for (auto& file : ground_truth_files(o.out, *f->truth_ptr)) extra.push_back(std::move(file));
-    if (o.ground_truth_maps)
-        for (auto& file : ground_truth_map_files(o.out, *f->truth_ptr, scene))
-            extra.push_back(std::move(file));
-    write_render_files(o.out, scene, *f, std::move(extra),
-                       o.ground_truth_maps ? ground_truth_maps_metadata(scene) : json(nullptr));
+    json more;
+    if (o.ground_truth) {
+        GroundTruthOutputs gt = ground_truth_outputs(o.out, *f->truth_ptr, scene, true, o.ground_truth_maps);
+        for (auto& file : gt.files) extra.push_back(std::move(file));
+        more = std::move(gt.metadata);
+    }
+    write_render_files(o.out, scene, *f, std::move(extra), more);
     if (o.ground_truth) std::cout << "wrote " << o.out << "_gt_*.npy (ground truth per range bin and beam)\n";
     if (o.ground_truth_maps)
         std::cout << "wrote " << o.out << "_gt_range_m.png, " << o.out

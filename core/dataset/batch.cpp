@@ -264,13 +264,11 @@ BatchSummary run_batch(const std::string& dir, const BatchOptions& options) {
                 sim->request({truth, false});
                 const auto f = sim->render();
                 const std::string prefix = frame_prefix(dir, k);
-                std::vector<std::pair<std::string, Bytes>> extra;
-                if (options.ground_truth) extra = ground_truth_files(prefix, *f->truth_ptr);
-                if (options.ground_truth_maps)
-                    for (auto& file : ground_truth_map_files(prefix, *f->truth_ptr, s))
-                        extra.push_back(std::move(file));
-                write_render_files(prefix, s, *f, std::move(extra),
-                                   options.ground_truth_maps ? ground_truth_maps_metadata(s) : json(nullptr));
+                GroundTruthOutputs gt;
+                if (truth)
+                    gt = ground_truth_outputs(prefix, *f->truth_ptr, s, options.ground_truth,
+                                              options.ground_truth_maps);
+                write_render_files(prefix, s, *f, std::move(gt.files), gt.metadata);
             }
             ++progress.rendered;
         }

@@ -60,9 +60,11 @@ const char* kMapLayout = "rows: range bins, the farthest at the top; columns: be
 } // namespace
 
 std::vector<GroundTruthMap> ground_truth_maps(const SceneDesc& s) {
-    return {{"range_m", "m", "echo-weighted mean distance from the sonar to what echoes", 0,
+    return {{"range_m", &GroundTruth::range_m, "m",
+             "echo-weighted mean distance from the sonar to what echoes", 0,
              2 * s.sonar.range_max_m / kLevels},
-            {"elevation_deg", "deg", "echo-weighted mean elevation of what echoes", -90, 180 / kLevels}};
+            {"elevation_deg", &GroundTruth::elevation_deg, "deg",
+             "echo-weighted mean elevation of what echoes", -90, 180 / kLevels}};
 }
 
 std::vector<std::pair<std::string, Bytes>> ground_truth_map_files(const std::string& prefix,
@@ -71,11 +73,12 @@ std::vector<std::pair<std::string, Bytes>> ground_truth_map_files(const std::str
     std::vector<std::pair<std::string, Bytes>> files;
     for (const GroundTruthMap& m : ground_truth_maps(s)) {
         std::vector<std::uint16_t> v(size_t(K) * size_t(N), 0);
+        const std::vector<float>& values = gt.*m.field;
         for (int k = 0; k < K; ++k)
             for (int b = 0; b < N; ++b) {
                 const size_t c = size_t(k) * size_t(N) + size_t(b);
                 if (std::isnan(gt.elevation_deg[c])) continue; // nothing echoes
-                const double x = m.name == "range_m" ? double(gt.range_m[c]) : double(gt.elevation_deg[c]);
+                const double x = values[c];
                 // Within the map's span: an elevation; a distance at most the bin's range give or take a
                 // multipath echo's footprint (the span is twice the window). Held at its ends should one not
                 // be.
@@ -95,6 +98,17 @@ std::vector<std::pair<std::string, Bytes>> ground_truth_map_files(const std::str
                                {"sonarsim:unit", m.unit}}));
     }
     return files;
+}
+
+GroundTruthOutputs ground_truth_outputs(const std::string& prefix, const GroundTruth& gt, const SceneDesc& s,
+                                        bool arrays, bool maps) {
+    GroundTruthOutputs out;
+    if (arrays) out.files = ground_truth_files(prefix, gt);
+    if (maps) {
+        for (auto& file : ground_truth_map_files(prefix, gt, s)) out.files.push_back(std::move(file));
+        out.metadata = ground_truth_maps_metadata(s);
+    }
+    return out;
 }
 
 json ground_truth_maps_metadata(const SceneDesc& s) {

@@ -25,7 +25,8 @@ std::vector<std::pair<std::string, Bytes>> ground_truth_files(const std::string&
 /// upward, the nearest at the bottom; beams from port on the left): pixel value v is 0 where nothing echoes,
 /// else the quantity offset + (v - 1) * scale [unit].
 struct GroundTruthMap {
-    std::string name; ///< range_m, elevation_deg
+    std::string name; ///< range_m, elevation_deg: the GroundTruth array it maps
+    std::vector<float> GroundTruth::*field;
     std::string unit, what;
     double offset = 0, scale = 1;
 };
@@ -38,6 +39,15 @@ std::vector<GroundTruthMap> ground_truth_maps(const SceneDesc& scene);
 /// PREFIX_gt_<name>.png of each map, each with tEXt chunks saying what it holds and its scale.
 std::vector<std::pair<std::string, Bytes>>
 ground_truth_map_files(const std::string& prefix, const GroundTruth& gt, const SceneDesc& scene);
+
+/// What a frame's ground truth adds to its files: the arrays (ground_truth_files) and the maps
+/// (ground_truth_map_files), as asked, and the keys the maps add to the metadata (null without maps).
+struct GroundTruthOutputs {
+    std::vector<std::pair<std::string, Bytes>> files;
+    json metadata;
+};
+GroundTruthOutputs ground_truth_outputs(const std::string& prefix, const GroundTruth& gt,
+                                        const SceneDesc& scene, bool arrays, bool maps);
 
 /// The maps' descriptions for the metadata: {"ground_truth_maps": [{suffix (PREFIX + it is the file),
 /// quantity, unit, offset, scale, zero, layout}, ...]}.

@@ -241,7 +241,7 @@ TEST_CASE("the ground truth's 16-bit PNG maps hold range_m and elevation_deg at 
         CHECK(meta[n]["offset"].get<double>() == m.offset);
         CHECK(std::stod(png.text.at("sonarsim:scale")) == m.scale);
         CHECK(std::stod(png.text.at("sonarsim:offset")) == m.offset);
-        const std::vector<float>& want = m.name == "range_m" ? gt.range_m : gt.elevation_deg;
+        const std::vector<float>& want = m.name == "range_m" ? gt.range_m : gt.elevation_deg; // by name
         int echoing = 0;
         for (int k = 0; k < gt.bins; ++k)
             for (int b = 0; b < gt.beams; ++b) {

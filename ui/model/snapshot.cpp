@@ -30,18 +30,15 @@ std::vector<std::string> write_snapshot(const std::string& prefix, const SceneDe
                                         const Bytes& view3d_png, const GroundTruth* ground_truth,
                                         const Bytes& annotated_png) {
     std::vector<std::pair<std::string, Bytes>> extra;
-    if (ground_truth) {
-        for (auto& file : ground_truth_files(prefix, *ground_truth)) extra.push_back(std::move(file));
-        for (auto& file : ground_truth_map_files(prefix, *ground_truth, scene))
-            extra.push_back(std::move(file));
-    }
+    GroundTruthOutputs gt;
+    if (ground_truth) gt = ground_truth_outputs(prefix, *ground_truth, scene, true, true);
+    for (auto& file : gt.files) extra.push_back(std::move(file));
     if (!view3d_png.empty()) extra.emplace_back(prefix + "_3d.png", view3d_png);
     if (!annotated_png.empty()) extra.emplace_back(prefix + "_annotated.png", annotated_png);
     extra.emplace_back(prefix + "_scene.json", to_bytes(snapshot_scene_text(scene)));
     std::vector<std::string> paths = render_output_paths(prefix, scene);
     for (auto& e : extra) paths.push_back(e.first);
-    write_render_files(prefix, scene, frame, std::move(extra),
-                       ground_truth ? ground_truth_maps_metadata(scene) : json(nullptr));
+    write_render_files(prefix, scene, frame, std::move(extra), gt.metadata);
     return paths;
 }
 
