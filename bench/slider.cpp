@@ -2,7 +2,8 @@
 // the viewer asks for previews (TraceControl::preview); a change of a shading value then re-shades the hits
 // the last image traced (Stage::Place or Shade) and traces no ray. Per slider: the median wall time of the
 // preview image (shade, sensor, full fan) over repeats alternating between two values, the rays those
-// previews traced (0 is the target), and the full image the viewer asks for once the slider rests.
+// previews traced (0 is the target), and the full image the viewer asks for once the slider rests: the kept
+// hits with their estimate made anew (TraceControl::keep_placement), re-traced only when it misses.
 #include "bench.hpp"
 
 #include "core/base/timing.hpp"
@@ -27,8 +28,10 @@ struct Slider {
 struct Timing {
     Stage stage = Stage::None;
     std::vector<double> ms, shade_ms, image_ms;
-    std::uint64_t rays = 0; ///< traced by the previews
-    double full_ms = 0;     ///< the full image once the slider rests
+    std::uint64_t rays = 0;      ///< traced by the previews
+    double full_ms = 0;          ///< the full image once the slider rests
+    std::uint64_t full_rays = 0; ///< ... the rays it traced (0: the kept hits met the tolerances)
+    TraceResult::ErrorEstimate full_estimate; ///< ... its estimate
 };
 
 /// Sets the slider's value of step i of the drag in `s`; returns the stage of the change.
@@ -58,9 +61,14 @@ Timing time_image(SceneDesc s, const Slider& sl, int repeats) {
         out.shade_ms.push_back(f->shade_ms), out.image_ms.push_back(f->sensor_ms + f->image_ms);
     }
     out.rays = sim.rays_traced() - rays_before;
+    const std::uint64_t rays_at_rest = sim.rays_traced();
+    TraceControl rest; // the slider rests: the full image, the viewer's way (the kept hits while they meet)
+    rest.keep_placement = true;
     const auto t0 = std::chrono::steady_clock::now();
-    sim.render(); // the slider rests: the full image
+    const auto full = sim.render(rest);
     out.full_ms = ms_since(t0);
+    out.full_rays = sim.rays_traced() - rays_at_rest;
+    out.full_estimate = full->error_estimate;
     return out;
 }
 
@@ -82,7 +90,7 @@ Timing time_pings(SceneDesc s, const Slider& sl, int repeats) {
         out.shade_ms.push_back(p.stage_ms[1]), out.image_ms.push_back(p.stage_ms[2] + p.stage_ms[3]);
     }
     const auto t0 = std::chrono::steady_clock::now();
-    render_pings(s, {}, &traces);
+    out.full_rays = render_pings(s, {}, &traces).rays_traced;
     out.full_ms = ms_since(t0);
     return out;
 }
@@ -102,7 +110,8 @@ int run_slider_bench(const std::vector<std::string>& scenes, int repeats) {
     for (const auto& file : scenes) descs.push_back(load_scene(file));
     std::printf(
         "| scene | slider | stage | preview ms (median) | shade ms | sensor + fan ms | rays traced by "
-        "the previews | full image after rest ms |\n|---|---|---|---:|---:|---:|---:|---:|\n");
+        "the previews | full image after rest ms | rays it traced | its estimate rel L1 |\n"
+        "|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
     for (size_t k = 0; k < scenes.size(); ++k) {
         for (const Slider& sl : sliders) {
             SceneDesc s = descs[k];
@@ -112,12 +121,17 @@ int run_slider_bench(const std::vector<std::string>& scenes, int repeats) {
             const Timing t =
                 s.sonar.kind == SonarKind::Imaging ? time_image(s, sl, repeats) : time_pings(s, sl, repeats);
             status_line("");
-            std::printf("| %s | %s | %s | %.2f | %.2f | %.2f | %llu | %.1f |\n", scenes[k].c_str(), sl.label,
+            char estimate[32] = "-";
+            if (t.full_estimate.valid)
+                std::snprintf(estimate, sizeof estimate, "%.2f %%%s", 100 * t.full_estimate.rel_l1,
+                              t.full_estimate.meets(s.sampling) ? "" : " (misses)");
+            std::printf("| %s | %s | %s | %.2f | %.2f | %.2f | %llu | %.1f | %llu | %s |\n",
+                        scenes[k].c_str(), sl.label,
                         t.stage == Stage::Place   ? "place"
                         : t.stage <= Stage::Trace ? "trace"
                                                   : "shade",
                         median(t.ms), median(t.shade_ms), median(t.image_ms), (unsigned long long)t.rays,
-                        t.full_ms);
+                        t.full_ms, (unsigned long long)t.full_rays, estimate);
             std::fflush(stdout);
         }
     }

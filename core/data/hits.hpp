@@ -61,6 +61,7 @@ struct GhostCell {
 };
 
 struct Accumulation;
+struct AdaptiveEstimateCells; // sampling/adaptive_sampler.hpp
 
 struct TraceResult {
     int beams = 0;
@@ -99,6 +100,11 @@ struct TraceResult {
             return median_abs_db <= p.tolerance_db && rel_l1 <= p.tolerance_rel_l1;
         }
     } error_estimate;
+    /// Adaptive scheme, full quality, traced with TraceControl::keep_placement: what its error estimate was
+    /// made from besides these cells (each group's sample beam one level coarser, and its azimuth probe),
+    /// kept so that the estimate can be made again for a new shading of the same placement
+    /// (reestimate_error); null otherwise (half the hits' bytes, twice with multipath).
+    std::shared_ptr<const AdaptiveEstimateCells> estimate_cells;
     bool preview = false; ///< a coarse pass only (TraceControl::preview): no refinement, no error estimate
     double trace_ms = 0;
 };
@@ -128,6 +134,13 @@ struct TraceControl {
     /// Adaptive scheme: every pass pays the ray budget in a fixed order. By default only a pass likely to
     /// reach the budget, or refused a ray first come, does; the image is the same bytes either way.
     bool ordered_budget = false;
+    /// Adaptive scheme, full quality, after a change of values that steer the sampler only (Stage::Place):
+    /// keep the hits and re-shade them when their error estimate, made anew with the new shading
+    /// (reestimate_error), still meets the tolerances, and re-trace only when it does not. The image then
+    /// depends on the scene shaded before (a fresh Simulator re-places its rays; both meet the tolerances).
+    /// The viewer keeps; render, batch, study and Python re-trace, so their bytes depend on the scene alone.
+    /// A trace with it keeps what its estimate is made from (TraceResult::estimate_cells).
+    bool keep_placement = false;
     bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
     bool traces(int beam) const { return !beams || (*beams)[size_t(beam)]; }
     /// How many of n beams are traced.

@@ -1,5 +1,6 @@
 #include "core/kinds/ping_traces.hpp"
 
+#include "core/sampling/trace.hpp"
 #include "core/scene/params.hpp"
 
 #include <cstring>
@@ -22,14 +23,6 @@ bool PingKey::operator<(const PingKey& o) const {
     // Bit for bit: a pose is the same ping's only when it is the same number (-0 and 0 are two poses here,
     // which costs a trace at most).
     return std::memcmp(pose.data(), o.pose.data(), sizeof pose) < 0;
-}
-
-std::size_t hits_bytes(const TraceResult& t) {
-    std::size_t n = 0;
-    for (const auto& b : t.cells) n += b.capacity() * sizeof(Cell);
-    for (const auto& b : t.ghosts) n += b.capacity() * sizeof(GhostCell);
-    for (const auto& b : t.stratum_cells) n += b.capacity() * sizeof(Cell);
-    return n + sizeof(TraceResult);
 }
 
 namespace {

@@ -27,9 +27,6 @@ struct PingKey {
     bool operator<(const PingKey& o) const;
 };
 
-/// Approximate bytes a trace's hits hold (cells, ghosts, strata).
-std::size_t hits_bytes(const TraceResult& hits);
-
 /// One ping's and channel's levels as a series made them.
 struct PingLevels {
     std::vector<float> level_db; ///< through the sensor [dB]

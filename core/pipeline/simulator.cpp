@@ -56,7 +56,7 @@ void Simulator::set_scene(const SceneDesc& scene, Stage s) {
 void Simulator::set_hits(std::shared_ptr<const TraceResult> hits) {
     if (!hits) throw std::invalid_argument("Simulator::set_hits: no hits");
     frame_.hits_ptr = std::move(hits);
-    frame_.placement_stale = false;
+    frame_.placement_stale = false, frame_.placement_kept = false;
     frame_.error_estimate = frame_.hits_ptr->error_estimate;
     dirty_ = Stage::Shade; // every stage from shading on is made anew from these hits
 }
@@ -158,9 +158,15 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
     Frame next = frame_;
     next.grid_ptr = sonar_grid(scene_.sonar); // the same object while the sonar's geometry stays
     next.trace_ms = next.shade_ms = next.sensor_ms = next.image_ms = 0; // this frame's work only
-    // A full-quality image never keeps a preview's hits, nor hits placed for an earlier scene's shading.
-    const bool retrace = dirty_ <= Stage::Trace || !next.hits_ptr ||
-                         ((next.preview() || dirty_ == Stage::Place) && !control.preview);
+    // A full-quality image never keeps a preview's hits, nor hits placed for an earlier scene's shading
+    // unless asked to keep them (TraceControl::keep_placement) and they carry what their estimate needs.
+    const bool steered = dirty_ == Stage::Place || next.placement_stale;
+    const bool keeps = control.keep_placement && !control.preview && steered && dirty_ >= Stage::Place &&
+                       next.hits_ptr && !next.hits_ptr->preview && next.hits_ptr->estimate_cells;
+    const bool placed_before =
+        next.preview() || dirty_ == Stage::Place || (next.placement_kept && !control.keep_placement);
+    const bool retrace =
+        dirty_ <= Stage::Trace || !next.hits_ptr || (placed_before && !control.preview && !keeps);
     const Stage from = retrace ? Stage::Trace : std::max(dirty_, Stage::Shade);
     // One accumulation pass: every channel this frame needs that is not shared with the frame before.
     const bool reshade = from <= Stage::Shade;
@@ -185,7 +191,8 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
         next.hits_ptr = std::make_shared<const TraceResult>(std::move(t));
         next.error_estimate = next.hits_ptr->error_estimate;
     }
-    if (!retrace && dirty_ == Stage::Place) next.placement_stale = true; // a preview's re-shade
+    if (!retrace && dirty_ == Stage::Place && !keeps) // a preview's re-shade
+        next.placement_stale = true, next.placement_kept = false;
     if (!pass && c.any()) {
         const auto t0 = std::chrono::steady_clock::now();
         pass = std::make_shared<const Accumulation>(accumulate(*next.hits_ptr, scene_, c));
@@ -204,6 +211,20 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
         next.error_estimate = estimate_error(*next.hits_ptr, scene_);
         next.shade_ms += ms_since(t0);
     }
+    if (keeps) { // the kept placement's estimate with this shading: kept while it meets the tolerances
+        const auto t0 = std::chrono::steady_clock::now();
+        next.error_estimate = reestimate_error(*next.hits_ptr, scene_, *next.ideal_ptr);
+        next.shade_ms += ms_since(t0);
+        if (!next.error_estimate.meets(scene_.sampling) &&
+            next.hits_ptr->error_estimate.meets(scene_.sampling)) {
+            frame_.placement_stale = true; // nothing kept from this call: placed anew
+            TraceControl anew = control;
+            anew.keep_placement = false;
+            return render(anew);
+        }
+        next.placement_stale = false, next.placement_kept = true;
+    }
+    if (retrace) next.placement_kept = false;
     if (retrace && screen_preview(scene_, control))
         resize_preview(next.error_estimate, control.preview_median_db, next.trace_ms + next.shade_ms,
                        control.preview_budget_ms);
@@ -277,6 +298,12 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
                                  "its whole stratum instead of its half (footprint_rel_l1, second order), "
                                  "added in quadrature";
         } else { // adaptive
+            if (f.placement_kept)
+                estimate["placement"] = "kept: placed for an earlier shading of this scene (a viewer's "
+                                        "slider), re-shaded, and this "
+                                        "estimate made anew from the same cells with this shading; a fresh "
+                                        "render places its rays "
+                                        "anew (both within the tolerances)";
             estimate["passes"] = est.passes;
             estimate["budget_reached"] = est.budget_reached;
             estimate["max_rays"] = s.sampling.max_rays;

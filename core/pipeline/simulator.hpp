@@ -53,6 +53,10 @@ struct Frame {
     /// The hits were placed by the adaptive sampler for an earlier scene: a preview re-shaded them after a
     /// `steers_sampler` value changed (Stage::Place). Its images are this scene's; its error estimate is not.
     bool placement_stale = false;
+    /// Full quality, with hits placed by the adaptive sampler for an earlier shading of this scene
+    /// (TraceControl::keep_placement): re-shaded, and its error estimate made anew with this shading
+    /// (reestimate_error), which met the tolerances. A fresh Simulator would place its rays anew.
+    bool placement_kept = false;
     /// A coarse preview (TraceControl::preview: the base grid, or hits placed for an earlier scene): never
     /// to be taken for the full-quality image.
     bool preview() const { return (hits_ptr && hits_ptr->preview) || placement_stale; }
@@ -78,7 +82,8 @@ class Simulator {
     /// simulator is as before the call (its stale stages stay stale). `control.preview` (adaptive scheme)
     /// traces the base grid only, or, when only `steers_sampler` values changed (Stage::Place), re-shades the
     /// hits it has and traces nothing; the next render() without it re-traces, even if the scene is
-    /// unchanged, so that a full-quality image is always the one a fresh Simulator makes.
+    /// unchanged, so that a full-quality image is always the one a fresh Simulator makes, unless
+    /// `control.keep_placement` keeps the hits whose estimate, made anew, still meets the tolerances.
     std::shared_ptr<const Frame> render(const TraceControl& control = {});
     /// The extras the next frames carry; asking for one the last frame lacks re-runs the shading pass for it
     /// alone on the next render() (the image stages are shared).

@@ -21,6 +21,7 @@ namespace sonarsim {
 namespace {
 
 using adaptive::BeamGroups;
+using adaptive::columns_of;
 using adaptive::SampleError;
 using adaptive::Sampler;
 
@@ -99,17 +100,6 @@ BeamGroups make_groups(const std::vector<int>& traced, int stride) {
     return groups;
 }
 
-/// Columns `beams` of `img` as an image of their own (-1: an empty column).
-PolarImage columns_of(const PolarImage& img, const std::vector<int>& beams) {
-    PolarImage out;
-    out.bins = img.bins, out.beams = int(beams.size());
-    out.level_db.assign(size_t(out.bins) * beams.size(), -std::numeric_limits<float>::infinity());
-    for (int b = 0; b < img.bins; ++b)
-        for (size_t k = 0; k < beams.size(); ++k)
-            if (beams[k] >= 0) out.level_db[size_t(b) * beams.size() + k] = img.at(b, beams[k]);
-    return out;
-}
-
 /// The image of `beams` (-1: none) from the cells (and ghosts, with multipath) in `r`, as an image of
 /// their own.
 PolarImage shade_beams(const SceneDesc& s, TraceResult& r, const std::vector<int>& beams) {
@@ -159,6 +149,16 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
     std::shared_ptr<const Accumulation> shaded; // the whole image, when the first pass traced all of it
     TraceResult::ErrorEstimate est;
     adaptive::Beams carried; // bumped groups' base grids, split into the next pass's
+    // What each group's last estimate was made from (beside its fine cells), for reestimate_error, when
+    // the caller may keep the placement (the multipath tank's are twice its hits).
+    const bool keep_cells = control.keep_placement && !control.preview;
+    auto kept = std::make_shared<AdaptiveEstimateCells>();
+    kept->samples.assign(G, -1);
+    for (TraceResult* r : {&kept->coarse, &kept->coarse_edges, &kept->az_one, &kept->az_three}) {
+        r->beams = int(G);
+        r->cells.resize(G);
+        if (sp.multipath) r->ghosts.resize(G);
+    }
     auto M0_of = [&](int L) { return s.sampling.elevation_rays * int(std::lround(std::pow(3.0, L))); };
     // A denser base grid exists (levels, and the image's limit on rays).
     auto denser = [&](int L) { return L < kMaxLevel && sp.base_rays(M0_of(L + 1)) <= kMaxRaysPerImage / 9; };
@@ -252,6 +252,19 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
                                          sp.strict, sp.probe_every});
             for (size_t k = 0; k < idx.size(); ++k)
                 if (samples[k] >= 0) err[idx[k]] = std::move(shares[k]), has_err[idx[k]] = 1;
+            for (size_t k = 0; k < idx.size() && keep_cells; ++k) {
+                if (samples[k] < 0) continue;
+                kept->samples[idx[k]] = samples[k];
+                auto keep = [&](TraceResult& from, TraceResult& to) { // an unprobed pass leaves it empty
+                    to.cells[idx[k]] = k < from.cells.size() ? std::move(from.cells[k]) : std::vector<Cell>{};
+                    if (sp.multipath)
+                        to.ghosts[idx[k]] =
+                            k < from.ghosts.size() ? std::move(from.ghosts[k]) : std::vector<GhostCell>{};
+                };
+                keep(pc.coarse, kept->coarse), keep(pc.coarse_edges, kept->coarse_edges);
+                keep(pc.az_one, kept->az_one), keep(pc.az_three, kept->az_three);
+                kept->probed = kept->probed || probed;
+            }
         }
         if (control.cancelled()) throw TraceCancelled();
         if (control.preview) break;
@@ -309,6 +322,10 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
         est.azimuth_rel_l1 = seen.azimuth_rel_l1;
     }
     if (!control.preview) out.error_estimate = est;
+    if (keep_cells && est.valid) {
+        kept->ref_db = sp.ref_db, kept->probe_every = sp.probe_every;
+        out.estimate_cells = std::move(kept);
+    }
     if (!shaded) shaded = std::make_shared<const Accumulation>(accumulate(out, s, channels));
     out.shaded = std::move(shaded);
     out.rays_traced = rays;

@@ -3,11 +3,15 @@
 // the relative L1 and the |dB| quantiles of their difference over all samples, halved (adaptive_sampler.hpp).
 #include "core/sampling/adaptive_sampler.hpp"
 
+#include "core/shading/accumulate.hpp"
+#include "core/sampling/trace.hpp"
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace sonarsim::adaptive {
 
@@ -106,4 +110,46 @@ TraceResult::ErrorEstimate combine_errors(const std::vector<const SampleError*>&
     return est;
 }
 
+PolarImage columns_of(const PolarImage& img, const std::vector<int>& beams) {
+    PolarImage out;
+    out.bins = img.bins, out.beams = int(beams.size());
+    out.level_db.assign(size_t(out.bins) * beams.size(), -std::numeric_limits<float>::infinity());
+    for (int b = 0; b < img.bins; ++b)
+        for (size_t k = 0; k < beams.size(); ++k)
+            if (beams[k] >= 0) out.level_db[size_t(b) * beams.size() + k] = img.at(b, beams[k]);
+    return out;
+}
+
 } // namespace sonarsim::adaptive
+
+namespace sonarsim {
+
+TraceResult::ErrorEstimate reestimate_error(const TraceResult& hits, const SceneDesc& s,
+                                            const PolarImage& image) {
+    if (!hits.estimate_cells)
+        throw std::invalid_argument("reestimate_error: the hits keep no estimate cells (adaptive only)");
+    const AdaptiveEstimateCells& k = *hits.estimate_cells;
+    if (image.beams != s.sonar.beams || image.beams != hits.beams)
+        throw std::invalid_argument("reestimate_error: an image of another sonar");
+    const int G = int(k.samples.size());
+    const PolarImage fine = adaptive::columns_of(image, k.samples);
+    const PolarImage coarse = shade_columns(k.coarse, s, G), edges = shade_columns(k.coarse_edges, s, G);
+    PolarImage one, three;
+    if (k.probed) one = shade_columns(k.az_one, s, G), three = shade_columns(k.az_three, s, G);
+    const bool strict = hits.error_estimate.strict;
+    const std::vector<adaptive::SampleError> shares = adaptive::sample_errors(
+        coarse, fine, k.ref_db,
+        {&edges, k.probed ? &one : nullptr, k.probed ? &three : nullptr, strict, k.probe_every});
+    std::vector<const adaptive::SampleError*> errs;
+    for (int g = 0; g < G; ++g)
+        if (k.samples[size_t(g)] >= 0) errs.push_back(&shares[size_t(g)]);
+    // As trace_adaptive reports it: fast with what its probe saw, strict without (it acted on it).
+    TraceResult::ErrorEstimate est = adaptive::combine_errors(errs, !strict);
+    est.passes = hits.error_estimate.passes;
+    est.budget_reached = hits.error_estimate.budget_reached;
+    est.strict = strict;
+    if (strict) est.azimuth_rel_l1 = 0;
+    return est;
+}
+
+} // namespace sonarsim

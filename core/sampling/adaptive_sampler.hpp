@@ -18,6 +18,22 @@
 #include <deque>
 #include <cstdint>
 
+namespace sonarsim {
+
+/// What an adaptive trace's error estimate was made from besides the image's own cells, slot g for group g
+/// of its beams (TraceResult::estimate_cells): reestimate_error shades them with another scene's values.
+struct AdaptiveEstimateCells {
+    std::vector<int> samples; ///< group g's sample beam (-1: none estimated)
+    /// Its cells one level coarser, the same with only the triples that are not smooth merged, and (when
+    /// `probed`) the azimuth probe's cells as one column and as three; with multipath their ghosts.
+    TraceResult coarse, coarse_edges, az_one, az_three;
+    bool probed = false;
+    double ref_db = 0; ///< the level the estimate's linear sums were taken relative to (Sampler::ref_db)
+    int probe_every = 0;
+};
+
+} // namespace sonarsim
+
 namespace sonarsim::adaptive {
 
 /// Where Sampler::cells_of puts a column's cells and, with multipath, their ghosts (null: not wanted).
@@ -225,6 +241,9 @@ struct EstimateImages {
     /// bump decision's, with counts_refinable): the other edges' part counts at kRefinableShare.
     const PolarImage* lasting_edges = nullptr;
 };
+
+/// Columns `beams` of `img` as an image of their own (-1: an empty column).
+PolarImage columns_of(const PolarImage& img, const std::vector<int>& beams);
 
 /// Per sample beam (column k of the images: the same beams), the estimate's share (adaptive_estimate.cpp).
 /// Without `coarse_edges`, every triple counts as not smooth; without the probe's images, no azimuth share.

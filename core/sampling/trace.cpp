@@ -1,6 +1,7 @@
 #include "core/sampling/trace.hpp"
 
 #include "core/sampling/acquisition.hpp"
+#include "core/sampling/adaptive_sampler.hpp"
 #include "core/sampling/motion_trace.hpp"
 
 #include "core/sampling/multipath.hpp"
@@ -125,6 +126,17 @@ TraceResult trace(const SceneGeometry& g, const SceneDesc& s, const TraceControl
     }
     out.trace_ms = ms_since(t0);
     return out;
+}
+
+std::size_t hits_bytes(const TraceResult& t) {
+    std::size_t n = sizeof(TraceResult);
+    for (const auto& b : t.cells) n += b.capacity() * sizeof(Cell);
+    for (const auto& b : t.ghosts) n += b.capacity() * sizeof(GhostCell);
+    for (const auto& b : t.stratum_cells) n += b.capacity() * sizeof(Cell);
+    if (const AdaptiveEstimateCells* k = t.estimate_cells.get())
+        for (const TraceResult* r : {&k->coarse, &k->coarse_edges, &k->az_one, &k->az_three})
+            n += hits_bytes(*r);
+    return n;
 }
 
 } // namespace sonarsim

@@ -2,6 +2,7 @@
 // Physics is not applied here, so a change of L_S, L_N, alpha or a material re-shades without re-tracing.
 #pragma once
 #include "core/data/hits.hpp"
+#include "core/data/polar_image.hpp"
 #include "core/geometry/geometry.hpp"
 
 namespace sonarsim {
@@ -19,6 +20,16 @@ TraceResult trace_uniform(const SceneGeometry& geometry, const SceneDesc& scene,
 /// lobes, horizons, grazing footprints. All rays come out of sampling.max_rays. Fills `error_estimate`.
 TraceResult trace_adaptive(const SceneGeometry& geometry, const SceneDesc& scene,
                            const TraceControl& control = {});
+
+/// The error estimate of an adaptive trace's placement (`hits`, with TraceResult::estimate_cells) made anew
+/// with `scene`'s shading, a scene that differs from the traced one in values that steer the sampler only
+/// (Stage::Place): the same estimator on the same cells. `image`: hits shaded with `scene` (its sample beams'
+/// columns are the estimate's fine image). The same scene gives the trace's own estimate.
+TraceResult::ErrorEstimate reestimate_error(const TraceResult& hits, const SceneDesc& scene,
+                                            const PolarImage& image);
+
+/// Approximate bytes a trace's hits hold (cells, ghosts, strata, the adaptive estimate's cells).
+std::size_t hits_bytes(const TraceResult& hits);
 
 /// Jittered: per beam azimuth_rays x elevation_rays strata of two rays each, placed independently inside
 /// their stratum by a seeded hash (the same scene traces the same rays); the two sets (Cell::half) are two

@@ -251,6 +251,17 @@ TEST_CASE("a drag renders previews, then the full image once the input rests", "
         CHECK(session.status().find(" " + name) != std::string::npos);
         CHECK(std::filesystem::is_regular_file(prefix + suffix));
     }
+
+    // A slider that steers the sampler keeps the rays (re-shaded, no ray traced); a snapshot of that image
+    // writes what `render` makes of its scene all the same: rays placed anew.
+    REQUIRE(session.edit([](SceneDesc& s) { s.water.temperature_c = 19.5; }));
+    REQUIRE(session.submit() != 0);
+    REQUIRE(session.wait_latest(60s));
+    REQUIRE(session.shown()->frame->placement_kept);
+    const std::string kept_prefix = test::ui_out_path("after_kept_placement");
+    REQUIRE(session.snapshot(kept_prefix, {}));
+    CHECK_FALSE(session.shown()->frame->placement_kept);
+    CHECK(test::read_bytes(kept_prefix + ".npy") == encode_npy(Simulator(session.scene()).render()->polar()));
 }
 
 TEST_CASE("a preview request of a scheme without previews needs no second render", "[ui][session]") {

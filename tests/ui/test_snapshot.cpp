@@ -24,8 +24,8 @@ TEST_CASE("snapshot files -> load_scene -> render gives identical .npy and PNG b
         SceneDesc s = default_scene();
         apply_setting(s, "sampling.scheme", scheme, "test");
         ui::RenderWorker worker;
-        auto run = [&] {
-            const auto id = worker.request(s);
+        auto run = [&](bool keep_placement = true) {
+            const auto id = worker.request(s, false, false, std::nullopt, 0, {}, keep_placement);
             REQUIRE(worker.wait_for(id, std::chrono::seconds(60)));
             auto r = worker.take();
             REQUIRE(r);
@@ -42,8 +42,18 @@ TEST_CASE("snapshot files -> load_scene -> render gives identical .npy and PNG b
         run();
         s.display.lo_db = 71.1;
         s.display.colormap = Colormap::Viridis;
-        const ui::RenderResult shown = run();
+        ui::RenderResult shown = run();
         CHECK(shown.stage == Stage::Display);
+        // The temperature and nu steer the adaptive sampler: the viewer kept its rays, re-shaded (their
+        // estimate made anew meets the tolerances). A snapshot places them anew first, as Session::snapshot
+        // does, so that its files are what `render` makes of its scene.
+        CHECK(shown.frame->placement_kept == (std::string(scheme) == "adaptive"));
+        if (shown.frame->placement_kept) {
+            const auto kept_hits = shown.frame->hits_ptr;
+            shown = run(false);
+            CHECK_FALSE(shown.frame->placement_kept);
+            CHECK(shown.frame->hits_ptr != kept_hits);
+        }
 
         const std::string prefix = test::ui_out_path(std::string("snapshot_roundtrip_") + scheme);
         const Bytes fake3d = {1, 2, 3};

@@ -107,6 +107,14 @@ void draw_readout(Session& session, double frame_ms) {
                     f.error_estimate.median_abs_db, 100 * f.error_estimate.rel_l1, screen);
         } else {
             estimate_line(s, f.error_estimate);
+            if (f.placement_kept) {
+                ImGui::TextDisabled("rays kept, re-shaded");
+                if (ImGui::IsItemHovered())
+                    ImGui::SetTooltip("A slider that steers the sampler changed: the last image's rays were "
+                                      "re-shaded\nand their error estimate made anew with the new values "
+                                      "(above); it meets the\ntolerances, so no ray was traced. sonarsim "
+                                      "render places its rays anew.");
+            }
         }
     } else {
         ImGui::SameLine();

@@ -43,8 +43,8 @@ RenderWorker::~RenderWorker() {
 }
 
 std::uint64_t RenderWorker::request(const SceneDesc& scene, bool preview, bool ground_truth,
-                                    std::optional<Stage> changed, int fan_height_px,
-                                    std::vector<Ping> pings) {
+                                    std::optional<Stage> changed, int fan_height_px, std::vector<Ping> pings,
+                                    bool keep_placement) {
     std::uint64_t id;
     {
         std::lock_guard<std::mutex> lock(mutex_);
@@ -52,7 +52,8 @@ std::uint64_t RenderWorker::request(const SceneDesc& scene, bool preview, bool g
         // A replaced request's change still has to be made: the earlier of the two stages.
         if (changed && queued_)
             changed = queued_->changed ? std::min(*changed, *queued_->changed) : queued_->changed;
-        queued_ = Job{id, scene, preview, ground_truth, changed, fan_height_px, std::move(pings)};
+        queued_ =
+            Job{id, scene, preview, ground_truth, changed, fan_height_px, std::move(pings), keep_placement};
         // Restart on change: a full render of an outdated scene is stopped inside its trace. A running
         // preview is let finish (a few ms): cancelling previews in favour of newer previews while the user
         // drags would show nothing at all.
@@ -137,6 +138,9 @@ void RenderWorker::loop() {
                 TraceControl control;
                 control.cancel = &cancel_;
                 control.preview = job.preview;
+                // A slider that steers the sampler re-shades the kept hits and re-traces only when their
+                // estimate, made anew, misses the tolerances.
+                control.keep_placement = job.keep_placement;
                 // A preview that traces (a drag; a slider of the sonar's geometry) is made to the screen's
                 // precision (the adaptive scheme), with its estimate; one that re-shades traces nothing.
                 if (job.preview) control.preview_median_db = half_grey_level_db(sim->display());

@@ -55,9 +55,11 @@ class RenderWorker {
     /// (computed once per edit); otherwise the worker compares the scenes itself.
     /// `fan_height_px`: Simulator::set_fan_height_px (0: one row per range bin).
     /// `pings`: a side-scan's or scan's pings to hear (PingControl::schedule; empty: the scene's own).
+    /// `keep_placement`: TraceControl::keep_placement (a slider that steers the sampler keeps the hits
+    /// while their estimate made anew meets the tolerances); false places the rays anew, as `render` does.
     std::uint64_t request(const SceneDesc& scene, bool preview = false, bool ground_truth = false,
                           std::optional<Stage> changed = std::nullopt, int fan_height_px = 0,
-                          std::vector<Ping> pings = {});
+                          std::vector<Ping> pings = {}, bool keep_placement = true);
     /// The newest finished result not yet taken, if any (older unread results are dropped).
     std::optional<RenderResult> take();
     /// Waits until the result of request `id` (or a newer one) is done; false on timeout.
@@ -85,6 +87,7 @@ class RenderWorker {
         std::optional<Stage> changed; ///< changed_stage from the previous request's scene, if known
         int fan_height_px = 0;
         std::vector<Ping> pings;
+        bool keep_placement = true;
     };
     std::optional<Job> queued_;
     std::optional<RenderResult> result_;

@@ -234,6 +234,16 @@ bool Session::snapshot(const std::string& prefix, const Bytes& view3d_png, const
             error_ = "snapshot: the ground truth is not ready";
             return false;
         }
+        if (shown_->frame &&
+            shown_->frame->placement_kept) { // the files are what `render` makes of the scene
+            requested_id_ =
+                worker_.request(shown_->scene, false, ground_truth_, std::nullopt, fan_height_px_, {}, false);
+            if (!wait_latest(std::chrono::milliseconds(60000)) || !shown_ || !shown_->frame ||
+                shown_->preview() || shown_->frame->placement_kept) {
+                error_ = "snapshot: the image with its rays placed anew is not ready";
+                return false;
+            }
+        }
         if (shown_->pings) { // a side-scan's or scan's files, as render writes them, and the 3D view
             std::vector<std::pair<std::string, Bytes>> extra;
             if (!view3d_png.empty()) extra.emplace_back(prefix + "_3d.png", view3d_png);
