@@ -2,6 +2,7 @@
 
 #include "core/base/timing.hpp"
 #include "core/pipeline/simulator.hpp"
+#include "core/sampling/trace.hpp"
 #include "core/shading/physics.hpp"
 
 #include <chrono>
@@ -50,12 +51,15 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
     // per channel, which keeps its geometry and its stages' buffers from ping to ping. A ping's image does
     // not depend on which simulator made it, so the series is the same whatever the threads.
     const size_t jobs = size_t(out.pings) * size_t(out.channels);
-    if (traces) traces->prepare(beam, control.preview);
+    if (traces) traces->prepare(beam, control.preview, control.keep_placement);
     std::vector<PingKey> keys;
     std::vector<std::uint64_t> draws(jobs);
     std::vector<std::shared_ptr<const TraceResult>> hits(jobs);
     std::vector<std::shared_ptr<const PingLevels>> levels(jobs);
     std::vector<size_t> traced_by(jobs); // the job whose trace a job shades (itself: it traces)
+    // Kept hits placed for an earlier shading (keep_placement): their estimate is made anew as they are
+    // shaded, and where it misses the tolerances (`missed`) the ping is traced again.
+    std::vector<char> recheck(jobs, 0), missed(jobs, 0);
     std::map<PingKey, size_t> first;
     std::vector<size_t> tracing, shading;
     keys.reserve(jobs);
@@ -71,6 +75,7 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
         }
         if (levels[j]) continue; // copied below
         if (hits[j]) {
+            recheck[j] = !control.preview && traces->placed_earlier(keys[j]);
             shading.push_back(j);
             continue;
         }
@@ -87,6 +92,7 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
     TraceControl trace;
     trace.cancel = control.cancel;
     trace.preview = control.preview;
+    trace.keep_placement = control.keep_placement;
     std::mutex progress_mutex;
     size_t done = jobs - tracing.size() - shading.size(); // the copied ones
     out.traced_profiles = int(tracing.size()), out.shaded_profiles = int(shading.size());
@@ -115,6 +121,12 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
         }
         const double times[4] = {f->trace_ms, f->shade_ms, f->sensor_ms, f->image_ms};
         for (int k = 0; k < 4; ++k) w.stage_ms[k] += times[k];
+        if (recheck[j]) {
+            const TraceResult& h = *kept;
+            missed[j] = !h.estimate_cells || (!reestimate_error(h, at, f->ideal()).meets(at.sampling) &&
+                                              h.error_estimate.meets(at.sampling));
+            if (missed[j]) return; // traced again below
+        }
         const size_t off = j * size_t(out.bins);
         std::memcpy(out.level_db.data() + off, f->polar().level_db.data(), size_t(out.bins) * 4);
         std::memcpy(out.ideal_db.data() + off, f->ideal().level_db.data(), size_t(out.bins) * 4);
@@ -146,6 +158,19 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
         throw;
     }
     run_phase(shading);
+    // Kept pings whose estimate made anew missed: traced again (once per pose), then shaded.
+    std::vector<size_t> retrace, reshade;
+    std::map<PingKey, size_t> first_missed;
+    for (size_t j : shading) {
+        if (!missed[j]) continue;
+        const auto [it, is_first] = first_missed.emplace(keys[j], j);
+        hits[j] = nullptr, traced_by[j] = it->second, recheck[j] = 0;
+        (is_first ? retrace : reshade).push_back(j);
+    }
+    out.traced_profiles += int(retrace.size()), out.shaded_profiles -= int(retrace.size());
+    for (size_t j : shading) out.kept_placement_profiles += recheck[j] && !missed[j];
+    run_phase(retrace);
+    run_phase(reshade);
     for (size_t j = 0; j < jobs; ++j) {
         if (!levels[j]) continue;
         const size_t off = j * size_t(out.bins);

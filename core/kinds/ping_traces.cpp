@@ -36,14 +36,18 @@ Stage changed_but_pings(SceneDesc before, const SceneDesc& beam) {
 
 } // namespace
 
-void PingTraces::prepare(const SceneDesc& beam, bool preview) {
+void PingTraces::prepare(const SceneDesc& beam, bool preview, bool keep_placement) {
     // A display value (colour map, display range) does not touch the levels.
     if (levels_for_ && changed_but_pings(*levels_for_, beam) < Stage::Display)
         levels_.clear(), levels_bytes_ = 0;
     if (placed_for_) {
         const Stage s = changed_but_pings(*placed_for_, beam);
         if (s == Stage::Place && preview) return; // re-shaded as placed for the earlier scene
-        if (s <= Stage::Place) hits_.clear(), hits_bytes_ = 0;
+        if (s == Stage::Place && keep_placement) {
+            for (const auto& kept : hits_) earlier_.insert(kept.first); // the series re-estimates them
+        } else if (s <= Stage::Place) {
+            hits_.clear(), earlier_.clear(), hits_bytes_ = 0;
+        }
     }
     placed_for_ = beam;
 }
@@ -74,8 +78,8 @@ void PingTraces::add(std::map<PingKey, std::shared_ptr<const TraceResult>> hits)
 void PingTraces::keep(const SceneDesc& beam,
                       std::map<PingKey, std::shared_ptr<const TraceResult>> series_hits,
                       std::map<LevelsKey, std::shared_ptr<const PingLevels>> series_levels) {
-    hits_.clear(), levels_.clear(), hits_bytes_ = levels_bytes_ = 0;
-    for (auto& [key, hits] : series_hits) {
+    hits_.clear(), levels_.clear(), earlier_.clear(), hits_bytes_ = levels_bytes_ = 0;
+    for (auto& [key, hits] : series_hits) { // each serves `beam`: traced for it, or estimated anew with it
         const std::size_t bytes = hits_bytes(*hits);
         if (hits_bytes_ + bytes > budget_bytes_) break;
         hits_bytes_ += bytes;

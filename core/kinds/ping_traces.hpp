@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -43,8 +44,13 @@ class PingTraces {
 
     /// Before a series of `beam` (the one-beam imaging sonar, render_pings): drops the hits that cannot serve
     /// it. Geometry or anything the tracer reads changed: all. Ray placement changed (a value the adaptive
-    /// sampler steers by, Stage::Place): all for a full-quality series; a preview re-shades them.
-    void prepare(const SceneDesc& beam, bool preview);
+    /// sampler steers by, Stage::Place): a preview re-shades them; a full-quality series drops them all, or
+    /// with `keep_placement` (PingControl::keep_placement) keeps them as placed for an earlier shading
+    /// (placed_earlier), for the series to re-estimate.
+    void prepare(const SceneDesc& beam, bool preview, bool keep_placement = false);
+    /// Whether the kept hits of `key` were placed for an earlier shading than the prepared scene's (kept by
+    /// prepare with keep_placement): their error estimate is to be made anew before they serve it.
+    bool placed_earlier(const PingKey& key) const { return earlier_.count(key) != 0; }
     /// The kept hits of `key` that a series of the prepared scene may shade, or null. A full-quality series
     /// does not take a preview's hits.
     std::shared_ptr<const TraceResult> find(const PingKey& key, bool preview) const;
@@ -72,6 +78,7 @@ class PingTraces {
     std::optional<SceneDesc> levels_for_; ///< the beam scene the kept levels were made with
     std::map<PingKey, std::shared_ptr<const TraceResult>> hits_;
     std::map<LevelsKey, std::shared_ptr<const PingLevels>> levels_;
+    std::set<PingKey> earlier_; ///< kept hits placed for an earlier shading (placed_earlier)
 };
 
 } // namespace sonarsim

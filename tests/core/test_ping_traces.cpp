@@ -79,6 +79,53 @@ TEST_CASE("kept pings: a shading change traces no ray and gives a fresh series' 
         CHECK(full.rays_traced > 0);
         check_same_series(full, render_pings(changed));
     }
+    SECTION(
+        "a value the sampler steers by, keep_placement: a full series keeps the pings whose estimate made "
+        "anew meets the tolerances") {
+        // The viewer's: the pings' traces keep their estimate cells, a change re-shades them and estimates
+        // them anew; a ping is traced again only where that estimate misses.
+        PingControl keep;
+        keep.keep_placement = true;
+        PingTraces kept;
+        const PingSeries placed = render_pings(s, keep, &kept);
+        check_same_series(placed, first); // keeping the estimate cells changes no byte
+        SceneDesc changed = s;
+        apply_setting(changed, "seafloor.material.nu_db", -27.0, "test");
+        apply_setting(changed, "objects.0.material.nu_db", -13.0, "test");
+        apply_setting(changed, "sonar.frequency_khz", s.sonar.frequency_khz * 1.1, "test"); // same pings
+        REQUIRE(changed_stage(s, changed) == Stage::Place);
+        const PingSeries same_rays = render_pings(changed, keep, &kept);
+        CHECK(same_rays.rays_traced == 0);
+        CHECK(same_rays.traced_profiles == 0);
+        CHECK(same_rays.kept_placement_profiles == first.pings * first.channels);
+        // Each profile is the kept hits shaded with the new values: the preview's bytes, shaded alike.
+        PingTraces for_preview;
+        render_pings(s, keep, &for_preview);
+        PingControl preview = keep;
+        preview.preview = true;
+        check_same_series(same_rays, render_pings(changed, preview, &for_preview));
+        // Within the tolerances of a series traced anew.
+        const PingSeries fresh = render_pings(changed);
+        double num = 0, den = 0;
+        for (size_t k = 0; k < fresh.ideal_db.size(); ++k) {
+            const double a =
+                std::isfinite(same_rays.ideal_db[k]) ? std::pow(10.0, same_rays.ideal_db[k] / 10) : 0;
+            const double b = std::isfinite(fresh.ideal_db[k]) ? std::pow(10.0, fresh.ideal_db[k] / 10) : 0;
+            num += std::abs(a - b), den += b;
+        }
+        CHECK(num / den < changed.sampling.tolerance_rel_l1);
+
+        // The box 18 dB louder: the starboard channel, which sees it, misses with cells placed for a faint
+        // box (1.1 % estimated anew against 0.28 % as traced) and is traced again; the port channel is kept.
+        SceneDesc louder = changed;
+        apply_setting(louder, "objects.0.material.nu_db", 5.0, "test");
+        REQUIRE(changed_stage(changed, louder) == Stage::Place);
+        const PingSeries relobed = render_pings(louder, keep, &kept);
+        CHECK(relobed.traced_profiles > 0); // the pings that see the lobe
+        CHECK(relobed.rays_traced > 0);
+        CHECK(relobed.traced_profiles + relobed.shaded_profiles == first.pings * first.channels);
+        CHECK(relobed.kept_placement_profiles == relobed.shaded_profiles);
+    }
     SECTION("the sonar moved: every ping from a new pose traces; the same bytes as a fresh series") {
         SceneDesc moved = s;
         moved.sonar.pose.position_m[0] += 0.5;

@@ -74,9 +74,12 @@ void draw_readout(Session& session, double frame_ms) {
         ImGui::TextDisabled("%d traced, %d shaded, %d kept", p.traced_profiles, p.shaded_profiles,
                             p.copied_profiles);
         if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("Each ping's channels: traced anew (%llu rays), shaded from hits traced before "
-                              "from the same pose, or kept from the last image (only the pose changed)",
-                              static_cast<unsigned long long>(p.rays_traced));
+            ImGui::SetTooltip(
+                "Each ping's channels: traced anew (%llu rays), shaded from hits traced before "
+                "from the same pose, or kept from the last image (only the pose changed).\n%d of "
+                "the shaded kept rays placed for earlier values of a slider that steers the "
+                "sampler:\ntheir error estimate, made anew, meets the tolerances",
+                static_cast<unsigned long long>(p.rays_traced), p.kept_placement_profiles);
     } else if (r) {
         const Frame& f = *r->frame;
         ImGui::SameLine();

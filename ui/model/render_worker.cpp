@@ -12,10 +12,13 @@ namespace sonarsim::ui {
 namespace {
 
 /// A side-scan's or scan's pings of `scene` into `r`, with the image its PNG shows; `cancel` stops them.
-/// `traces` keeps the hits from one request to the next: a slider of the mission re-shades them.
+/// `traces` keeps the hits from one request to the next: a slider of the mission re-shades them (and, with
+/// `keep_placement`, keeps them at rest while their estimate made anew meets the tolerances).
 void render_pings_into(RenderResult& r, const SceneDesc& scene, bool preview, bool ground_truth,
-                       std::vector<Ping> pings, const std::atomic<bool>& cancel, PingTraces& traces) {
+                       bool keep_placement, std::vector<Ping> pings, const std::atomic<bool>& cancel,
+                       PingTraces& traces) {
     PingControl control;
+    control.keep_placement = keep_placement;
     control.schedule = std::move(pings);
     control.cancel = &cancel;
     control.preview = preview;
@@ -120,8 +123,8 @@ void RenderWorker::loop() {
         const auto t0 = std::chrono::steady_clock::now();
         try {
             if (job.scene.sonar.kind != SonarKind::Imaging) { // a side-scan's or scan's pings
-                render_pings_into(r, job.scene, job.preview, job.ground_truth, std::move(job.pings), cancel_,
-                                  ping_traces);
+                render_pings_into(r, job.scene, job.preview, job.ground_truth, job.keep_placement,
+                                  std::move(job.pings), cancel_, ping_traces);
                 known = false; // the imaging simulator does not hold this scene
             } else {
                 ping_traces = PingTraces(); // their hits go with the kind

@@ -234,12 +234,16 @@ bool Session::snapshot(const std::string& prefix, const Bytes& view3d_png, const
             error_ = "snapshot: the ground truth is not ready";
             return false;
         }
-        if (shown_->frame &&
-            shown_->frame->placement_kept) { // the files are what `render` makes of the scene
-            requested_id_ =
-                worker_.request(shown_->scene, false, ground_truth_, std::nullopt, fan_height_px_, {}, false);
-            if (!wait_latest(std::chrono::milliseconds(60000)) || !shown_ || !shown_->frame ||
-                shown_->preview() || shown_->frame->placement_kept) {
+        // An image whose rays were kept from an earlier shading (a slider that steers the sampler): placed
+        // anew first, so that the files are what `render` makes of the scene.
+        const auto kept = [this] {
+            return (shown_->frame && shown_->frame->placement_kept) ||
+                   (shown_->pings && shown_->pings->kept_placement_profiles > 0);
+        };
+        if (kept()) {
+            requested_id_ = worker_.request(shown_->scene, false, ground_truth_, std::nullopt, fan_height_px_,
+                                            requested_pings(), false);
+            if (!wait_latest(std::chrono::milliseconds(60000)) || !shown_ || shown_->preview() || kept()) {
                 error_ = "snapshot: the image with its rays placed anew is not ready";
                 return false;
             }
