@@ -8,7 +8,7 @@
 #include "core/base/errors.hpp"
 #include "core/dataset/batch.hpp"
 #include "core/dataset/export.hpp"
-#include "core/io/aris.hpp"
+#include "core/dataset/containers.hpp"
 #include "core/kinds/pings.hpp"
 #include "core/scene/params.hpp"
 
@@ -80,11 +80,12 @@ int run_batch_command(const BatchCliOptions& o) {
                          "per sample: --ground-truth");
     StatusLine status;
     options.progress = [&](const BatchProgress& p) { status.show(progress_text(p)); };
+    // The containers asked for (a row of dataset_containers each), checked before anything is rendered.
+    std::vector<std::pair<const DatasetContainer*, std::string>> packs;
+    if (!o.aris.empty()) packs.emplace_back(&dataset_container("--aris"), o.aris);
+    if (!o.mcap.empty()) packs.emplace_back(&dataset_container("--mcap"), o.mcap);
+    for (const auto& [container, path] : packs) check_holds(*container, scene.sonar.kind, container->option);
     if (scene.sonar.kind != SonarKind::Imaging) { // each frame a waterfall or sweep: the timing said once
-        if (!o.aris.empty())
-            throw InputError("--aris", "sonar.kind",
-                             "an ARIS recording holds an imaging sonar's frames, not a " +
-                                 kind_name(scene.sonar.kind) + " sonar's pings; allowed: --mcap");
         std::string line = ping_timing_text(scene);
         if (trajectory.size() > 1) {
             char b[160];
@@ -98,20 +99,23 @@ int run_batch_command(const BatchCliOptions& o) {
                       "true moves them along the trajectory)";
         std::cout << line << "\n";
     }
-    if (!o.aris.empty()) { // before rendering: the scene as an ARIS mode, on its samples, no faster than it
-        const std::string origin = o.scene.scene_file.empty() ? "--aris" : o.scene.scene_file;
-        std::string note;
-        const SceneDesc on_samples = on_aris_samples(scene, origin, note);
-        // A dataset begun without --aris keeps its grid (resumed, its frames must agree): the file resamples.
-        if (!note.empty() && dataset_holds_other_scene(o.out, on_samples) &&
-            !dataset_holds_other_scene(o.out, scene))
-            note = "the dataset in " + o.out +
-                   " was begun on its own range grid, which it keeps: its frames are resampled onto the "
-                   "ARIS samples (a new dataset with --aris renders on them)";
-        else
-            scene = on_samples;
-        if (!note.empty()) std::cout << o.aris << ": " << note << "\n";
-        check_aris_frame_times(scene, trajectory, origin, o.trajectory.empty() ? "--rate" : o.trajectory);
+    for (const auto& [container, path] : packs) { // before rendering: the scene as the file records it
+        const std::string origin = o.scene.scene_file.empty() ? container->option : o.scene.scene_file;
+        if (container->prepare) {
+            std::string note;
+            const SceneDesc prepared = container->prepare(scene, origin, note);
+            // A dataset begun without it keeps its grid (resumed, its frames must agree): the file resamples.
+            if (!note.empty() && dataset_holds_other_scene(o.out, prepared) &&
+                !dataset_holds_other_scene(o.out, scene))
+                note = "the dataset in " + o.out + " was begun on its own range grid, which it keeps: its " +
+                       "frames are resampled onto the samples of the " + container->name +
+                       " (a new dataset with " + container->option + " renders on them)";
+            else
+                scene = prepared;
+            if (!note.empty()) std::cout << path << ": " << note << "\n";
+        }
+        if (container->check_times)
+            container->check_times(scene, trajectory, origin, o.trajectory.empty() ? "--rate" : o.trajectory);
     }
     prepare_dataset(o.out, scene, trajectory);
     options.stop = &g_stop;
@@ -136,27 +140,20 @@ int run_batch_command(const BatchCliOptions& o) {
         return 128 + g_signal.load();
     }
     // The export keys of this command line (they are no part of the dataset): one mapping per file.
-    auto pack = [&](const std::string& path, ExportFormat format, const std::string& what) {
-        const ExportReport x = export_dataset(o.out, path, format, scene.exports,
-                                              format == ExportFormat::Aris ? "--aris" : "--mcap");
-        std::string line = "wrote " + path + " (" + what;
-        if (format != ExportFormat::McapFloat32)
-            line += "; " + x.summary() + ") and " + path + ".json";
-        else
-            line += ")";
+    const bool imaging = scene.sonar.kind == SonarKind::Imaging;
+    const size_t items = imaging ? trajectory.size() : ping_schedule(scene).size() * trajectory.size();
+    for (const auto& [container, path] : packs) {
+        const bool float32 = container->holds_float32 && o.mcap_dtype == "float32";
+        const ExportReport x =
+            export_dataset(o.out, path, *container, float32, scene.exports, container->option);
+        std::string line = "wrote " + path + " (" + container->name + ", " + std::to_string(items) + " " +
+                           (imaging ? container->frame_items : container->ping_items);
+        line += float32 ? ")" : "; " + x.summary() + ") and " + path + ".json";
         std::cout << line << "\n";
-        if (const std::string w = format == ExportFormat::McapFloat32 ? "" : x.warning(path); !w.empty())
+        if (const std::string w = float32 ? "" : x.warning(path); !w.empty())
             std::cerr << "sonarsim: " << w << "\n";
         for (const std::string& note : x.notes) std::cout << path << ": " << note << "\n";
-    };
-    const std::string frames = std::to_string(trajectory.size());
-    if (!o.aris.empty()) pack(o.aris, ExportFormat::Aris, "ARIS recording, " + frames + " frames");
-    if (!o.mcap.empty())
-        pack(o.mcap, o.mcap_dtype == "float32" ? ExportFormat::McapFloat32 : ExportFormat::McapUint8,
-             scene.sonar.kind == SonarKind::Imaging
-                 ? "ROS 2 bag in MCAP, " + frames + " ProjectedSonarImage messages"
-                 : "ROS 2 bag in MCAP, " + std::to_string(ping_schedule(scene).size() * trajectory.size()) +
-                       " RawSonarImage messages, one per ping");
+    }
     return 0;
 }
 

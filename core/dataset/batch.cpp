@@ -1,6 +1,8 @@
 #include "core/io/ground_truth_files.hpp"
 #include "core/dataset/batch.hpp"
 
+#include "core/dataset/containers.hpp"
+
 #include "core/base/build_info.hpp"
 
 #include "core/sensor/sensor.hpp"
@@ -324,9 +326,10 @@ std::function<PolarImage(size_t)> dataset_images(const std::string& dir, size_t 
     Trajectory trajectory;
     load_dataset(dir, base, trajectory);
     if (base.sonar.kind != SonarKind::Imaging)
-        throw InputError(origin, "sonar.kind",
-                         "the dataset in " + dir + " holds a " + kind_name(base.sonar.kind) +
-                             " sonar's pings, not an imaging sonar's frames; allowed: --mcap");
+        throw InputError(
+            origin, "sonar.kind",
+            "the dataset in " + dir + " holds a " + kind_name(base.sonar.kind) +
+                " sonar's pings, not an imaging sonar's frames; allowed: " + containers_for(base.sonar.kind));
     check_frames_complete(dir, frames, base, origin);
     return [dir](size_t k) {
         const std::string path = frame_prefix(dir, k) + ".npy";

@@ -349,10 +349,10 @@ TEST_CASE("ARIS FrameTime is the dataset's start plus t, the start kept when a r
     CHECK(dataset_start_time_s(dir) == start);
     run_batch(dir, {});
 
-    export_dataset(dir, dir + "/a.aris", ExportFormat::Aris, ExportParams{}, "--aris");
+    export_dataset(dir, dir + "/a.aris", dataset_container("--aris"), false, ExportParams{}, "--aris");
     ExportParams pinned;
     pinned.start_time_s = 1700000000.25;
-    export_dataset(dir, dir + "/b.aris", ExportFormat::Aris, pinned, "--aris");
+    export_dataset(dir, dir + "/b.aris", dataset_container("--aris"), false, pinned, "--aris");
     for (size_t k = 0; k < 2; ++k) {
         CHECK(read_aris_frame(dir + "/a.aris", k).info.time_us ==
               std::uint64_t(std::llround((start + t[k].t_s) * 1e6)));
@@ -379,7 +379,7 @@ TEST_CASE("the same batch writes the same ARIS file, and its dataset says what m
         std::filesystem::remove_all(dir);
         prepare_dataset(dir, s, t);
         run_batch(dir, {});
-        export_dataset(dir, dir + "/x.aris", ExportFormat::Aris, ExportParams{}, "--aris");
+        export_dataset(dir, dir + "/x.aris", dataset_container("--aris"), false, ExportParams{}, "--aris");
         files.push_back(file_bytes(dir + "/x.aris"));
         const auto text = file_bytes(dir + "/dataset.json");
         const json d = json::parse(std::string(text.begin(), text.end()));

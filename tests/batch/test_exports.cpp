@@ -85,7 +85,8 @@ TEST_CASE("the shipwreck exported with the default mapping fits the byte range",
     const std::string path = w.dir + "/wreck.aris";
     const ExportParams defaults; // export.auto
     REQUIRE(defaults.auto_range);
-    const ExportReport report = export_dataset(w.dir, path, ExportFormat::Aris, defaults, "--aris");
+    const ExportReport report =
+        export_dataset(w.dir, path, dataset_container("--aris"), false, defaults, "--aris");
     const auto frames = read_aris(path, 48);
     REQUIRE(frames.size() == 2);
 
@@ -149,7 +150,8 @@ TEST_CASE("the fixed 0-80 dB mapping saturates the shipwreck, and says so", "[ex
     const std::string path = w.dir + "/fixed.aris";
     ExportParams fixed;
     fixed.auto_range = false; // lo_db 0, hi_db 80: the mapping before export.auto
-    const ExportReport report = export_dataset(w.dir, path, ExportFormat::Aris, fixed, "--aris");
+    const ExportReport report =
+        export_dataset(w.dir, path, dataset_container("--aris"), false, fixed, "--aris");
     CHECK_FALSE(report.mapping.automatic);
     CHECK(report.total.high_fraction() > 0.05);
     CHECK(report.warning(path).find("clipped at 255") != std::string::npos);
@@ -174,7 +176,8 @@ TEST_CASE("an explicit byte mapping is honoured exactly in ARIS and MCAP", "[exp
         const double t = std::min(1.0, std::max(0.0, (double(l) - 110) / 20));
         return int(std::floor(255 * t + 0.5));
     };
-    const ExportReport a = export_dataset(dir, dir + "/x.aris", ExportFormat::Aris, p, "--aris");
+    const ExportReport a =
+        export_dataset(dir, dir + "/x.aris", dataset_container("--aris"), false, p, "--aris");
     CHECK(a.mapping.lo_db == 110);
     CHECK(a.mapping.hi_db == 130);
     const auto frames = read_aris(dir + "/x.aris", 48);
@@ -192,7 +195,8 @@ TEST_CASE("an explicit byte mapping is honoured exactly in ARIS and MCAP", "[exp
     CHECK(a.total.high == at_255);
 
     // MCAP: the same bytes, range-major with beam 0 port-most; the mapping in the channel's metadata.
-    const ExportReport m = export_dataset(dir, dir + "/x.mcap", ExportFormat::McapUint8, p, "--mcap");
+    const ExportReport m =
+        export_dataset(dir, dir + "/x.mcap", dataset_container("--mcap"), false, p, "--mcap");
     // MCAP holds our bins (ARIS the device's samples): its counts are the images' own.
     size_t bins_255 = 0, bins_0 = 0;
     for (auto& img : images)

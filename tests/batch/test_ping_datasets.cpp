@@ -140,8 +140,15 @@ TEST_CASE("a side-scan dataset: each frame the waterfall from its pose, its XTF 
     const std::string index(index_bytes.begin(), index_bytes.end());
     CHECK(index.find("frames/000002.xtf") != std::string::npos);
     CHECK(index.find("frames/000001_gt_incidence_deg.npy") != std::string::npos);
-    CHECK_THROWS_AS(export_dataset(dir, dir + "/out.aris", ExportFormat::Aris, base.exports, "--aris"),
-                    InputError);
+    // A container that holds no pings says which do (dataset_containers: one row each).
+    CHECK_THROWS_AS(
+        export_dataset(dir, dir + "/out.aris", dataset_container("--aris"), false, base.exports, "--aris"),
+        InputError);
+    CHECK_THROWS_WITH(
+        export_dataset(dir, dir + "/out.aris", dataset_container("--aris"), false, base.exports, "--aris"),
+        Catch::Contains("allowed: --mcap (each frame also has its own .xtf)"));
+    CHECK(containers_for(SonarKind::Imaging) == "--aris, --mcap");
+    CHECK_FALSE(std::filesystem::exists(dir + "/out.aris"));
     CHECK_THROWS_AS(dataset_images(dir, 3, "--aris"), InputError);
 }
 
@@ -161,9 +168,10 @@ TEST_CASE("a side-scan and a scan as ROS 2 bags of RawSonarImage read back field
         const int channels = side ? 2 : 1, bins = base.sonar.range_bins;
         ExportParams exports = base.exports;
         exports.start_time_s = 1700000000.5;
-        for (const auto format : {ExportFormat::McapFloat32, ExportFormat::McapUint8}) {
+        for (const bool float32 : {true, false}) {
             const std::string path = dir + "/out.mcap";
-            const ExportReport report = export_dataset(dir, path, format, exports, "--mcap");
+            const ExportReport report =
+                export_dataset(dir, path, dataset_container("--mcap"), float32, exports, "--mcap");
             const McapContents m = mcap_contents(file_bytes(path));
             CHECK(m.profile == "ros2");
             REQUIRE(m.channel_schema.count(0));
@@ -201,7 +209,7 @@ TEST_CASE("a side-scan and a scan as ROS 2 bags of RawSonarImage read back field
                     // Beam-major samples, each channel's in range order, as the frame's .npy holds them.
                     const float* levels = p.profile(ping, 0);
                     const size_t n = size_t(channels) * size_t(bins);
-                    if (format == ExportFormat::McapFloat32) {
+                    if (float32) {
                         CHECK(r.dtype == 8);
                         REQUIRE(r.data.size() == 4 * n);
                         for (size_t j = 0; j < n; ++j) {
