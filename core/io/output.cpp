@@ -72,29 +72,26 @@ std::string temp_tag() {
     return b;
 }
 
-Bytes sector_png(const SceneDesc&, const Frame& f) {
+Bytes sector_png(const SceneDesc&, const Frame& f, const json&) {
     return encode_png(f.sector());
 }
-Bytes polar_png(const SceneDesc&, const Frame& f) {
+Bytes polar_png(const SceneDesc&, const Frame& f, const json&) {
     return encode_png(polar_gray_image(f.polar(), f.display));
 }
-Bytes level_npy(const SceneDesc&, const Frame& f) {
+Bytes level_npy(const SceneDesc&, const Frame& f, const json&) {
     return encode_npy(f.polar());
 }
-Bytes ideal_npy(const SceneDesc&, const Frame& f) {
+Bytes ideal_npy(const SceneDesc&, const Frame& f, const json&) {
     return encode_npy(f.ideal());
 }
 bool sensor_applied(const SceneDesc& s) {
     return !sensor_is_ideal(s);
 }
 /// The metadata with `more`'s keys added (ground_truth_maps_metadata: what only some writers add).
-Bytes metadata_bytes(const SceneDesc& s, const Frame& f, const json& more) {
+Bytes metadata_json(const SceneDesc& s, const Frame& f, const json& more) {
     json j = frame_metadata(s, f);
     if (more.is_object()) j.update(more);
     return to_bytes(j.dump(2) + "\n");
-}
-Bytes metadata_json(const SceneDesc& s, const Frame& f) {
-    return metadata_bytes(s, f, nullptr);
 }
 
 } // namespace
@@ -135,9 +132,7 @@ void write_render_files(const std::string& prefix, const SceneDesc& scene, const
     std::vector<std::pair<std::string, Bytes>> files;
     for (auto& o : render_outputs())
         if (o.written_for(scene))
-            files.emplace_back(prefix + o.suffix, o.encode == metadata_json
-                                                      ? metadata_bytes(scene, frame, metadata_more)
-                                                      : o.encode(scene, frame));
+            files.emplace_back(prefix + o.suffix, o.encode(scene, frame, metadata_more));
     for (auto& e : extra) files.push_back(std::move(e));
     write_files_atomically(files);
 }

@@ -59,7 +59,8 @@ std::vector<float> decode_npy_values(const Bytes& bytes, const std::string& path
 struct RenderOutput {
     const char* suffix; ///< ".png", "_polar.png", ...
     const char* what;   ///< what it holds, for messages and docs
-    Bytes (*encode)(const SceneDesc& scene, const Frame& frame);
+    /// The file's bytes; `metadata_more`: keys the metadata adds (write_render_files), others ignore it.
+    Bytes (*encode)(const SceneDesc& scene, const Frame& frame, const json& metadata_more);
     bool (*wanted)(const SceneDesc& scene) = nullptr; ///< written only where it says so (null: always)
     const char* what_ideal =
         nullptr; ///< what it holds under the ideal sensor, where that differs (null: what)

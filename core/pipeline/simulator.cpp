@@ -168,6 +168,7 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
     const bool retrace =
         dirty_ <= Stage::Trace || !next.hits_ptr || (placed_before && !control.preview && !keeps);
     const Stage from = retrace ? Stage::Trace : std::max(dirty_, Stage::Shade);
+    const bool at_screen = retrace && screen_preview(scene_, control);
     // One accumulation pass: every channel this frame needs that is not shared with the frame before.
     const bool reshade = from <= Stage::Shade;
     Channels c;
@@ -182,8 +183,7 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
         TraceControl traced = control;
         traced.channels = c;
         // TraceCancelled: nothing has changed yet.
-        TraceResult t = screen_preview(scene_, control) ? trace_screen_preview(traced)
-                                                        : trace(*geometry_, scene_, traced);
+        TraceResult t = at_screen ? trace_screen_preview(traced) : trace(*geometry_, scene_, traced);
         next.trace_ms = t.trace_ms;
         next.placement_stale = false;
         rays_traced_ += t.rays_traced + t.multipath_rays;
@@ -225,7 +225,7 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
         next.placement_stale = false, next.placement_kept = true;
     }
     if (retrace) next.placement_kept = false;
-    if (retrace && screen_preview(scene_, control))
+    if (retrace && at_screen)
         resize_preview(next.error_estimate, control.preview_median_db, next.trace_ms + next.shade_ms,
                        control.preview_budget_ms);
     if (from <= Stage::Sensor) {
