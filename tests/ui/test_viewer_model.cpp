@@ -11,6 +11,7 @@
 #include "ui/model/scene_files.hpp"
 #include "ui/model/scene_labels.hpp"
 #include "ui/model/script.hpp"
+#include "ui/model/script_player.hpp"
 #include "ui/model/text_layout.hpp"
 #include "ui/model/trajectory.hpp"
 #include "ui/model/undo.hpp"
@@ -52,6 +53,54 @@ TEST_CASE("undo and redo walk the recorded scenes and a new edit drops the redo 
     CHECK(u.redo_steps() == 0);
     CHECK_FALSE(u.redo());
     CHECK(same_scene(*u.undo(), b));
+}
+
+TEST_CASE("a script plays frame by frame: input before a frame, actions after it, each once",
+          "[ui][script]") {
+    ScriptPlayer p(
+        parse_script("0 move 10 20\n2 move_to sonar.beams 0.5 0.25\n2 press left\n2 screenshot a.png\n"
+                     "4 state b.json\n4 release left\n",
+                     "s.txt"),
+        "s.txt");
+    CHECK(p.last_frame() == 5); // the script's last frame + 1
+    const std::map<std::string, Rect> widgets = {{"sonar.beams", {100, 200, 40, 8}}};
+    auto ev = p.input(0, widgets);
+    REQUIRE(ev.size() == 1);
+    CHECK(ev[0].pos == glm::dvec2(10, 20));
+    CHECK(p.actions(0).empty());
+    CHECK(p.input(1, widgets).empty()); // frame 0's steps were taken after it
+    CHECK(p.actions(1).empty());
+    ev = p.input(2, widgets); // move_to the widget's point, then the press there
+    REQUIRE(ev.size() == 2);
+    CHECK(ev[0].pos == glm::dvec2(120, 202));
+    CHECK(ev[1].type == InputEvent::Type::Press);
+    CHECK(ev[1].pos == glm::dvec2(120, 202));
+    auto acts = p.actions(2);
+    REQUIRE(acts.size() == 1);
+    CHECK(acts[0].command == "screenshot");
+    CHECK(p.actions(3).empty());
+    ev = p.input(4, widgets);
+    REQUIRE(ev.size() == 1);
+    CHECK(ev[0].type == InputEvent::Type::Release);
+    acts = p.actions(4);
+    REQUIRE(acts.size() == 1);
+    CHECK(acts[0].args[0] == "b.json");
+    // A move_to a parameter with no widget names the script's line.
+    ScriptPlayer bad(parse_script("0 move_to sonar.nothing 0.5 0.5\n", "bad.txt"), "bad.txt");
+    CHECK_THROWS_WITH(bad.input(0, widgets), Catch::Contains("bad.txt") && Catch::Contains("line 1"));
+    // The older --drag: hover, press, move linearly, release at the end of `frames`.
+    ScriptPlayer drag({}, "", std::nullopt, std::array<glm::dvec2, 2>{glm::dvec2(0, 0), glm::dvec2(10, 0)},
+                      5);
+    CHECK(drag.last_frame() == 4);
+    CHECK(drag.input(0, {}).size() == 1);
+    ev = drag.input(1, {});
+    REQUIRE(ev.size() == 2);
+    CHECK(ev[1].type == InputEvent::Type::Press);
+    CHECK(drag.input(2, {})[0].pos == glm::dvec2(5, 0));
+    ev = drag.input(4, {});
+    REQUIRE(ev.size() == 2);
+    CHECK(ev[1].type == InputEvent::Type::Release);
+    CHECK(ev[1].pos == glm::dvec2(10, 0));
 }
 
 TEST_CASE("scripts parse into timed steps and keys into the events GLFW sends", "[ui][script]") {

@@ -1,5 +1,5 @@
-// Automation: --script steps (input through the GLFW callbacks, actions after the frame is drawn), the
-// legacy --mouse / --drag, screenshots, and the state and text-layout exports the tests check.
+// Automation: the --script actions after a frame is drawn (its input goes through the GLFW callbacks:
+// ScriptPlayer), screenshots, and the state and text-layout exports the tests check.
 #include <epoxy/gl.h>
 #include <GLFW/glfw3.h>
 
@@ -23,50 +23,11 @@
 
 namespace sonarsim::ui {
 
-void Viewer::script_input(int index) {
-    if (opt_.mouse && index == 0) {
-        InputEvent e;
-        e.pos = *opt_.mouse;
-        input_->inject(e);
-    }
-    if (opt_.drag && opt_.frames >= 4 && index <= opt_.frames - 1) {
-        // Frame 0: hover at the start; 1: press; then move linearly; last frame: release at the end.
-        const double t = std::clamp(double(index - 1) / (opt_.frames - 3), 0.0, 1.0);
-        InputEvent e;
-        e.pos = (*opt_.drag)[0] + t * ((*opt_.drag)[1] - (*opt_.drag)[0]);
-        input_->inject(e);
-        e.type = index == 1 ? InputEvent::Type::Press : InputEvent::Type::Release;
-        if (index == 1 || index == opt_.frames - 1) input_->inject(e);
-    }
-    for (size_t i = script_pos_; i < script_.size() && script_[i].frame <= index; ++i) {
-        const ScriptStep& st = script_[i];
-        if (st.command == "move_to") {
-            const auto& rects = ui_.widgets.item_rects;
-            const auto it = rects.find(st.args[0]);
-            if (it == rects.end())
-                throw InputError(opt_.script, "line " + std::to_string(st.line),
-                                 "no widget for " + st.args[0]);
-            const Rect& r = it->second;
-            script_mouse_ = {r.x + std::stod(st.args[1]) * r.w, r.y + std::stod(st.args[2]) * r.h};
-            InputEvent e;
-            e.pos = script_mouse_;
-            e.mods = script_mods_;
-            input_->inject(e);
-            continue;
-        }
-        if (is_input_command(st.command))
-            for (const InputEvent& e : step_events(script_[i], script_mouse_, script_mods_))
-                input_->inject(e);
-    }
-}
-
 void Viewer::script_actions(int index, int fb_w, int fb_h) {
     int win_w = 0, win_h = 0;
     glfwGetWindowSize(window_, &win_w, &win_h);
-    for (; script_pos_ < script_.size() && script_[script_pos_].frame <= index; ++script_pos_) {
-        const ScriptStep& st = script_[script_pos_];
+    for (const ScriptStep& st : script_.actions(index)) {
         const std::string& c = st.command;
-        if (is_input_command(c)) continue;
         if (c == "screenshot") write_screenshot(st.args[0], fb_w, fb_h);
         if (c == "state") write_state(st.args[0]);
         if (c == "layout") write_layout(st.args[0], win_w, win_h);

@@ -32,7 +32,9 @@ void glfw_error(int code, const char* text) {
 } // namespace
 
 Viewer::Viewer(const ViewerOptions& o) : opt_(o), orbiter_(o.scene), session_(o.scene), undo_(o.scene) {
-    if (!o.script.empty()) script_ = load_script(o.script); // InputError before any window opens
+    // InputError before any window opens.
+    script_ = ScriptPlayer(o.script.empty() ? std::vector<ScriptStep>{} : load_script(o.script), o.script,
+                           o.mouse, o.drag, o.frames);
     glfwSetErrorCallback(glfw_error);
     if (!glfwInit())
         throw std::runtime_error("cannot start GLFW (no display? run under `xvfb-run -a`, or use "
@@ -47,7 +49,7 @@ Viewer::Viewer(const ViewerOptions& o) : opt_(o), orbiter_(o.scene), session_(o.
     }
     update_title();
     glfwMakeContextCurrent(window_);
-    const bool sync = o.frames > 0 || o.orbit || !script_.empty();
+    const bool sync = o.frames > 0 || o.orbit || script_.has_script();
     glfwSwapInterval(sync ? 0 : 1);
     session_.set_notify([] { glfwPostEmptyEvent(); });
     float sx = 1, sy = 1;
@@ -73,8 +75,6 @@ Viewer::Viewer(const ViewerOptions& o) : opt_(o), orbiter_(o.scene), session_(o.
     update_scale();
     layout_ = viewer_layout(o.width, o.height, font_scale_, fan_aspect(o.scene.sonar));
     reset_camera();
-    if (o.frames > 0) last_frame_ = o.frames - 1;
-    if (!script_.empty() && o.frames <= 0) last_frame_ = script_.back().frame + 1;
 }
 
 Viewer::~Viewer() {
@@ -117,7 +117,9 @@ void Viewer::update_scale() {
 }
 
 int Viewer::run() {
-    for (int i = 0; !quit_ && !glfwWindowShouldClose(window_) && (last_frame_ < 0 || i <= last_frame_); ++i)
+    for (int i = 0;
+         !quit_ && !glfwWindowShouldClose(window_) && (script_.last_frame() < 0 || i <= script_.last_frame());
+         ++i)
         frame(i);
     if (opt_.drag) {
         const Pose& p = session_.scene().sonar.pose;
@@ -140,7 +142,7 @@ int Viewer::run() {
 }
 
 void Viewer::frame(int index) {
-    const bool sync = last_frame_ >= 0 || opt_.orbit;
+    const bool sync = script_.last_frame() >= 0 || opt_.orbit;
     if (sync || extra_frames_ > 0 || trajectory_.playing) {
         glfwPollEvents();
         extra_frames_ = std::max(0, extra_frames_ - 1);
@@ -151,7 +153,7 @@ void Viewer::frame(int index) {
         extra_frames_ = 2;
     }
     const Clock::time_point t0 = Clock::now();
-    script_input(index);
+    for (const InputEvent& e : script_.input(index, ui_.widgets.item_rects)) input_->inject(e);
     open_files(input_->take_dropped());
 
     if (opt_.orbit && opt_.orbit_pipelined) {
@@ -232,7 +234,7 @@ void Viewer::frame(int index) {
     draw_gl(fb_w, fb_h, win_w, win_h);
     take_pending_snapshots(full_on_screen, fb_w, fb_h, win_w, win_h);
     script_actions(index, fb_w, fb_h);
-    const bool last = last_frame_ >= 0 && index >= last_frame_;
+    const bool last = script_.last_frame() >= 0 && index >= script_.last_frame();
     if (last && !opt_.screenshot.empty()) write_screenshot(opt_.screenshot, fb_w, fb_h);
     if (last && !opt_.layout.empty()) write_layout(opt_.layout, win_w, win_h);
     if (last && !opt_.state.empty()) write_state(opt_.state);

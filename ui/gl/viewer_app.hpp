@@ -7,7 +7,7 @@
 #include "ui/gl/glfw_input.hpp"
 #include "ui/model/orbit.hpp"
 #include "ui/gl/scene_renderer.hpp"
-#include "ui/model/script.hpp"
+#include "ui/model/script_player.hpp"
 #include "ui/model/session.hpp"
 #include "ui/gl/sonar_panel.hpp"
 #include "ui/gl/trajectory_panel.hpp"
@@ -67,7 +67,6 @@ class Viewer {
     void update_title();
     ViewContext view_context() const;
     // automation.cpp
-    void script_input(int index);
     void script_actions(int index, int fb_w, int fb_h);
     void write_state(const std::string& path) const;
     void write_layout(const std::string& path, int win_w, int win_h) const;
@@ -94,12 +93,7 @@ class Viewer {
     bool software_gl_ = false;
     ViewerLayout layout_;
 
-    // Script.
-    std::vector<ScriptStep> script_;
-    size_t script_pos_ = 0;
-    glm::dvec2 script_mouse_{0};
-    int script_mods_ = 0;
-    int last_frame_ = -1; ///< frames > 0 or the script's end: the last frame to draw
+    ScriptPlayer script_; ///< --script, --mouse, --drag; its last_frame: frames > 0 or the script's end
 
     bool interacting_ = false; ///< a drag that edits the scene (frustum, object, slider) is held
     bool show_help_ = false;
