@@ -4,6 +4,8 @@
 #include "core/analysis/reference.hpp"
 #include "core/scene/scene_io.hpp"
 #include "core/pipeline/simulator.hpp"
+#include "core/sampling/trace.hpp"
+#include "core/shading/accumulate.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -219,4 +221,41 @@ TEST_CASE("a scene where nothing echoes gives an all -inf image", "[stiff]") {
     empty.objects.clear();
     empty.seafloor.reset();
     CHECK(check_finite(render(empty)) == 0);
+}
+
+TEST_CASE("kept rays under extreme slider values: the estimate made anew stays finite, the image too",
+          "[stiff]") {
+    // The viewer keeps a placement after a slider that steers the sampler (TraceControl::keep_placement):
+    // from a floor at 1200 kHz to 10 MHz at -2 C (~55 dB/m, levels ~10^-50 apart), to a floor whose nu is at
+    // its bound (-200 dB: the whole image 170 dB down), and to q = 100 (the echo in a sliver near normal).
+    TraceControl keep;
+    keep.keep_placement = true;
+    const SceneDesc before = floor_scene(1.0, {0, 30, 0});
+    SceneDesc absorbing = before, silent = before, sharp = before;
+    absorbing.sonar.frequency_khz = 10000, absorbing.water.temperature_c = -2;
+    silent.seafloor->material.nu_db = -200;
+    sharp.seafloor->material.q = 100;
+    for (const SceneDesc& after : {absorbing, silent, sharp}) {
+        REQUIRE(changed_stage(before, after) == Stage::Place);
+        Simulator sim(before);
+        const auto first = sim.render(keep);
+        REQUIRE(first->error_estimate.meets(before.sampling));
+        const TraceResult::ErrorEstimate e =
+            reestimate_error(first->hits(), after, shade(first->hits(), after));
+        INFO("estimated anew: rel L1 " << e.rel_l1 << ", median " << e.median_abs_db << " dB");
+        REQUIRE(e.valid);
+        CHECK(std::isfinite(e.rel_l1));
+        CHECK(std::isfinite(e.median_abs_db));
+        CHECK(std::isfinite(e.p95_abs_db));
+        sim.set_scene(after);
+        const auto f = sim.render(keep);
+        CHECK(check_finite(f->polar()) > 0);
+        // Kept only where the estimate made anew meets the tolerances (else traced anew, which meets them),
+        // and then the image is within them of the floor's integral.
+        CHECK(f->placement_kept == e.meets(after.sampling));
+        CHECK(f->error_estimate.meets(after.sampling));
+        const ImageError err = compare_images(f->ideal(), floor_reference(after, 4));
+        CHECK(err.rel_l1 <= after.sampling.tolerance_rel_l1);
+        CHECK(err.median_abs_db <= after.sampling.tolerance_db);
+    }
 }
