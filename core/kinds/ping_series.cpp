@@ -61,7 +61,7 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
     // shaded, and where it misses the tolerances (`missed`) the ping is traced again.
     std::vector<char> recheck(jobs, 0), missed(jobs, 0);
     std::map<PingKey, size_t> first;
-    std::vector<size_t> tracing, shading;
+    std::vector<size_t> tracing, shading, estimating; // estimating: levels kept, their hits placed earlier
     keys.reserve(jobs);
     for (size_t j = 0; j < jobs; ++j) {
         const int ch = int(j % size_t(out.channels));
@@ -73,9 +73,13 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
             hits[j] = traces->find(keys[j], control.preview);
             if (!control.ground_truth) levels[j] = traces->find_levels(keys[j], draws[j], control.preview);
         }
-        if (levels[j]) continue; // copied below
+        const bool earlier = hits[j] && !control.preview && traces->placed_earlier(keys[j]);
+        if (levels[j]) { // copied below, once the estimate made anew of an earlier placement meets
+            if (earlier) estimating.push_back(j);
+            continue;
+        }
         if (hits[j]) {
-            recheck[j] = !control.preview && traces->placed_earlier(keys[j]);
+            recheck[j] = earlier;
             shading.push_back(j);
             continue;
         }
@@ -97,6 +101,12 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
     size_t done = jobs - tracing.size() - shading.size(); // the copied ones
     out.traced_profiles = int(tracing.size()), out.shaded_profiles = int(shading.size());
     out.copied_profiles = int(done);
+    // Whether kept hits placed for an earlier shading miss the tolerances with `at`'s (their estimate made
+    // anew from `ideal`, the hits shaded with it), where they met them as traced.
+    const auto misses = [](const TraceResult& h, const SceneDesc& at, const PolarImage& ideal) {
+        return !h.estimate_cells ||
+               (!reestimate_error(h, at, ideal).meets(at.sampling) && h.error_estimate.meets(at.sampling));
+    };
     const auto run = [&](size_t j) {
         Worker& w = workers.local();
         if (w.sims.empty())
@@ -122,9 +132,7 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
         const double times[4] = {f->trace_ms, f->shade_ms, f->sensor_ms, f->image_ms};
         for (int k = 0; k < 4; ++k) w.stage_ms[k] += times[k];
         if (recheck[j]) {
-            const TraceResult& h = *kept;
-            missed[j] = !h.estimate_cells || (!reestimate_error(h, at, f->ideal()).meets(at.sampling) &&
-                                              h.error_estimate.meets(at.sampling));
+            missed[j] = misses(*kept, at, f->ideal());
             if (missed[j]) return; // traced again below
         }
         const size_t off = j * size_t(out.bins);
@@ -158,17 +166,37 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
         throw;
     }
     run_phase(shading);
+    // Kept levels (a preview of this scene shaded the same hits) whose hits were placed earlier: the
+    // estimate made anew from their L_EN, nothing shaded.
+    tbb::parallel_for(size_t(0), estimating.size(), [&](size_t i) {
+        const size_t j = estimating[i];
+        SceneDesc at = beam;
+        at.sonar.pose = keys[j].as_pose();
+        PolarImage ideal;
+        ideal.bins = out.bins, ideal.beams = 1;
+        ideal.level_db = levels[j]->ideal_db;
+        missed[j] = misses(*hits[j], at, ideal);
+    });
     // Kept pings whose estimate made anew missed: traced again (once per pose), then shaded.
     std::vector<size_t> retrace, reshade;
     std::map<PingKey, size_t> first_missed;
-    for (size_t j : shading) {
-        if (!missed[j]) continue;
-        const auto [it, is_first] = first_missed.emplace(keys[j], j);
-        hits[j] = nullptr, traced_by[j] = it->second, recheck[j] = 0;
-        (is_first ? retrace : reshade).push_back(j);
-    }
-    out.traced_profiles += int(retrace.size()), out.shaded_profiles -= int(retrace.size());
-    for (size_t j : shading) out.kept_placement_profiles += recheck[j] && !missed[j];
+    int kept = 0, copied_missed = 0;
+    for (const std::vector<size_t>* phase : {&shading, &estimating})
+        for (size_t j : *phase) {
+            if (!missed[j]) {
+                kept += phase == &estimating || recheck[j];
+                continue;
+            }
+            const auto [it, is_first] = first_missed.emplace(keys[j], j);
+            copied_missed += phase == &estimating;
+            hits[j] = nullptr, levels[j] = nullptr, traced_by[j] = it->second, recheck[j] = 0;
+            (is_first ? retrace : reshade).push_back(j);
+        }
+    done -= size_t(copied_missed); // counted as copied, made below
+    out.kept_placement_profiles = kept;
+    out.copied_profiles -= copied_missed;
+    out.traced_profiles += int(retrace.size());
+    out.shaded_profiles = int(jobs) - out.traced_profiles - out.copied_profiles;
     run_phase(retrace);
     run_phase(reshade);
     for (size_t j = 0; j < jobs; ++j) {
@@ -188,7 +216,8 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
                 const auto at = long(j * size_t(out.bins)), end = at + out.bins;
                 made->level_db.assign(out.level_db.begin() + at, out.level_db.begin() + end);
                 made->ideal_db.assign(out.ideal_db.begin() + at, out.ideal_db.begin() + end);
-                made->preview = control.preview;
+                const auto& used = hits[j] ? hits[j] : hits[traced_by[j]]; // a preview may shade kept hits
+                made->preview = control.preview && (!used || used->preview);
                 levels[j] = std::move(made);
             }
             series_levels.emplace(PingTraces::LevelsKey{keys[j], draws[j]}, levels[j]);

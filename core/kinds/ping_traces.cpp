@@ -45,8 +45,8 @@ void PingTraces::prepare(const SceneDesc& beam, bool preview, bool keep_placemen
         if (s == Stage::Place && preview) return; // re-shaded as placed for the earlier scene
         if (s == Stage::Place && keep_placement) {
             for (const auto& kept : hits_) earlier_.insert(kept.first); // the series re-estimates them
-        } else if (s <= Stage::Place) {
-            hits_.clear(), earlier_.clear(), hits_bytes_ = 0;
+        } else if (s <= Stage::Place) { // the levels too: a preview may have made them from these hits
+            hits_.clear(), earlier_.clear(), levels_.clear(), hits_bytes_ = levels_bytes_ = 0;
         }
     }
     placed_for_ = beam;

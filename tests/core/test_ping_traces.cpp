@@ -121,10 +121,25 @@ TEST_CASE("kept pings: a shading change traces no ray and gives a fresh series' 
         apply_setting(louder, "objects.0.material.nu_db", 5.0, "test");
         REQUIRE(changed_stage(changed, louder) == Stage::Place);
         const PingSeries relobed = render_pings(louder, keep, &kept);
-        CHECK(relobed.traced_profiles > 0); // the pings that see the lobe
+        CHECK(relobed.traced_profiles > 0); // the pings that see the box
         CHECK(relobed.rays_traced > 0);
         CHECK(relobed.traced_profiles + relobed.shaded_profiles == first.pings * first.channels);
         CHECK(relobed.kept_placement_profiles == relobed.shaded_profiles);
+
+        // The viewer's way: a drag's preview re-shades the kept hits; the full series at rest then copies
+        // its levels (the same hits shaded alike) where the estimate made anew from them meets, and traces
+        // the rest.
+        PingTraces dragged; // as `kept`: placed for s, kept through `changed`
+        render_pings(s, keep, &dragged);
+        render_pings(changed, keep, &dragged);
+        const PingSeries quick = render_pings(louder, preview, &dragged);
+        CHECK(quick.rays_traced == 0);
+        const PingSeries rest = render_pings(louder, keep, &dragged);
+        CHECK(rest.copied_profiles == relobed.kept_placement_profiles); // nothing shaded again
+        CHECK(rest.kept_placement_profiles == relobed.kept_placement_profiles);
+        CHECK(rest.traced_profiles == relobed.traced_profiles);
+        CHECK(rest.rays_traced == relobed.rays_traced);
+        check_same_series(rest, relobed);
     }
     SECTION("the sonar moved: every ping from a new pose traces; the same bytes as a fresh series") {
         SceneDesc moved = s;
