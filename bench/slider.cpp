@@ -47,8 +47,10 @@ Stage drag_to(SceneDesc& s, const Slider& sl, int i) {
 Timing time_image(SceneDesc s, const Slider& sl, int repeats) {
     Timing out;
     Simulator sim(s);
-    sim.render(); // the full image the drag starts from
-    TraceControl preview;
+    TraceControl full; // the viewer's: the rays kept at rest while their estimate made anew meets
+    full.keep_placement = true;
+    sim.render(full); // the full image the drag starts from
+    TraceControl preview = full;
     preview.preview = true;
     const std::uint64_t rays_before = sim.rays_traced();
     for (int i = 0; i < repeats + 2; ++i) {
@@ -62,13 +64,11 @@ Timing time_image(SceneDesc s, const Slider& sl, int repeats) {
     }
     out.rays = sim.rays_traced() - rays_before;
     const std::uint64_t rays_at_rest = sim.rays_traced();
-    TraceControl rest; // the slider rests: the full image, the viewer's way (the kept hits while they meet)
-    rest.keep_placement = true;
     const auto t0 = std::chrono::steady_clock::now();
-    const auto full = sim.render(rest);
+    const auto rest = sim.render(full); // the slider rests: the full image
     out.full_ms = ms_since(t0);
     out.full_rays = sim.rays_traced() - rays_at_rest;
-    out.full_estimate = full->error_estimate;
+    out.full_estimate = rest->error_estimate;
     return out;
 }
 
