@@ -1,6 +1,8 @@
 # The core's floors, bottom first: a folder may include its own floor's folders and the floors below, never
 # one above (core/ARCHITECTURE.md draws them). Checked at every configure, with the edges of the whole tree
 # (core includes neither ui/ nor app/; ui/ never app/; ui/model never ui/gl): a back edge fails the build.
+# core/CMakeLists.txt makes each floor an object library and links it with the floors below alone, so a call
+# up a floor fails to link even where no include shows it.
 set(SONARSIM_CORE_FLOORS
     "base"                    # units, errors, files, small helpers
     "data"                    # plain data: the scene description, pose, trajectory, hits, polar image
