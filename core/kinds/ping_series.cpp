@@ -73,13 +73,14 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
             hits[j] = traces->find(keys[j], control.preview);
             if (!control.ground_truth) levels[j] = traces->find_levels(keys[j], draws[j], control.preview);
         }
-        const bool earlier = hits[j] && !control.preview && traces->placed_earlier(keys[j]);
-        if (levels[j]) { // copied below, once the estimate made anew of an earlier placement meets
-            if (earlier) estimating.push_back(j);
+        const bool check =
+            hits[j] && !control.preview && control.keep_placement && traces->needs_estimate(keys[j]);
+        if (levels[j]) { // copied below (once the estimate made anew of an earlier placement meets)
+            if (check) estimating.push_back(j);
             continue;
         }
         if (hits[j]) {
-            recheck[j] = earlier;
+            recheck[j] = check;
             shading.push_back(j);
             continue;
         }
@@ -99,13 +100,17 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
     trace.keep_placement = control.keep_placement;
     std::mutex progress_mutex;
     size_t done = jobs - tracing.size() - shading.size(); // the copied ones
+    std::vector<char> counted(jobs, 0);                   // in `done`
+    for (size_t j = 0; j < jobs; ++j) counted[j] = levels[j] != nullptr;
+    bool all_counted = false;
     out.traced_profiles = int(tracing.size()), out.shaded_profiles = int(shading.size());
     out.copied_profiles = int(done);
     // Whether kept hits placed for an earlier shading miss the tolerances with `at`'s (their estimate made
-    // anew from `ideal`, the hits shaded with it), where they met them as traced.
+    // anew from `ideal`, the hits shaded with it; kept_placement_serves), as Simulator::render keeps an
+    // image's.
     const auto misses = [](const TraceResult& h, const SceneDesc& at, const PolarImage& ideal) {
         return !h.estimate_cells ||
-               (!reestimate_error(h, at, ideal).meets(at.sampling) && h.error_estimate.meets(at.sampling));
+               !kept_placement_serves(reestimate_error(h, at, &ideal), h.error_estimate, at.sampling);
     };
     const auto run = [&](size_t j) {
         Worker& w = workers.local();
@@ -139,9 +144,11 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
         std::memcpy(out.level_db.data() + off, f->polar().level_db.data(), size_t(out.bins) * 4);
         std::memcpy(out.ideal_db.data() + off, f->ideal().level_db.data(), size_t(out.bins) * 4);
         if (control.ground_truth) out.truth[j] = *f->truth_ptr;
-        if (control.progress) {
+        if (control.progress && !counted[j]) {
             std::lock_guard<std::mutex> lock(progress_mutex);
+            counted[j] = 1;
             if (++done % size_t(out.channels) == 0) control.progress(int(done) / out.channels, out.pings);
+            all_counted = done == jobs;
         }
     };
     const auto run_phase = [&](const std::vector<size_t>& phase) {
@@ -165,7 +172,6 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
         }
         throw;
     }
-    run_phase(shading);
     // Kept levels (a preview of this scene shaded the same hits) whose hits were placed earlier: the
     // estimate made anew from their L_EN, nothing shaded.
     tbb::parallel_for(size_t(0), estimating.size(), [&](size_t i) {
@@ -177,35 +183,45 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
         ideal.level_db = levels[j]->ideal_db;
         missed[j] = misses(*hits[j], at, ideal);
     });
+    run_phase(shading);
     // Kept pings whose estimate made anew missed: traced again (once per pose), then shaded.
     std::vector<size_t> retrace, reshade;
     std::map<PingKey, size_t> first_missed;
-    int kept = 0, copied_missed = 0;
+    int copied_missed = 0;
     for (const std::vector<size_t>* phase : {&shading, &estimating})
         for (size_t j : *phase) {
-            if (!missed[j]) {
-                kept += phase == &estimating || recheck[j];
-                continue;
-            }
+            if (!missed[j]) continue;
             const auto [it, is_first] = first_missed.emplace(keys[j], j);
             copied_missed += phase == &estimating;
             hits[j] = nullptr, levels[j] = nullptr, traced_by[j] = it->second, recheck[j] = 0;
             (is_first ? retrace : reshade).push_back(j);
         }
-    done -= size_t(copied_missed); // counted as copied, made below
-    out.kept_placement_profiles = kept;
     out.copied_profiles -= copied_missed;
     out.traced_profiles += int(retrace.size());
     out.shaded_profiles = int(jobs) - out.traced_profiles - out.copied_profiles;
-    run_phase(retrace);
+    try {
+        run_phase(retrace);
+    } catch (const TraceCancelled&) { // as the first traces: those finished replace the kept ones
+        if (traces) {
+            std::map<PingKey, std::shared_ptr<const TraceResult>> finished;
+            for (size_t j : retrace)
+                if (hits[j]) finished.emplace(keys[j], hits[j]);
+            traces->add(std::move(finished));
+        }
+        throw;
+    }
     run_phase(reshade);
+    // Profiles from hits placed for an earlier shading, kept (shaded or copied).
+    for (size_t j = 0; j < jobs; ++j)
+        out.kept_placement_profiles +=
+            traces && !missed[j] && (hits[j] || levels[j]) && traces->placed_earlier(keys[j]);
     for (size_t j = 0; j < jobs; ++j) {
         if (!levels[j]) continue;
         const size_t off = j * size_t(out.bins);
         std::copy(levels[j]->level_db.begin(), levels[j]->level_db.end(), out.level_db.begin() + long(off));
         std::copy(levels[j]->ideal_db.begin(), levels[j]->ideal_db.end(), out.ideal_db.begin() + long(off));
     }
-    if (control.progress && tracing.empty() && shading.empty()) control.progress(out.pings, out.pings);
+    if (control.progress && !all_counted) control.progress(out.pings, out.pings); // all copied
     if (traces) {
         std::map<PingKey, std::shared_ptr<const TraceResult>> series_hits;
         std::map<PingTraces::LevelsKey, std::shared_ptr<const PingLevels>> series_levels;
@@ -222,7 +238,8 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
             }
             series_levels.emplace(PingTraces::LevelsKey{keys[j], draws[j]}, levels[j]);
         }
-        traces->keep(beam, std::move(series_hits), std::move(series_levels));
+        traces->keep(beam, std::move(series_hits), std::move(series_levels),
+                     !control.preview && control.keep_placement);
     }
     for (const Worker& w : workers) {
         out.rays_traced += w.rays;

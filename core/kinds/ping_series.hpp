@@ -35,8 +35,8 @@ struct PingSeries {
     /// Of the pings' profiles (one per ping and channel): traced, shaded from hits traced before (the same
     /// pose in this series or kept, PingTraces), and copied from kept levels.
     int traced_profiles = 0, shaded_profiles = 0, copied_profiles = 0;
-    /// Of the shaded: from hits placed for an earlier shading and kept (PingControl::keep_placement), so
-    /// the series is not the bytes a fresh one makes (both meet the tolerances).
+    /// Of all the profiles: from hits placed for an earlier shading and kept, shaded or copied
+    /// (PingControl::keep_placement), so the series is not the bytes a fresh one makes.
     int kept_placement_profiles = 0;
     double trace_ms = 0; ///< the pings' wall-clock time, all stages included
     /// The stages' times summed over pings and channels, on every thread (Frame's trace, shade, sensor,
@@ -58,8 +58,8 @@ struct PingControl {
     bool preview = false; ///< each ping traced as a preview (TraceControl::preview: the base grid only)
     /// TraceControl::keep_placement for every ping: after a change of values that steer the adaptive sampler
     /// only, a full-quality series keeps the pings' hits whose error estimate, made anew with the new
-    /// shading, still meets the tolerances, and traces the others again (the viewer's; render, batch and
-    /// Python place every ping's rays anew).
+    /// shading, still serves (kept_placement_serves), and traces the others again (the viewer's; render,
+    /// batch, Python and a series without it place every ping's rays anew).
     bool keep_placement = false;
     /// The pings to hear (ping_schedule_along, as many as ping_schedule has); empty: ping_schedule(scene).
     std::vector<Ping> schedule;

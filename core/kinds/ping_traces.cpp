@@ -44,12 +44,32 @@ void PingTraces::prepare(const SceneDesc& beam, bool preview, bool keep_placemen
         const Stage s = changed_but_pings(*placed_for_, beam);
         if (s == Stage::Place && preview) return; // re-shaded as placed for the earlier scene
         if (s == Stage::Place && keep_placement) {
-            for (const auto& kept : hits_) earlier_.insert(kept.first); // the series re-estimates them
+            for (const auto& kept : hits_) foreign_.insert(kept.first), unchecked_.insert(kept.first);
+            drop_levels([&](const PingKey& key) { return !hits_.count(key); }); // nothing to estimate from
         } else if (s <= Stage::Place) { // the levels too: a preview may have made them from these hits
-            hits_.clear(), earlier_.clear(), levels_.clear(), hits_bytes_ = levels_bytes_ = 0;
+            hits_.clear(), levels_.clear(), foreign_.clear(), unchecked_.clear();
+            hits_bytes_ = levels_bytes_ = 0;
         }
     }
+    if (!preview && !keep_placement && !foreign_.empty()) { // placed anew, as `render` places them
+        for (const PingKey& key : foreign_)
+            if (const auto it = hits_.find(key); it != hits_.end())
+                hits_bytes_ -= hits_bytes(*it->second), hits_.erase(it);
+        drop_levels([&](const PingKey& key) { return foreign_.count(key) != 0; });
+        foreign_.clear(), unchecked_.clear();
+    }
     placed_for_ = beam;
+}
+
+void PingTraces::drop_levels(const std::function<bool(const PingKey&)>& drop) {
+    for (auto it = levels_.begin(); it != levels_.end();) {
+        if (!drop(it->first.first)) {
+            ++it;
+            continue;
+        }
+        levels_bytes_ -= (it->second->level_db.size() + it->second->ideal_db.size()) * sizeof(float);
+        it = levels_.erase(it);
+    }
 }
 
 std::shared_ptr<const TraceResult> PingTraces::find(const PingKey& key, bool preview) const {
@@ -67,25 +87,42 @@ std::shared_ptr<const PingLevels> PingTraces::find_levels(const PingKey& key, st
 
 void PingTraces::add(std::map<PingKey, std::shared_ptr<const TraceResult>> hits) {
     for (auto& [key, h] : hits) {
-        if (hits_.count(key)) continue;
+        const auto old = hits_.find(key);
+        if (old != hits_.end() && (!foreign_.count(key) || old->second == h)) continue;
         const std::size_t bytes = hits_bytes(*h);
-        if (hits_bytes_ + levels_bytes_ + bytes > budget_bytes_) break;
-        hits_bytes_ += bytes;
-        hits_.emplace(key, std::move(h));
+        const std::size_t freed = old == hits_.end() ? 0 : hits_bytes(*old->second);
+        if (hits_bytes_ - freed + levels_bytes_ + bytes > budget_bytes_) break;
+        hits_bytes_ += bytes - freed;
+        hits_[key] = std::move(h); // traced for this scene: replaces hits placed for an earlier one
+        foreign_.erase(key), unchecked_.erase(key);
     }
 }
 
 void PingTraces::keep(const SceneDesc& beam,
                       std::map<PingKey, std::shared_ptr<const TraceResult>> series_hits,
-                      std::map<LevelsKey, std::shared_ptr<const PingLevels>> series_levels) {
-    hits_.clear(), levels_.clear(), earlier_.clear(), hits_bytes_ = levels_bytes_ = 0;
-    for (auto& [key, hits] : series_hits) { // each serves `beam`: traced for it, or estimated anew with it
+                      std::map<LevelsKey, std::shared_ptr<const PingLevels>> series_levels, bool estimated) {
+    // Hits the series took from these (the same object) keep their placement's standing; those it traced
+    // are this scene's own. A series that estimated its kept hits anew (full quality) checked them all.
+    std::set<PingKey> foreign, unchecked;
+    for (const auto& [key, hits] : series_hits) {
+        const auto old = hits_.find(key);
+        if (old == hits_.end() || old->second != hits) continue;
+        if (foreign_.count(key)) foreign.insert(key);
+        if (unchecked_.count(key) && !estimated) unchecked.insert(key);
+    }
+    hits_.clear(), levels_.clear(), hits_bytes_ = levels_bytes_ = 0;
+    foreign_.clear(), unchecked_.clear();
+    for (auto& [key, hits] : series_hits) {
         const std::size_t bytes = hits_bytes(*hits);
         if (hits_bytes_ + bytes > budget_bytes_) break;
         hits_bytes_ += bytes;
+        if (foreign.count(key)) foreign_.insert(key);
+        if (unchecked.count(key)) unchecked_.insert(key);
         hits_.emplace(key, std::move(hits));
     }
     for (auto& [key, levels] : series_levels) {
+        // Levels made from hits placed for an earlier shading that are no longer held: nothing to check.
+        if ((foreign.count(key.first) || unchecked.count(key.first)) && !hits_.count(key.first)) continue;
         const std::size_t bytes = (levels->level_db.size() + levels->ideal_db.size()) * sizeof(float);
         if (hits_bytes_ + levels_bytes_ + bytes > budget_bytes_) break;
         levels_bytes_ += bytes;

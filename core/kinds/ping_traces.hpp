@@ -10,6 +10,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -49,8 +50,10 @@ class PingTraces {
     /// (placed_earlier), for the series to re-estimate.
     void prepare(const SceneDesc& beam, bool preview, bool keep_placement = false);
     /// Whether the kept hits of `key` were placed for an earlier shading than the prepared scene's (kept by
-    /// prepare with keep_placement): their error estimate is to be made anew before they serve it.
-    bool placed_earlier(const PingKey& key) const { return earlier_.count(key) != 0; }
+    /// prepare with keep_placement): a series of the scene's own bytes (without keep_placement) drops them.
+    bool placed_earlier(const PingKey& key) const { return foreign_.count(key) != 0; }
+    /// Whether they are yet to be estimated anew with the prepared scene's shading before they serve it.
+    bool needs_estimate(const PingKey& key) const { return unchecked_.count(key) != 0; }
     /// The kept hits of `key` that a series of the prepared scene may shade, or null. A full-quality series
     /// does not take a preview's hits.
     std::shared_ptr<const TraceResult> find(const PingKey& key, bool preview) const;
@@ -59,12 +62,13 @@ class PingTraces {
     std::shared_ptr<const PingLevels> find_levels(const PingKey& key, std::uint64_t draw, bool preview) const;
     using LevelsKey = std::pair<PingKey, std::uint64_t>;
     /// After the series of `beam`: its hits and levels replace the kept ones, as many as the budget holds
-    /// (hits first).
+    /// (hits first). `estimated`: the series made the estimate of every kept hits that needed it
+    /// (needs_estimate; a full-quality series does, a preview does not).
     void keep(const SceneDesc& beam, std::map<PingKey, std::shared_ptr<const TraceResult>> series_hits,
-              std::map<LevelsKey, std::shared_ptr<const PingLevels>> series_levels);
+              std::map<LevelsKey, std::shared_ptr<const PingLevels>> series_levels, bool estimated);
 
-    /// Hits of the prepared scene traced by a series that did not finish (cancelled): kept beside the others,
-    /// as many as the budget holds.
+    /// Hits of the prepared scene traced by a series that did not finish (cancelled): kept beside the others
+    /// (replacing those placed for an earlier shading), as many as the budget holds.
     void add(std::map<PingKey, std::shared_ptr<const TraceResult>> hits);
 
     std::size_t kept_bytes() const { return hits_bytes_ + levels_bytes_; }
@@ -78,7 +82,10 @@ class PingTraces {
     std::optional<SceneDesc> levels_for_; ///< the beam scene the kept levels were made with
     std::map<PingKey, std::shared_ptr<const TraceResult>> hits_;
     std::map<LevelsKey, std::shared_ptr<const PingLevels>> levels_;
-    std::set<PingKey> earlier_; ///< kept hits placed for an earlier shading (placed_earlier)
+    std::set<PingKey> foreign_;   ///< kept hits placed for an earlier shading (placed_earlier)
+    std::set<PingKey> unchecked_; ///< ... not yet estimated anew with the prepared scene (needs_estimate)
+    /// Drops the kept levels of the keys `drop` says.
+    void drop_levels(const std::function<bool(const PingKey&)>& drop);
 };
 
 } // namespace sonarsim

@@ -161,8 +161,19 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
     // A full-quality image never keeps a preview's hits, nor hits placed for an earlier scene's shading
     // unless asked to keep them (TraceControl::keep_placement) and they carry what their estimate needs.
     const bool steered = dirty_ == Stage::Place || next.placement_stale;
-    const bool keeps = control.keep_placement && !control.preview && steered && dirty_ >= Stage::Place &&
-                       next.hits_ptr && !next.hits_ptr->preview && next.hits_ptr->estimate_cells;
+    bool keeps = control.keep_placement && !control.preview && steered && dirty_ >= Stage::Place &&
+                 next.hits_ptr && !next.hits_ptr->preview && next.hits_ptr->estimate_cells;
+    TraceResult::ErrorEstimate kept_estimate; // the kept placement's estimate with this scene's shading
+    double estimate_ms = 0;
+    if (keeps) {
+        // Kept while it serves (kept_placement_serves). The shown image is this scene's shading when only
+        // later stages are stale.
+        const auto t0 = std::chrono::steady_clock::now();
+        kept_estimate = reestimate_error(
+            *next.hits_ptr, scene_, dirty_ > Stage::Shade && next.ideal_ptr ? next.ideal_ptr.get() : nullptr);
+        estimate_ms = ms_since(t0);
+        keeps = kept_placement_serves(kept_estimate, next.hits_ptr->error_estimate, scene_.sampling);
+    }
     const bool placed_before =
         next.preview() || dirty_ == Stage::Place || (next.placement_kept && !control.keep_placement);
     const bool retrace =
@@ -211,17 +222,9 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
         next.error_estimate = estimate_error(*next.hits_ptr, scene_);
         next.shade_ms += ms_since(t0);
     }
-    if (keeps) { // the kept placement's estimate with this shading: kept while it meets the tolerances
-        const auto t0 = std::chrono::steady_clock::now();
-        next.error_estimate = reestimate_error(*next.hits_ptr, scene_, *next.ideal_ptr);
-        next.shade_ms += ms_since(t0);
-        if (!next.error_estimate.meets(scene_.sampling) &&
-            next.hits_ptr->error_estimate.meets(scene_.sampling)) {
-            frame_.placement_stale = true; // nothing kept from this call: placed anew
-            TraceControl anew = control;
-            anew.keep_placement = false;
-            return render(anew);
-        }
+    if (keeps) {
+        next.error_estimate = kept_estimate;
+        next.shade_ms += estimate_ms;
         next.placement_stale = false, next.placement_kept = true;
     }
     if (retrace) next.placement_kept = false;
@@ -299,11 +302,12 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
                                  "added in quadrature";
         } else { // adaptive
             if (f.placement_kept)
-                estimate["placement"] = "kept: placed for an earlier shading of this scene (a viewer's "
-                                        "slider), re-shaded, and this "
-                                        "estimate made anew from the same cells with this shading; a fresh "
-                                        "render places its rays "
-                                        "anew (both within the tolerances)";
+                estimate["placement"] =
+                    "kept: placed for an earlier shading of this scene (a viewer's slider), re-shaded, and "
+                    "this "
+                    "estimate made anew from the same cells with this shading (kept where it meets the "
+                    "tolerances or, where the trace itself stopped short of them, is within one tolerance of "
+                    "what the trace reached); a fresh render places its rays anew";
             estimate["passes"] = est.passes;
             estimate["budget_reached"] = est.budget_reached;
             estimate["max_rays"] = s.sampling.max_rays;

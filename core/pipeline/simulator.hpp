@@ -55,7 +55,9 @@ struct Frame {
     bool placement_stale = false;
     /// Full quality, with hits placed by the adaptive sampler for an earlier shading of this scene
     /// (TraceControl::keep_placement): re-shaded, and its error estimate made anew with this shading
-    /// (reestimate_error), which met the tolerances. A fresh Simulator would place its rays anew.
+    /// (reestimate_error), which meets the tolerances or, where the trace itself stopped short of them, is
+    /// within one tolerance of what it reached (kept_placement_serves). A fresh Simulator places its rays
+    /// anew.
     bool placement_kept = false;
     /// A coarse preview (TraceControl::preview: the base grid, or hits placed for an earlier scene): never
     /// to be taken for the full-quality image.

@@ -125,14 +125,29 @@ PolarImage columns_of(const PolarImage& img, const std::vector<int>& beams) {
 namespace sonarsim {
 
 TraceResult::ErrorEstimate reestimate_error(const TraceResult& hits, const SceneDesc& s,
-                                            const PolarImage& image) {
+                                            const PolarImage* image) {
     if (!hits.estimate_cells)
         throw std::invalid_argument("reestimate_error: the hits keep no estimate cells (adaptive only)");
     const AdaptiveEstimateCells& k = *hits.estimate_cells;
-    if (image.beams != s.sonar.beams || image.beams != hits.beams)
+    if (s.sonar.beams != hits.beams || (image && image->beams != hits.beams))
         throw std::invalid_argument("reestimate_error: an image of another sonar");
     const int G = int(k.samples.size());
-    const PolarImage fine = adaptive::columns_of(image, k.samples);
+    PolarImage fine;
+    if (image) {
+        fine = adaptive::columns_of(*image, k.samples);
+    } else { // the sample beams' cells (and the ghosts arriving in them), shaded as columns of their own
+        TraceResult sub;
+        sub.beams = G;
+        sub.cells.resize(size_t(G));
+        if (!hits.ghosts.empty()) sub.ghosts.resize(size_t(G));
+        for (int g = 0; g < G; ++g) {
+            const int b = k.samples[size_t(g)];
+            if (b < 0) continue;
+            sub.cells[size_t(g)] = hits.cells[size_t(b)];
+            if (!hits.ghosts.empty()) sub.ghosts[size_t(g)] = hits.ghosts[size_t(b)];
+        }
+        fine = shade_columns(sub, s, G);
+    }
     const PolarImage coarse = shade_columns(k.coarse, s, G), edges = shade_columns(k.coarse_edges, s, G);
     PolarImage one, three;
     if (k.probed) one = shade_columns(k.az_one, s, G), three = shade_columns(k.az_three, s, G);
@@ -150,6 +165,14 @@ TraceResult::ErrorEstimate reestimate_error(const TraceResult& hits, const Scene
     est.strict = strict;
     if (strict) est.azimuth_rel_l1 = 0;
     return est;
+}
+
+bool kept_placement_serves(const TraceResult::ErrorEstimate& anew, const TraceResult::ErrorEstimate& traced,
+                           const SamplingParams& p) {
+    if (anew.meets(p)) return true;
+    if (traced.meets(p)) return false; // a re-trace refines until it meets them
+    return anew.rel_l1 <= traced.rel_l1 + p.tolerance_rel_l1 &&
+           anew.median_abs_db <= traced.median_abs_db + p.tolerance_db;
 }
 
 } // namespace sonarsim

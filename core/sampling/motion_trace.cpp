@@ -99,6 +99,7 @@ TraceResult trace_moving(const SceneGeometry& g, const SceneDesc& s, const Trace
         TraceControl tc = control;
         tc.channels = {};
         tc.beams = s.sonar.pings_per_frame > 1 ? &fired : nullptr;
+        tc.keep_placement = false; // the slots' hits are merged: no estimate cells to keep
         TraceResult r = trace(g, sub, tc);
 
         // Keep the echoes of this ping's beams that arrive in the slab (the first slab keeps everything

@@ -23,10 +23,18 @@ TraceResult trace_adaptive(const SceneGeometry& geometry, const SceneDesc& scene
 
 /// The error estimate of an adaptive trace's placement (`hits`, with TraceResult::estimate_cells) made anew
 /// with `scene`'s shading, a scene that differs from the traced one in values that steer the sampler only
-/// (Stage::Place): the same estimator on the same cells. `image`: hits shaded with `scene` (its sample beams'
-/// columns are the estimate's fine image). The same scene gives the trace's own estimate.
+/// (Stage::Place): the same estimator on the same cells. `image`: hits shaded with `scene`, whose sample
+/// beams' columns are the estimate's fine image; null: those beams are shaded here. The same scene gives the
+/// trace's own estimate.
 TraceResult::ErrorEstimate reestimate_error(const TraceResult& hits, const SceneDesc& scene,
-                                            const PolarImage& image);
+                                            const PolarImage* image = nullptr);
+
+/// Whether a kept placement serves a new shading, from its estimate made anew (`anew`) and its trace's own
+/// (`traced`): `anew` meets the tolerances, or, where the trace itself stopped short of them (at the ray
+/// budget or the last refinement level, which a re-trace would reach again), it is within one tolerance of
+/// what the trace reached, in rel L1 and in median |dB|.
+bool kept_placement_serves(const TraceResult::ErrorEstimate& anew, const TraceResult::ErrorEstimate& traced,
+                           const SamplingParams& sampling);
 
 /// Approximate bytes a trace's hits hold (cells, ghosts, strata, the adaptive estimate's cells).
 std::size_t hits_bytes(const TraceResult& hits);

@@ -7,6 +7,7 @@
 #include "core/scene/scene_io.hpp"
 #include "core/shading/physics.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 
@@ -341,4 +342,67 @@ TEST_CASE("a display value keeps the kept levels: the series is copied", "[kinds
     CHECK(again.copied_profiles == first.pings * first.channels);
     CHECK(again.rays_traced == 0);
     check_same_series(again, first);
+}
+
+TEST_CASE("kept placements of pings: a series of the scene's own bytes places them anew, a cancelled series "
+          "leaves them to be estimated, progress counts each profile once",
+          "[kinds][traces]") {
+    const SceneDesc s = moving_sidescan(1.0);
+    PingControl keep;
+    keep.keep_placement = true;
+    SceneDesc changed = s;
+    apply_setting(changed, "seafloor.material.nu_db", -27.0, "test");
+    apply_setting(changed, "objects.0.material.nu_db", -13.0, "test");
+    apply_setting(changed, "sonar.frequency_khz", s.sonar.frequency_khz * 1.1, "test");
+    SceneDesc louder = changed; // the box 18 dB louder: its channel misses with the kept rays
+    apply_setting(louder, "objects.0.material.nu_db", 5.0, "test");
+    const PingSeries fresh = render_pings(changed);
+
+    // Kept, then asked for without keep_placement (a snapshot, render's bytes): placed anew.
+    PingTraces t;
+    render_pings(s, keep, &t);
+    const PingSeries kept = render_pings(changed, keep, &t);
+    CHECK(kept.rays_traced == 0);
+    CHECK(kept.kept_placement_profiles == kept.pings * kept.channels);
+    CHECK(kept.level_db != fresh.level_db);                     // the kept rays are not the fresh placement
+    const PingSeries display = render_pings(changed, keep, &t); // nothing changed: copied, still kept
+    CHECK(display.copied_profiles == display.pings * display.channels);
+    CHECK(display.kept_placement_profiles == display.pings * display.channels);
+    const PingSeries anew = render_pings(changed, {}, &t);
+    CHECK(anew.rays_traced > 0);
+    CHECK(anew.kept_placement_profiles == 0);
+    check_same_series(anew, fresh);
+
+    // The reference: a series that misses on the box's channel and traces it again.
+    PingTraces u;
+    render_pings(s, keep, &u);
+    render_pings(changed, keep, &u);
+    const PingSeries missed = render_pings(louder, keep, &u);
+    REQUIRE(missed.traced_profiles > 0);
+    // Cancelled before any trace, then a preview of a value that does not steer the sampler: the series at
+    // rest still estimates the kept rays anew and traces the same pings again.
+    PingTraces v;
+    render_pings(s, keep, &v);
+    render_pings(changed, keep, &v);
+    std::atomic<bool> cancel{true};
+    PingControl cancelled = keep;
+    cancelled.cancel = &cancel;
+    CHECK_THROWS_AS(render_pings(louder, cancelled, &v), TraceCancelled);
+    SceneDesc gain = louder;
+    apply_setting(gain, "sensor.gain_db", 6.0, "test");
+    PingControl preview = keep;
+    preview.preview = true;
+    render_pings(gain, preview, &v);
+    std::vector<int> seen;
+    PingControl rest_control = keep;
+    rest_control.progress = [&](int done, int) { seen.push_back(done); };
+    const PingSeries rest = render_pings(gain, rest_control, &v);
+    CHECK(rest.traced_profiles == missed.traced_profiles);
+    CHECK(rest.kept_placement_profiles == missed.kept_placement_profiles);
+    CHECK(rest.ideal_db == missed.ideal_db);
+    // Progress: never backwards, the last call all the pings, once.
+    REQUIRE_FALSE(seen.empty());
+    CHECK(std::is_sorted(seen.begin(), seen.end()));
+    CHECK(seen.back() == rest.pings);
+    CHECK(std::count(seen.begin(), seen.end(), rest.pings) == 1);
 }

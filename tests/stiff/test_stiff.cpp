@@ -240,8 +240,7 @@ TEST_CASE("kept rays under extreme slider values: the estimate made anew stays f
         Simulator sim(before);
         const auto first = sim.render(keep);
         REQUIRE(first->error_estimate.meets(before.sampling));
-        const TraceResult::ErrorEstimate e =
-            reestimate_error(first->hits(), after, shade(first->hits(), after));
+        const TraceResult::ErrorEstimate e = reestimate_error(first->hits(), after);
         INFO("estimated anew: rel L1 " << e.rel_l1 << ", median " << e.median_abs_db << " dB");
         REQUIRE(e.valid);
         CHECK(std::isfinite(e.rel_l1));

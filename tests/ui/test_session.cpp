@@ -340,17 +340,20 @@ TEST_CASE("the viewer's session shows a side-scan's waterfall and a scan's sweep
     REQUIRE(session.snapshot(prefix, {}));
     for (const char* suffix : {".png", ".npy", "_waterfall.npy", ".xtf", ".json"})
         CHECK(std::filesystem::is_regular_file(prefix + suffix));
-    // A value that steers the sampler: the waterfall keeps its pings' rays (re-shaded, their estimate made
-    // anew meets the tolerances); a snapshot places them anew, so its files are what `render` writes.
+    // Values that steer the sampler: the waterfall keeps its pings' rays (re-shaded, their estimate made
+    // anew meets the tolerances), which a fresh series would place otherwise; a snapshot places them anew,
+    // so its files are what `render` writes.
     REQUIRE(session.set("seafloor.material.nu_db", -27.0));
+    REQUIRE(session.set("water.depth_m", 3000.0)); // the absorption: the rays would go elsewhere
     REQUIRE(session.wait_full(60s));
     REQUIRE(session.shown()->pings);
     CHECK(session.shown()->pings->rays_traced == 0);
     CHECK(session.shown()->pings->kept_placement_profiles == 24);
+    const PingSeries anew = render_pings(session.scene());
+    CHECK(session.shown()->pings->level_db != anew.level_db);
     const std::string kept_prefix = test::ui_out_path("session_sidescan_kept");
     REQUIRE(session.snapshot(kept_prefix, {}));
     CHECK(session.shown()->pings->kept_placement_profiles == 0);
-    const PingSeries anew = render_pings(session.scene());
     CHECK(decode_npy_values(test::read_bytes(kept_prefix + ".npy"), kept_prefix + ".npy",
                             anew.level_db.size()) == anew.level_db);
     // To a scan: one step per head angle, the image a square sweep.

@@ -77,8 +77,9 @@ void draw_readout(Session& session, double frame_ms) {
             ImGui::SetTooltip(
                 "Each ping's channels: traced anew (%llu rays), shaded from hits traced before "
                 "from the same pose, or kept from the last image (only the pose changed).\n%d of "
-                "the shaded kept rays placed for earlier values of a slider that steers the "
-                "sampler:\ntheir error estimate, made anew, meets the tolerances",
+                "them from rays placed for earlier values of a slider that steers the sampler,\nkept "
+                "where their error estimate, made anew, meets the tolerances (or stays within\none "
+                "tolerance of what their trace reached); a snapshot places them anew",
                 static_cast<unsigned long long>(p.rays_traced), p.kept_placement_profiles);
     } else if (r) {
         const Frame& f = *r->frame;
@@ -115,8 +116,9 @@ void draw_readout(Session& session, double frame_ms) {
                 if (ImGui::IsItemHovered())
                     ImGui::SetTooltip("A slider that steers the sampler changed: the last image's rays were "
                                       "re-shaded\nand their error estimate made anew with the new values "
-                                      "(above); it meets the\ntolerances, so no ray was traced. sonarsim "
-                                      "render places its rays anew.");
+                                      "(above). They are kept where it\nmeets the tolerances (or stays "
+                                      "within one tolerance of what the trace reached),\nso no ray was "
+                                      "traced. sonarsim render and a snapshot place the rays anew.");
             }
         }
     } else {

@@ -243,7 +243,12 @@ bool Session::snapshot(const std::string& prefix, const Bytes& view3d_png, const
         if (kept()) {
             requested_id_ = worker_.request(shown_->scene, false, ground_truth_, std::nullopt, fan_height_px_,
                                             requested_pings(), false);
-            if (!wait_latest(std::chrono::milliseconds(60000)) || !shown_ || shown_->preview() || kept()) {
+            const bool ready =
+                wait_latest(std::chrono::milliseconds(60000)) && shown_ && !shown_->preview() && !kept();
+            // That request replaced any of a newer edit: the edited scene is requested again after it.
+            if (changed_stage(scene_, shown_ ? shown_->scene : scene_) != Stage::None)
+                dirty_ = true, changed_.reset();
+            if (!ready) {
                 error_ = "snapshot: the image with its rays placed anew is not ready";
                 return false;
             }
