@@ -159,19 +159,23 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
                 tbb::this_task_arena::isolate([&] { run(phase[i]); });
         });
     };
-    try {
-        run_phase(tracing);
-    } catch (const TraceCancelled&) {
-        // The traces finished before the cancel are kept (every task has ended once parallel_for throws): a
-        // series cancelled again and again, as along a played trajectory, still gets on.
-        if (traces) {
-            std::map<PingKey, std::shared_ptr<const TraceResult>> finished;
-            for (size_t j : tracing)
-                if (hits[j]) finished.emplace(keys[j], hits[j]);
-            traces->add(std::move(finished));
+    // Traces a phase of jobs; when cancelled, those finished are kept (every task has ended once parallel_for
+    // throws; they replace kept hits placed for an earlier shading): a series cancelled again and again, as
+    // along a played trajectory, still gets on.
+    const auto trace_phase = [&](const std::vector<size_t>& phase) {
+        try {
+            run_phase(phase);
+        } catch (const TraceCancelled&) {
+            if (traces) {
+                std::map<PingKey, std::shared_ptr<const TraceResult>> finished;
+                for (size_t j : phase)
+                    if (hits[j]) finished.emplace(keys[j], hits[j]);
+                traces->add(std::move(finished));
+            }
+            throw;
         }
-        throw;
-    }
+    };
+    trace_phase(tracing);
     // Kept levels (a preview of this scene shaded the same hits) whose hits were placed earlier: the
     // estimate made anew from their L_EN, nothing shaded.
     tbb::parallel_for(size_t(0), estimating.size(), [&](size_t i) {
@@ -199,17 +203,7 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
     out.copied_profiles -= copied_missed;
     out.traced_profiles += int(retrace.size());
     out.shaded_profiles = int(jobs) - out.traced_profiles - out.copied_profiles;
-    try {
-        run_phase(retrace);
-    } catch (const TraceCancelled&) { // as the first traces: those finished replace the kept ones
-        if (traces) {
-            std::map<PingKey, std::shared_ptr<const TraceResult>> finished;
-            for (size_t j : retrace)
-                if (hits[j]) finished.emplace(keys[j], hits[j]);
-            traces->add(std::move(finished));
-        }
-        throw;
-    }
+    trace_phase(retrace);
     run_phase(reshade);
     // Profiles from hits placed for an earlier shading, kept (shaded or copied).
     for (size_t j = 0; j < jobs; ++j)
