@@ -303,9 +303,8 @@ json frame_metadata(const SceneDesc& s, const Frame& f) {
         } else { // adaptive
             if (f.placement_kept)
                 estimate["placement"] =
-                    "kept: placed for an earlier shading of this scene (a viewer's slider), re-shaded, and "
-                    "this "
-                    "estimate made anew from the same cells with this shading (kept where it meets the "
+                    "kept: placed for an earlier shading of this scene (a viewer's slider), re-shaded; "
+                    "this estimate made anew from the same cells with this shading (kept where it meets the "
                     "tolerances or, where the trace itself stopped short of them, is within one tolerance of "
                     "what the trace reached); a fresh render places its rays anew";
             estimate["passes"] = est.passes;
