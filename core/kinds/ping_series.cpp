@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -57,11 +58,6 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
     std::vector<std::shared_ptr<const TraceResult>> hits(jobs);
     std::vector<std::shared_ptr<const PingLevels>> levels(jobs);
     std::vector<size_t> traced_by(jobs); // the job whose trace a job shades (itself: it traces)
-    // Kept hits placed for an earlier shading (keep_placement): their estimate is made anew as they are
-    // shaded, and where it misses the tolerances (`missed`) the ping is traced again.
-    std::vector<char> recheck(jobs, 0), missed(jobs, 0);
-    std::map<PingKey, size_t> first;
-    std::vector<size_t> tracing, shading, estimating; // estimating: levels kept, their hits placed earlier
     keys.reserve(jobs);
     for (size_t j = 0; j < jobs; ++j) {
         const int ch = int(j % size_t(out.channels));
@@ -73,14 +69,45 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
             hits[j] = traces->find(keys[j], control.preview);
             if (!control.ground_truth) levels[j] = traces->find_levels(keys[j], draws[j], control.preview);
         }
-        const bool check =
-            hits[j] && !control.preview && control.keep_placement && traces->needs_estimate(keys[j]);
-        if (levels[j]) { // copied below (once the estimate made anew of an earlier placement meets)
-            if (check) estimating.push_back(j);
-            continue;
-        }
+    }
+    // Kept hits placed for an earlier shading (keep_placement): their estimate made anew with this shading,
+    // once per pose, before anything runs (from a kept profile's L_EN where a preview of this scene shaded
+    // them, else from the hits); a pose whose rays no longer serve (kept_placement_serves, as
+    // Simulator::render keeps an image's) is traced again like one with no kept hits.
+    if (traces && control.keep_placement && !control.preview) {
+        std::map<PingKey, size_t> check; // a job of each pose to check, one with kept levels if any
+        for (size_t j = 0; j < jobs; ++j)
+            if (hits[j] && traces->needs_estimate(keys[j]))
+                if (const auto [it, added] = check.emplace(keys[j], j);
+                    !added && levels[j] && !levels[it->second])
+                    it->second = j;
+        const std::vector<std::pair<PingKey, size_t>> poses(check.begin(), check.end());
+        std::vector<char> serves(poses.size(), 1);
+        tbb::parallel_for(size_t(0), poses.size(), [&](size_t i) {
+            const size_t j = poses[i].second;
+            const TraceResult& h = *hits[j];
+            if (!h.estimate_cells) return void(serves[i] = 0);
+            SceneDesc at = beam;
+            at.sonar.pose = keys[j].as_pose();
+            PolarImage ideal;
+            if (levels[j]) ideal.bins = out.bins, ideal.beams = 1, ideal.level_db = levels[j]->ideal_db;
+            serves[i] = kept_placement_serves(reestimate_error(h, at, levels[j] ? &ideal : nullptr),
+                                              h.error_estimate, at.sampling);
+        });
+        std::set<PingKey> missed;
+        for (size_t i = 0; i < poses.size(); ++i)
+            if (!serves[i]) missed.insert(poses[i].first);
+        for (size_t j = 0; j < jobs; ++j)
+            if (missed.count(keys[j])) hits[j] = nullptr, levels[j] = nullptr;
+    }
+    // Profiles from kept hits placed for an earlier shading (shaded or copied below).
+    for (size_t j = 0; j < jobs; ++j)
+        out.kept_placement_profiles += (hits[j] || levels[j]) && traces->placed_earlier(keys[j]);
+    std::map<PingKey, size_t> first;
+    std::vector<size_t> tracing, shading;
+    for (size_t j = 0; j < jobs; ++j) {
+        if (levels[j]) continue; // copied below
         if (hits[j]) {
-            recheck[j] = check;
             shading.push_back(j);
             continue;
         }
@@ -100,18 +127,8 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
     trace.keep_placement = control.keep_placement;
     std::mutex progress_mutex;
     size_t done = jobs - tracing.size() - shading.size(); // the copied ones
-    std::vector<char> counted(jobs, 0);                   // in `done`
-    for (size_t j = 0; j < jobs; ++j) counted[j] = levels[j] != nullptr;
-    bool all_counted = false;
     out.traced_profiles = int(tracing.size()), out.shaded_profiles = int(shading.size());
     out.copied_profiles = int(done);
-    // Whether kept hits placed for an earlier shading miss the tolerances with `at`'s (their estimate made
-    // anew from `ideal`, the hits shaded with it; kept_placement_serves), as Simulator::render keeps an
-    // image's.
-    const auto misses = [](const TraceResult& h, const SceneDesc& at, const PolarImage& ideal) {
-        return !h.estimate_cells ||
-               !kept_placement_serves(reestimate_error(h, at, &ideal), h.error_estimate, at.sampling);
-    };
     const auto run = [&](size_t j) {
         Worker& w = workers.local();
         if (w.sims.empty())
@@ -136,19 +153,13 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
         }
         const double times[4] = {f->trace_ms, f->shade_ms, f->sensor_ms, f->image_ms};
         for (int k = 0; k < 4; ++k) w.stage_ms[k] += times[k];
-        if (recheck[j]) {
-            missed[j] = misses(*kept, at, f->ideal());
-            if (missed[j]) return; // traced again below
-        }
         const size_t off = j * size_t(out.bins);
         std::memcpy(out.level_db.data() + off, f->polar().level_db.data(), size_t(out.bins) * 4);
         std::memcpy(out.ideal_db.data() + off, f->ideal().level_db.data(), size_t(out.bins) * 4);
         if (control.ground_truth) out.truth[j] = *f->truth_ptr;
-        if (control.progress && !counted[j]) {
+        if (control.progress) {
             std::lock_guard<std::mutex> lock(progress_mutex);
-            counted[j] = 1;
             if (++done % size_t(out.channels) == 0) control.progress(int(done) / out.channels, out.pings);
-            all_counted = done == jobs;
         }
     };
     const auto run_phase = [&](const std::vector<size_t>& phase) {
@@ -159,63 +170,28 @@ PingSeries render_pings(const SceneDesc& scene, const PingControl& control, Ping
                 tbb::this_task_arena::isolate([&] { run(phase[i]); });
         });
     };
-    // Traces a phase of jobs; when cancelled, those finished are kept (every task has ended once parallel_for
-    // throws; they replace kept hits placed for an earlier shading): a series cancelled again and again, as
-    // along a played trajectory, still gets on.
-    const auto trace_phase = [&](const std::vector<size_t>& phase) {
-        try {
-            run_phase(phase);
-        } catch (const TraceCancelled&) {
-            if (traces) {
-                std::map<PingKey, std::shared_ptr<const TraceResult>> finished;
-                for (size_t j : phase)
-                    if (hits[j]) finished.emplace(keys[j], hits[j]);
-                traces->add(std::move(finished));
-            }
-            throw;
+    try {
+        run_phase(tracing);
+    } catch (const TraceCancelled&) {
+        // The traces finished before the cancel are kept (every task has ended once parallel_for throws;
+        // they replace kept hits placed for an earlier shading): a series cancelled again and again, as along
+        // a played trajectory, still gets on.
+        if (traces) {
+            std::map<PingKey, std::shared_ptr<const TraceResult>> finished;
+            for (size_t j : tracing)
+                if (hits[j]) finished.emplace(keys[j], hits[j]);
+            traces->add(std::move(finished));
         }
-    };
-    trace_phase(tracing);
-    // Kept levels (a preview of this scene shaded the same hits) whose hits were placed earlier: the
-    // estimate made anew from their L_EN, nothing shaded.
-    tbb::parallel_for(size_t(0), estimating.size(), [&](size_t i) {
-        const size_t j = estimating[i];
-        SceneDesc at = beam;
-        at.sonar.pose = keys[j].as_pose();
-        PolarImage ideal;
-        ideal.bins = out.bins, ideal.beams = 1;
-        ideal.level_db = levels[j]->ideal_db;
-        missed[j] = misses(*hits[j], at, ideal);
-    });
+        throw;
+    }
     run_phase(shading);
-    // Kept pings whose estimate made anew missed: traced again (once per pose), then shaded.
-    std::vector<size_t> retrace, reshade;
-    std::map<PingKey, size_t> first_missed;
-    int copied_missed = 0;
-    for (const std::vector<size_t>* phase : {&shading, &estimating})
-        for (size_t j : *phase) {
-            if (!missed[j]) continue;
-            const auto [it, is_first] = first_missed.emplace(keys[j], j);
-            copied_missed += phase == &estimating;
-            hits[j] = nullptr, levels[j] = nullptr, traced_by[j] = it->second, recheck[j] = 0;
-            (is_first ? retrace : reshade).push_back(j);
-        }
-    out.copied_profiles -= copied_missed;
-    out.traced_profiles += int(retrace.size());
-    out.shaded_profiles = int(jobs) - out.traced_profiles - out.copied_profiles;
-    trace_phase(retrace);
-    run_phase(reshade);
-    // Profiles from hits placed for an earlier shading, kept (shaded or copied).
-    for (size_t j = 0; j < jobs; ++j)
-        out.kept_placement_profiles +=
-            traces && !missed[j] && (hits[j] || levels[j]) && traces->placed_earlier(keys[j]);
     for (size_t j = 0; j < jobs; ++j) {
         if (!levels[j]) continue;
         const size_t off = j * size_t(out.bins);
         std::copy(levels[j]->level_db.begin(), levels[j]->level_db.end(), out.level_db.begin() + long(off));
         std::copy(levels[j]->ideal_db.begin(), levels[j]->ideal_db.end(), out.ideal_db.begin() + long(off));
     }
-    if (control.progress && !all_counted) control.progress(out.pings, out.pings); // all copied
+    if (control.progress && tracing.empty() && shading.empty()) control.progress(out.pings, out.pings);
     if (traces) {
         std::map<PingKey, std::shared_ptr<const TraceResult>> series_hits;
         std::map<PingTraces::LevelsKey, std::shared_ptr<const PingLevels>> series_levels;
