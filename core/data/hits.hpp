@@ -135,9 +135,9 @@ struct TraceControl {
     /// reach the budget, or refused a ray first come, does; the image is the same bytes either way.
     bool ordered_budget = false;
     /// Adaptive scheme, full quality, after a change of values that steer the sampler only (Stage::Place):
-    /// keep the hits and re-shade them when their error estimate, made anew with the new shading
-    /// (reestimate_error), still meets the tolerances, and re-trace only when it does not. The image then
-    /// depends on the scene shaded before (a fresh Simulator re-places its rays; both meet the tolerances).
+    /// keep the hits and re-shade them while their error estimate, made anew with the new shading
+    /// (reestimate_error), still serves (kept_placement_serves), and re-trace only where it does not. The
+    /// image then depends on the scene shaded before (a fresh Simulator places its rays anew).
     /// The viewer keeps; render, batch, study and Python re-trace, so their bytes depend on the scene alone.
     /// A trace with it keeps what its estimate is made from (TraceResult::estimate_cells).
     bool keep_placement = false;

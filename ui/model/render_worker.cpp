@@ -13,7 +13,7 @@ namespace {
 
 /// A side-scan's or scan's pings of `scene` into `r`, with the image its PNG shows; `cancel` stops them.
 /// `traces` keeps the hits from one request to the next: a slider of the mission re-shades them (and, with
-/// `keep_placement`, keeps them at rest while their estimate made anew meets the tolerances).
+/// `keep_placement`, keeps them at rest while their estimate made anew serves: kept_placement_serves).
 void render_pings_into(RenderResult& r, const SceneDesc& scene, bool preview, bool ground_truth,
                        bool keep_placement, std::vector<Ping> pings, const std::atomic<bool>& cancel,
                        PingTraces& traces) {
@@ -141,8 +141,8 @@ void RenderWorker::loop() {
                 TraceControl control;
                 control.cancel = &cancel_;
                 control.preview = job.preview;
-                // A slider that steers the sampler re-shades the kept hits and re-traces only when their
-                // estimate, made anew, misses the tolerances.
+                // A slider that steers the sampler re-shades the kept hits and re-traces only where their
+                // estimate, made anew, no longer serves (kept_placement_serves).
                 control.keep_placement = job.keep_placement;
                 // A preview that traces (a drag; a slider of the sonar's geometry) is made to the screen's
                 // precision (the adaptive scheme), with its estimate; one that re-shades traces nothing.

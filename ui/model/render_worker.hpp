@@ -56,7 +56,8 @@ class RenderWorker {
     /// `fan_height_px`: Simulator::set_fan_height_px (0: one row per range bin).
     /// `pings`: a side-scan's or scan's pings to hear (PingControl::schedule; empty: the scene's own).
     /// `keep_placement`: TraceControl::keep_placement (a slider that steers the sampler keeps the hits
-    /// while their estimate made anew meets the tolerances); false places the rays anew, as `render` does.
+    /// while their estimate made anew serves: kept_placement_serves); false places the rays anew, as
+    /// `render` does.
     std::uint64_t request(const SceneDesc& scene, bool preview = false, bool ground_truth = false,
                           std::optional<Stage> changed = std::nullopt, int fan_height_px = 0,
                           std::vector<Ping> pings = {}, bool keep_placement = true);
