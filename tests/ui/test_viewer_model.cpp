@@ -1,10 +1,11 @@
-// GL-free parts of the viewer: undo stack, script parsing, trajectories, text layout checks, measurements,
-// the Open dialog's scene filter, the bindings table, the no-echo colour and how scenes and objects are
-// named.
+// GL-free parts of the viewer: frame pacing and snapshot requests, undo stack, script parsing, trajectories,
+// text layout checks, measurements, the Open dialog's scene filter, the bindings table, the no-echo colour
+// and how scenes and objects are named.
 #include "support.hpp"
 
 #include "ui/model/bindings.hpp"
 #include "ui/model/echo_path_view.hpp"
+#include "ui/model/frame_pacer.hpp"
 #include "ui/model/image_views.hpp"
 #include "ui/model/input_events.hpp"
 #include "ui/model/measure.hpp"
@@ -12,6 +13,7 @@
 #include "ui/model/scene_labels.hpp"
 #include "ui/model/script.hpp"
 #include "ui/model/script_player.hpp"
+#include "ui/model/snapshot.hpp"
 #include "ui/model/text_layout.hpp"
 #include "ui/model/trajectory.hpp"
 #include "ui/model/undo.hpp"
@@ -393,4 +395,50 @@ TEST_CASE("the object combo names objects by the scene's name, else by their sha
     SceneDesc unnamed = wreck;
     unnamed.objects[0].name.clear();
     CHECK(object_label(unnamed, 0) == "object 0: shipwreck_sunken_ship_dave.ply");
+}
+
+TEST_CASE("the frame pacer sleeps when idle, owes settle frames after it, and counts each image once",
+          "[ui][pacer]") {
+    FramePacer p;
+    CHECK_FALSE(p.poll_now(false)); // idle: wait for input
+    CHECK(p.owed_frames() == FramePacer::kSettleFrames);
+    for (int i = 0; i < FramePacer::kSettleFrames; ++i) CHECK(p.poll_now(false));
+    CHECK_FALSE(p.poll_now(false)); // settled: wait again
+    CHECK(p.poll_now(true));        // a script, --orbit, a playing trajectory: never waits
+    CHECK(p.owed_frames() == 1);
+    p.keep_drawing();
+    CHECK(p.owed_frames() == FramePacer::kSettleFrames);
+
+    p.begin_frame();
+    p.end_frame();
+    CHECK(p.last_frame_ms() >= 0);
+    CHECK(p.stats().frame_ms.size() == 1);
+
+    RenderResult r;
+    r.wall_ms = 12.5;
+    p.count_image(1, r, false); // frame 0 of --orbit: counted, not recorded
+    p.count_image(1, r, true);  // the same image on the next frame: not again
+    CHECK(p.stats().image_ms.empty());
+    r.wall_ms = 7;
+    p.count_image(2, r, true);
+    p.count_image(2, r, true);
+    REQUIRE(p.stats().image_ms.size() == 1);
+    CHECK(p.stats().image_ms[0] == 7);
+    CHECK(p.stats().estimate_median_db.empty()); // no frame, no estimate
+}
+
+TEST_CASE("snapshot requests wait for the full-quality image and take each one once", "[ui][snapshot]") {
+    SnapshotRequests q;
+    int taken = 0;
+    CHECK(q.serve(false, [&] { ++taken; })); // nothing asked: nothing to wait for
+    q.ask();
+    q.ask();
+    CHECK_FALSE(q.serve(false, [&] { ++taken; })); // a preview on screen: none taken
+    CHECK(taken == 0);
+    CHECK(q.pending() == 2);
+    CHECK(q.serve(true, [&] { ++taken; }));
+    CHECK(taken == 2);
+    CHECK(q.pending() == 0);
+    q.written();
+    CHECK(q.written_count() == 1);
 }

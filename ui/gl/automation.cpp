@@ -105,7 +105,7 @@ void Viewer::write_state(const std::string& path) const {
         {"scene", scene_to_json(s)},
         {"measurement", sonar_->measurement()},
         {"hover", hover},
-        {"snapshots", snapshots_taken_},
+        {"snapshots", snapshots_.written_count()},
         {"popups_open", ImGui::GetCurrentContext()->OpenPopupStack.Size},
         {"help_open", show_help_},
         {"undo_steps", undo_.undo_steps()},

@@ -4,8 +4,6 @@
 
 #include "ui/gl/viewer_app.hpp"
 
-#include "core/display/display_range.hpp"
-
 #include "ui/model/display_mesh.hpp"
 #include "ui/model/layout.hpp"
 #include "ui/model/panel_layout.hpp"
@@ -13,6 +11,7 @@
 #include <algorithm>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <chrono>
 #include <cstdio>
 #include <imgui.h>
 #include <iostream>
@@ -20,10 +19,6 @@
 
 namespace sonarsim::ui {
 namespace {
-
-double ms_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
-    return std::chrono::duration<double, std::milli>(b - a).count();
-}
 
 void glfw_error(int code, const char* text) {
     std::cerr << "sonarsim: GLFW error " << code << ": " << text << "\n";
@@ -129,13 +124,14 @@ int Viewer::run() {
     }
     if (opt_.orbit) {
         // The first frame includes start-up (first trace, shader compiles): leave it out.
-        stats_.preview = opt_.orbit_preview;
+        FrameStats& stats = pacer_.stats();
+        stats.preview = opt_.orbit_preview;
         if (opt_.orbit_preview) { // then the last pose held: its full-quality image (the research tolerance)
             session_.submit(false);
             if (session_.wait_full(std::chrono::milliseconds(60000)) && session_.shown())
-                stats_.full_image_ms = session_.shown()->wall_ms;
+                stats.full_image_ms = session_.shown()->wall_ms;
         }
-        std::printf("%s\n", stats_.json_line(1).c_str());
+        std::printf("%s\n", stats.json_line(1).c_str());
         std::fflush(stdout);
     }
     return 0;
@@ -143,16 +139,11 @@ int Viewer::run() {
 
 void Viewer::frame(int index) {
     const bool sync = script_.last_frame() >= 0 || opt_.orbit;
-    if (sync || extra_frames_ > 0 || trajectory_.playing) {
+    if (pacer_.poll_now(sync || trajectory_.playing))
         glfwPollEvents();
-        extra_frames_ = std::max(0, extra_frames_ - 1);
-    } else {
-        // Idle: sleep until input arrives or the worker posts a finished image, then draw a few frames so
-        // that ImGui settles (hover states, animations).
+    else // idle: sleep until input arrives or the worker posts a finished image
         glfwWaitEventsTimeout(1.0);
-        extra_frames_ = 2;
-    }
-    const Clock::time_point t0 = Clock::now();
+    pacer_.begin_frame();
     for (const InputEvent& e : script_.input(index, ui_.widgets.item_rects)) input_->inject(e);
     open_files(input_->take_dropped());
 
@@ -175,18 +166,9 @@ void Viewer::frame(int index) {
     } else {
         session_.poll();
     }
-    if (pending_snapshots_ > 0) session_.wait_full(std::chrono::milliseconds(60000));
-    if (session_.shown() && session_.shown_count() != counted_images_) {
-        counted_images_ = session_.shown_count();
-        if (index > 0 || !opt_.orbit) {
-            const RenderResult& shown = *session_.shown();
-            stats_.image_ms.push_back(shown.wall_ms);
-            if (shown.frame && shown.frame->error_estimate.valid) {
-                stats_.estimate_median_db.push_back(shown.frame->error_estimate.median_abs_db);
-                stats_.screen_median_db.push_back(half_grey_level_db(shown.frame->display));
-            }
-        }
-    }
+    if (snapshots_.pending() > 0) session_.wait_full(std::chrono::milliseconds(60000));
+    if (session_.shown())
+        pacer_.count_image(session_.shown_count(), *session_.shown(), index > 0 || !opt_.orbit);
 
     int fb_w = 0, fb_h = 0, win_w = 0, win_h = 0;
     glfwGetFramebufferSize(window_, &fb_w, &fb_h);
@@ -205,7 +187,7 @@ void Viewer::frame(int index) {
     input_->feed_imgui();
     ImGui::NewFrame();
     menu_bar();
-    ui_.frame_ms = last_frame_ms_;
+    ui_.frame_ms = pacer_.last_frame_ms();
     draw_controls_panel(layout_.controls, session_, ui_, trajectory_);
     sonar_->draw(layout_.sonar, session_, controller_.surface_hover(), font_scale_);
     dialogs();
@@ -215,19 +197,19 @@ void Viewer::frame(int index) {
     interacting_ = controller_.editing_scene() || ImGui::IsAnyItemActive();
     record_undo();
     if (session_.scene().sampling.bounces > 0) last_bounces_ = session_.scene().sampling.bounces;
-    if (auto p = trajectory_.update(session_.scene().sonar.pose, last_frame_ms_ / 1000.0))
+    if (auto p = trajectory_.update(session_.scene().sonar.pose, pacer_.last_frame_ms() / 1000.0))
         session_.edit([&](SceneDesc& s) { s.sonar.pose = *p; });
     // While the sonar is on the trajectory (played, paused, at its end), a side-scan's or scan's pings are
     // heard along it: the waterfall scrolls.
     const bool on_track = !trajectory_.recording && trajectory_.track.size() >= 2 &&
                           trajectory_.track.passes(session_.scene().sonar.pose, trajectory_.t_s);
     session_.set_ping_track(on_track ? trajectory_.track.shared() : nullptr, trajectory_.t_s);
-    if (!sync && session_.submit(interacting_) != 0) extra_frames_ = 2;
+    if (!sync && session_.submit(interacting_) != 0) pacer_.keep_drawing();
     // Keep drawing while a drag is held, and until the full-quality image of a preview has been requested
     // (the input rests for Session::kRest).
-    if (controller_.pressed() || session_.full_pending()) extra_frames_ = 2;
+    if (controller_.pressed() || session_.full_pending()) pacer_.keep_drawing();
 
-    if (ui_.want_snapshot) ++pending_snapshots_, ui_.want_snapshot = false;
+    if (ui_.want_snapshot) snapshots_.ask(), ui_.want_snapshot = false;
     const bool full_on_screen = session_.shown() && !session_.shown()->preview();
 
     upload_meshes();
@@ -243,8 +225,7 @@ void Viewer::frame(int index) {
         if (!session_.error().empty()) throw std::runtime_error(session_.error());
     }
     glfwSwapBuffers(window_);
-    last_frame_ms_ = ms_between(t0, Clock::now());
-    stats_.frame_ms.push_back(last_frame_ms_);
+    pacer_.end_frame();
 }
 
 void Viewer::upload_meshes() {
@@ -256,9 +237,10 @@ void Viewer::upload_meshes() {
     size_t triangles = 0;
     for (const auto& m : meshes) triangles += m->triangles.size();
     if (triangles > kDisplayTriangles) {
-        const Clock::time_point t0 = Clock::now();
+        const auto t0 = std::chrono::steady_clock::now();
         const auto simple = simplify_for_display(meshes, kDisplayTriangles);
-        const double ms = ms_between(t0, Clock::now());
+        const double ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         size_t drawn = 0;
         for (const auto& m : simple) drawn += m->triangles.size();
         renderer_->set_meshes(simple);

@@ -4,11 +4,13 @@
 #pragma once
 #include "ui/gl/controls_panel.hpp"
 #include "ui/gl/file_dialog.hpp"
+#include "ui/model/frame_pacer.hpp"
 #include "ui/gl/glfw_input.hpp"
 #include "ui/model/orbit.hpp"
 #include "ui/gl/scene_renderer.hpp"
 #include "ui/model/script_player.hpp"
 #include "ui/model/session.hpp"
+#include "ui/model/snapshot.hpp"
 #include "ui/gl/sonar_panel.hpp"
 #include "ui/gl/trajectory_panel.hpp"
 #include "ui/model/undo.hpp"
@@ -18,7 +20,6 @@
 
 #include "core/io/output.hpp"
 
-#include <chrono>
 #include <memory>
 #include <string>
 #include <vector>
@@ -36,7 +37,6 @@ class Viewer {
     int run();
 
   private:
-    using Clock = std::chrono::steady_clock;
     // viewer.cpp
     void frame(int index);
     void update_scale();
@@ -98,15 +98,10 @@ class Viewer {
     bool interacting_ = false; ///< a drag that edits the scene (frustum, object, slider) is held
     bool show_help_ = false;
     int last_bounces_ = 1; ///< the last non-zero sampling.bounces: what the multipath toggle turns on
-    int snapshots_taken_ = 0;
-    int pending_snapshots_ = 0; ///< asked for (S taps, menu): taken once a full-quality image is on screen
+    SnapshotRequests snapshots_;
 
-    // Timing.
-    FrameStats stats_;
-    double last_frame_ms_ = 0;
-    std::uint64_t counted_images_ = 0;
+    FramePacer pacer_; ///< when frames draw, their times, the --orbit statistics
     bool quit_ = false;
-    int extra_frames_ = 0;
 };
 
 } // namespace sonarsim::ui

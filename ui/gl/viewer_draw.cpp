@@ -60,10 +60,10 @@ void Viewer::draw_view_text(const Rect& v) {
     char buf[256];
     const RenderResult* shown = session_.shown();
     if (shown)
-        std::snprintf(buf, sizeof buf, "frame %.1f ms   image %.1f ms%s", last_frame_ms_, shown->wall_ms,
-                      shown->preview() ? " (preview)" : "");
+        std::snprintf(buf, sizeof buf, "frame %.1f ms   image %.1f ms%s", pacer_.last_frame_ms(),
+                      shown->wall_ms, shown->preview() ? " (preview)" : "");
     else
-        std::snprintf(buf, sizeof buf, "frame %.1f ms   image: rendering...", last_frame_ms_);
+        std::snprintf(buf, sizeof buf, "frame %.1f ms   image: rendering...", pacer_.last_frame_ms());
     put(v.y + pad * 0.5f, IM_COL32(230, 235, 240, 255), buf);
     const Pose& p = session_.scene().sonar.pose;
     std::snprintf(buf, sizeof buf, "sonar (%.2f, %.2f, %.2f) m  rpy (%.1f, %.1f, %.1f) deg", p.position_m[0],
@@ -126,7 +126,7 @@ void Viewer::take_snapshot(const std::string& prefix_in, bool as_shown, const By
     }
     const std::string prefix = prefix_in.empty() ? default_snapshot_prefix(ui_.snapshot_dir) : prefix_in;
     if (!session_.snapshot(prefix, png, ui_.annotated_snapshot ? annotated : Bytes{})) return;
-    ++snapshots_taken_;
+    snapshots_.written();
     std::cerr << session_.status() << "\n";
 }
 
@@ -146,13 +146,10 @@ Bytes Viewer::annotated_now(int fb_w, int fb_h, int win_w, int win_h) const {
 }
 
 void Viewer::take_pending_snapshots(bool full_on_screen, int fb_w, int fb_h, int win_w, int win_h) {
-    if (pending_snapshots_ == 0) return;
-    if (!full_on_screen) { // a preview was drawn: the next frame waits for the full image first
-        extra_frames_ = 2;
-        return;
-    }
-    const Bytes annotated = annotated_now(fb_w, fb_h, win_w, win_h);
-    for (; pending_snapshots_ > 0; --pending_snapshots_) take_snapshot("", true, annotated);
+    if (snapshots_.pending() == 0) return;
+    // With a preview drawn, the next frame waits for the full image first.
+    const Bytes annotated = full_on_screen ? annotated_now(fb_w, fb_h, win_w, win_h) : Bytes{};
+    if (!snapshots_.serve(full_on_screen, [&] { take_snapshot("", true, annotated); })) pacer_.keep_drawing();
 }
 
 } // namespace sonarsim::ui

@@ -71,7 +71,7 @@ void Viewer::run_key_action(KeyAction action) {
         undo(true);
         break;
     case KeyAction::Snapshot:
-        ++pending_snapshots_; // every tap is one snapshot, taken once the full-quality image is drawn
+        snapshots_.ask(); // every tap is one snapshot, taken once the full-quality image is drawn
         break;
     case KeyAction::TogglePolar:
         sonar_->polar = !sonar_->polar;

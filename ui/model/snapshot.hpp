@@ -23,4 +23,25 @@ std::vector<std::string> write_snapshot(const std::string& prefix, const SceneDe
 /// The scene file text of a snapshot (JSON; round-trips through load_scene).
 std::string snapshot_scene_text(const SceneDesc& scene);
 
+/// The viewer's snapshots: those asked for (S taps, the menu), each taken once a full-quality image is on
+/// screen, never of a drag's preview; and how many were written.
+class SnapshotRequests {
+  public:
+    void ask() { ++pending_; }
+    int pending() const { return pending_; }
+    /// With the full-quality image on screen, calls `take()` once for each pending snapshot and returns
+    /// true; with a preview on screen takes none and returns false (draw again, the full image comes).
+    template <class Take> bool serve(bool full_on_screen, Take&& take) {
+        if (pending_ == 0) return true;
+        if (!full_on_screen) return false;
+        for (; pending_ > 0; --pending_) take();
+        return true;
+    }
+    void written() { ++written_; }
+    int written_count() const { return written_; }
+
+  private:
+    int pending_ = 0, written_ = 0;
+};
+
 } // namespace sonarsim::ui
