@@ -25,8 +25,10 @@ SceneDesc with_sampling(SceneDesc s, const Sampling& m) {
 }
 
 PolarImage render_raw(const SceneGeometry& g, const SceneDesc& s, TraceResult* hits = nullptr) {
-    TraceResult t = trace(g, s);
-    PolarImage img = t.shaded ? *t.shaded->image : shade(t, s);
+    ImagePass whole;
+    TraceResult t = trace(g, s, {}, &whole);
+    const auto shaded = whole.take();
+    PolarImage img = shaded ? *shaded->image : shade(t, s);
     if (t.halves) t.error_estimate = estimate_error(t, s);
     if (hits) *hits = std::move(t);
     return img;

@@ -60,7 +60,6 @@ struct GhostCell {
     bool mixed() const { return tx_bounces != rx_bounces; }
 };
 
-struct Accumulation;
 struct AdaptiveEstimateCells; // sampling/adaptive_sampler.hpp
 
 struct TraceResult {
@@ -77,9 +76,6 @@ struct TraceResult {
     /// rays' cells with each ray's whole stratum as its cell, from which shading estimates the footprint's
     /// bias.
     std::vector<std::vector<Cell>> stratum_cells;
-    /// Set when the tracer already ran the accumulation pass on its cells with the scene it was given
-    /// (adaptive does, to estimate its error): the image channel and those TraceControl::channels asked for.
-    std::shared_ptr<const Accumulation> shaded;
     /// Adaptive scheme: estimated error of this sampling (difference to one refinement level coarser).
     struct ErrorEstimate {
         bool valid = false;
@@ -125,9 +121,6 @@ struct TraceControl {
     /// draws): its grid grows no larger than that allows, and its estimate then says what it reaches; 0: no
     /// limit.
     double preview_budget_ms = 15;
-    /// The channels the caller will shade from the traced cells: a tracer that shades its cells anyway
-    /// (adaptive) fills them in the same pass (TraceResult::shaded), so no cell's echo is evaluated twice.
-    Channels channels;
     /// The beams to trace (one flag per beam), or null for all: the others are left without cells (motion
     /// during a frame traces each ping's beams from its own pose).
     const std::vector<char>* beams = nullptr;

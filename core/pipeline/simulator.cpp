@@ -191,14 +191,15 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
     if (reshade) next.truth_ptr.reset(), next.strongest_ptr.reset(), next.path_order_db.clear();
     std::shared_ptr<const Accumulation> pass;
     if (retrace) {
-        TraceControl traced = control;
-        traced.channels = c;
-        // TraceCancelled: nothing has changed yet.
-        TraceResult t = at_screen ? trace_screen_preview(traced) : trace(*geometry_, scene_, traced);
+        // The adaptive tracer shades to place its rays: through the pass this frame needs, which it may
+        // then hand back for its hits. TraceCancelled: nothing has changed yet.
+        ImagePass whole(c);
+        TraceResult t =
+            at_screen ? trace_screen_preview(control) : trace(*geometry_, scene_, control, &whole);
         next.trace_ms = t.trace_ms;
         next.placement_stale = false;
         rays_traced_ += t.rays_traced + t.multipath_rays;
-        pass = std::move(t.shaded); // the tracer ran the pass on its cells with this very scene
+        pass = whole.take(); // null unless the tracer ran the pass on its hits as returned
         next.hits_ptr = std::make_shared<const TraceResult>(std::move(t));
         next.error_estimate = next.hits_ptr->error_estimate;
     }
@@ -208,7 +209,7 @@ std::shared_ptr<const Frame> Simulator::render(const TraceControl& control) {
         const auto t0 = std::chrono::steady_clock::now();
         pass = std::make_shared<const Accumulation>(accumulate(*next.hits_ptr, scene_, c));
         next.shade_ms = ms_since(t0);
-    } // else shaded in the trace (its time is in trace_ms), or shared
+    } // else the tracer ran this frame's pass (its time is in trace_ms), or shared
     if (pass) {
         if (c.image) next.ideal_ptr = pass->image;
         if (reshade) next.inputs_ptr = pass->inputs;

@@ -124,7 +124,8 @@ PolarImage shade_beams(const SceneDesc& s, TraceResult& r, const std::vector<int
 
 } // namespace
 
-TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control) {
+TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control,
+                           ImagePass* caller_pass) {
     Sampler sp(g, s, control);
     sp.ordered = control.ordered_budget;
     const int N = s.sonar.beams, T = int(sp.traced.size());
@@ -144,9 +145,9 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
     out.cells.resize(size_t(N));
     out.preview = control.preview;
     std::uint64_t rays = 0, multipath_rays = 0;
-    Channels channels = control.channels;
-    channels.image = true;
-    std::shared_ptr<const Accumulation> shaded; // the whole image, when the first pass traced all of it
+    ImagePass own_pass;
+    ImagePass& whole = caller_pass ? *caller_pass : own_pass; // the whole image, when pass 1 traced all of it
+    whole.forget();
     TraceResult::ErrorEstimate est;
     adaptive::Beams carried; // bumped groups' base grids, split into the next pass's
     // What each group's last estimate was made from (beside its fine cells), for reestimate_error, when
@@ -233,8 +234,7 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
             // The estimate's shares of the groups refined here: their sample beams, fine and coarse.
             PolarImage fine_img;
             if (all) { // the whole image in one pass: shade it once, for the estimate and the caller
-                shaded = std::make_shared<const Accumulation>(accumulate(out, s, channels));
-                fine_img = columns_of(*shaded->image, samples);
+                fine_img = columns_of(*whole.run(out, s).image, samples);
             } else {
                 fine_img = shade_beams(s, out, samples);
             }
@@ -310,7 +310,7 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
             est.budget_reached = c.budget_short;
             break;
         }
-        shaded.reset(); // the image changes
+        whole.forget(); // the image changes
     }
     est.budget_reached = est.budget_reached || sp.budget_hit.load();
     est.strict = sp.strict;
@@ -326,8 +326,6 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
         kept->ref_db = sp.ref_db, kept->probe_every = sp.probe_every;
         out.estimate_cells = std::move(kept);
     }
-    if (!shaded) shaded = std::make_shared<const Accumulation>(accumulate(out, s, channels));
-    out.shaded = std::move(shaded);
     out.rays_traced = rays;
     out.multipath_rays = multipath_rays;
     return out;

@@ -28,11 +28,12 @@ float two_way_correction(const Cell& c, const glm::dvec3& p_tx) {
     return float(0.5 * (tx_leg - double(c.range_m)));
 }
 
-/// A slot's estimate and its weights (detail::SlotEstimate).
-detail::SlotEstimate slot_estimate(const TraceResult& r) {
+/// A slot's estimate and its weights (detail::SlotEstimate): its echo and echoing bins, from its image when
+/// its tracer shaded one.
+detail::SlotEstimate slot_estimate(const TraceResult& r, const Accumulation* shaded) {
     detail::SlotEstimate x{r.error_estimate, 0, 0};
-    if (!r.shaded || !r.shaded->image) return x;
-    for (float v : r.shaded->image->level_db)
+    if (!shaded || !shaded->image) return x;
+    for (float v : shaded->image->level_db)
         if (v > -std::numeric_limits<float>::infinity()) x.echo += std::pow(10.0, 0.1 * v), x.bins += 1;
     return x;
 }
@@ -97,10 +98,15 @@ TraceResult trace_moving(const SceneGeometry& g, const SceneDesc& s, const Trace
         std::vector<char> fired(size_t(N), 0);
         for (int i = 0; i < N; ++i) fired[size_t(i)] = ping_of_beam(s.sonar, i) == slot.ping;
         TraceControl tc = control;
-        tc.channels = {};
         tc.beams = s.sonar.pings_per_frame > 1 ? &fired : nullptr;
         tc.keep_placement = false; // the slots' hits are merged: no estimate cells to keep
-        TraceResult r = trace(g, sub, tc);
+        ImagePass slot_pass;
+        TraceResult r = trace(g, sub, tc, &slot_pass);
+        std::shared_ptr<const Accumulation> slot_image = slot_pass.take();
+        if (!slot_image && sub.sampling.placement == RayPlacement::Adaptive) { // its estimate's weights
+            slot_pass.run(r, sub);
+            slot_image = slot_pass.take();
+        }
 
         // Keep the echoes of this ping's beams that arrive in the slab (the first slab keeps everything
         // nearer, the last everything farther), at half their two-way path.
@@ -127,7 +133,7 @@ TraceResult trace_moving(const SceneGeometry& g, const SceneDesc& s, const Trace
         out.rays_traced += r.rays_traced;
         out.multipath_rays += r.multipath_rays;
         out.preview = out.preview || r.preview;
-        estimates.push_back(slot_estimate(r));
+        estimates.push_back(slot_estimate(r, slot_image.get()));
     }
     out.error_estimate = detail::combine_slot_estimates(estimates);
     return out;

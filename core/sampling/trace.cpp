@@ -106,7 +106,7 @@ TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s, const Trac
     return out;
 }
 
-TraceResult trace(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control) {
+TraceResult trace(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control, ImagePass* pass) {
     const auto t0 = std::chrono::steady_clock::now();
     TraceResult out;
     if (moving(s.sonar)) {
@@ -117,7 +117,7 @@ TraceResult trace(const SceneGeometry& g, const SceneDesc& s, const TraceControl
             out = trace_uniform(g, s, control);
             break;
         case RayPlacement::Adaptive:
-            out = trace_adaptive(g, s, control);
+            out = trace_adaptive(g, s, control, pass);
             break;
         case RayPlacement::Jittered:
             out = trace_jittered(g, s, control);

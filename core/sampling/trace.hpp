@@ -4,11 +4,15 @@
 #include "core/data/hits.hpp"
 #include "core/data/polar_image.hpp"
 #include "core/geometry/geometry.hpp"
+#include "core/shading/accumulate.hpp"
 
 namespace sonarsim {
 
-/// Traces the scene with the ray placement it asks for (sampling.placement).
-TraceResult trace(const SceneGeometry& geometry, const SceneDesc& scene, const TraceControl& control = {});
+/// Traces the scene with the ray placement it asks for (sampling.placement). A placement that shades its
+/// hits to place them (adaptive) runs the whole image's pass through `pass`, when given: its take() is then
+/// the pass of the hits returned, if it ran one.
+TraceResult trace(const SceneGeometry& geometry, const SceneDesc& scene, const TraceControl& control = {},
+                  ImagePass* pass = nullptr);
 
 /// The paper's regular grid: beams x azimuth_rays x elevation_rays rays at cell centres (midpoint rule).
 TraceResult trace_uniform(const SceneGeometry& geometry, const SceneDesc& scene,
@@ -19,7 +23,7 @@ TraceResult trace_uniform(const SceneGeometry& geometry, const SceneDesc& scene,
 /// base grid's echo in their bins and sampling.tolerance_db: surface edges, steps in echo level, specular
 /// lobes, horizons, grazing footprints. All rays come out of sampling.max_rays. Fills `error_estimate`.
 TraceResult trace_adaptive(const SceneGeometry& geometry, const SceneDesc& scene,
-                           const TraceControl& control = {});
+                           const TraceControl& control = {}, ImagePass* pass = nullptr);
 
 /// The error estimate of an adaptive trace's placement (`hits`, with TraceResult::estimate_cells) made anew
 /// with `scene`'s shading, a scene that differs from the traced one in values that steer the sampler only

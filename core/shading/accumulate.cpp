@@ -281,6 +281,11 @@ bool needs_sensor_inputs(const SceneDesc& s) {
     return azimuth_subcolumns(s) > 1 || s.sensor.speckle != Speckle::Off;
 }
 
+const Accumulation& ImagePass::run(const TraceResult& hits, const SceneDesc& scene) {
+    latest_ = std::make_shared<const Accumulation>(accumulate(hits, scene, channels_));
+    return *latest_;
+}
+
 Accumulation accumulate(const TraceResult& hits, const SceneDesc& s, const Channels& c) {
     Pass p(hits, s);
     const size_t cells = size_t(p.K) * size_t(p.N);

@@ -52,6 +52,25 @@ struct Accumulation {
 /// in the log domain instead (image: a beam with a bin more than ~3000 dB below its peak).
 Accumulation accumulate(const TraceResult& hits, const SceneDesc& scene, const Channels& channels);
 
+/// The accumulation pass of a whole image, owned by its caller. A tracer whose placement reads the shaded
+/// image (adaptive) runs the pass through the one it is given, so the caller takes the pass of the hits
+/// returned instead of running it again: no cell's echo is evaluated twice.
+class ImagePass {
+  public:
+    /// The channels the caller will take (the image among them).
+    explicit ImagePass(const Channels& channels = {}) : channels_(channels) { channels_.image = true; }
+    /// Runs the pass on `hits` with the scene's grid and physics and keeps it as the latest.
+    const Accumulation& run(const TraceResult& hits, const SceneDesc& scene);
+    /// The hits changed since the latest pass: it is not theirs any more.
+    void forget() { latest_.reset(); }
+    /// The latest pass, of the hits as they were last handed back (null: none, run accumulate()).
+    std::shared_ptr<const Accumulation> take() { return std::move(latest_); }
+
+  private:
+    Channels channels_;
+    std::shared_ptr<const Accumulation> latest_;
+};
+
 /// The L_EN image of the stored hits alone: accumulate() with the image channel.
 PolarImage shade(const TraceResult& hits, const SceneDesc& scene);
 

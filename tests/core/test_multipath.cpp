@@ -226,7 +226,7 @@ TEST_CASE("both estimates see the tank's ghosts' error and strict refines it", "
         const TraceResult t = trace(g, a);
         CHECK(t.error_estimate.strict == (how == ErrorEstimate::Strict));
         CHECK(t.error_estimate.meets(a.sampling) == (how == ErrorEstimate::Strict));
-        return std::make_tuple(t.error_estimate.rel_l1, compare_images(*t.shaded->image, ref).rel_l1,
+        return std::make_tuple(t.error_estimate.rel_l1, compare_images(shade(t, a), ref).rel_l1,
                                t.error_estimate.azimuth_rel_l1);
     };
     const auto [fast_est, fast_err, fast_az] = measure(ErrorEstimate::Fast);
