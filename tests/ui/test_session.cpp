@@ -262,6 +262,24 @@ TEST_CASE("a drag renders previews, then the full image once the input rests", "
     REQUIRE(session.snapshot(kept_prefix, {}));
     CHECK_FALSE(session.shown()->frame->placement_kept);
     CHECK(test::read_bytes(kept_prefix + ".npy") == encode_npy(Simulator(session.scene()).render()->polar()));
+
+    // The viewer's S key reads the annotated PNG back from the screen, so it first asks for the image placed
+    // anew (once per kept image, however many frames ask) and draws it before the snapshot is taken.
+    for (const double t_c : {19.0, 18.5}) { // the first traces again (the snapshot's rays kept no estimate)
+        REQUIRE(session.edit([&](SceneDesc& s) { s.water.temperature_c = t_c; }));
+        REQUIRE(session.submit() != 0);
+        REQUIRE(session.wait_latest(60s));
+    }
+    REQUIRE(session.shown_kept_placement());
+    const std::uint64_t kept_count = session.shown_count();
+    CHECK(session.place_anew());
+    CHECK(session.place_anew()); // asked already: on its way, not asked again
+    REQUIRE(session.wait_latest(60s));
+    CHECK(session.shown_count() == kept_count + 1); // one image more: the one placed anew
+    CHECK_FALSE(session.shown_kept_placement());
+    CHECK_FALSE(session.place_anew()); // nothing kept on screen: nothing to ask
+    CHECK(encode_npy(session.shown()->frame->polar()) ==
+          encode_npy(Simulator(session.scene()).render()->polar()));
 }
 
 TEST_CASE("a preview request of a scheme without previews needs no second render", "[ui][session]") {

@@ -106,6 +106,7 @@ void Viewer::write_state(const std::string& path) const {
         {"measurement", sonar_->measurement()},
         {"hover", hover},
         {"snapshots", snapshots_.written_count()},
+        {"image_placement_kept", session_.shown_kept_placement()},
         {"popups_open", ImGui::GetCurrentContext()->OpenPopupStack.Size},
         {"help_open", show_help_},
         {"undo_steps", undo_.undo_steps()},

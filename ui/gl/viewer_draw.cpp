@@ -132,9 +132,11 @@ void Viewer::take_snapshot(const std::string& prefix_in, bool as_shown, const By
 
 Bytes Viewer::annotated_now(int fb_w, int fb_h, int win_w, int win_h) const {
     // The sonar panel's image, labels and colour bar exactly as drawn this frame, when that frame shows the
-    // full-quality image of the scene being edited (else the snapshot's images would not match it).
+    // full-quality image of the scene being edited, as `render` places its rays (else the snapshot's images
+    // would not match it).
     const RenderResult* shown = session_.shown();
-    if (!ui_.annotated_snapshot || win_w <= 0 || win_h <= 0 || !shown || shown->preview() || session_.busy())
+    if (!ui_.annotated_snapshot || win_w <= 0 || win_h <= 0 || !shown || shown->preview() ||
+        session_.busy() || session_.shown_kept_placement())
         return {};
     const float sx = float(fb_w) / win_w, sy = float(fb_h) / win_h;
     const Rect r = sonar_->annotated_rect();
@@ -147,7 +149,10 @@ Bytes Viewer::annotated_now(int fb_w, int fb_h, int win_w, int win_h) const {
 
 void Viewer::take_pending_snapshots(bool full_on_screen, int fb_w, int fb_h, int win_w, int win_h) {
     if (snapshots_.pending() == 0) return;
-    // With a preview drawn, the next frame waits for the full image first.
+    // With a preview drawn, the next frame waits for the full image first; with an image whose rays were
+    // kept from an earlier shading, for the one placed anew that the files will hold, so that the
+    // annotated PNG read back from the screen shows it.
+    if (full_on_screen && session_.place_anew()) full_on_screen = false;
     const Bytes annotated = full_on_screen ? annotated_now(fb_w, fb_h, win_w, win_h) : Bytes{};
     if (!snapshots_.serve(full_on_screen, [&] { take_snapshot("", true, annotated); })) pacer_.keep_drawing();
 }

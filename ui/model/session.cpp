@@ -220,6 +220,23 @@ void Session::snapshot_status(const std::string& prefix, const std::vector<std::
     error_.clear();
 }
 
+bool Session::shown_kept_placement() const {
+    return shown_ && ((shown_->frame && shown_->frame->placement_kept) ||
+                      (shown_->pings && shown_->pings->kept_placement_profiles > 0));
+}
+
+bool Session::place_anew() {
+    if (!shown_kept_placement()) return false;
+    if (placed_anew_for_ != shown_count_) {
+        placed_anew_for_ = shown_count_;
+        requested_id_ = worker_.request(shown_->scene, false, ground_truth_, std::nullopt, fan_height_px_,
+                                        requested_pings(), false);
+        // That request replaces any of a newer edit: the edited scene is requested again after it.
+        if (changed_stage(scene_, shown_->scene) != Stage::None) dirty_ = true, changed_.reset();
+    }
+    return true;
+}
+
 bool Session::snapshot(const std::string& prefix, const Bytes& view3d_png, const Bytes& annotated_png) {
     if (!shown_) {
         error_ = "no sonar image yet: nothing to snapshot";
@@ -236,18 +253,9 @@ bool Session::snapshot(const std::string& prefix, const Bytes& view3d_png, const
         }
         // An image whose rays were kept from an earlier shading (a slider that steers the sampler): placed
         // anew first, so that the files are what `render` makes of the scene.
-        const auto kept = [this] {
-            return (shown_->frame && shown_->frame->placement_kept) ||
-                   (shown_->pings && shown_->pings->kept_placement_profiles > 0);
-        };
-        if (kept()) {
-            requested_id_ = worker_.request(shown_->scene, false, ground_truth_, std::nullopt, fan_height_px_,
-                                            requested_pings(), false);
-            const bool ready =
-                wait_latest(std::chrono::milliseconds(60000)) && shown_ && !shown_->preview() && !kept();
-            // That request replaced any of a newer edit: the edited scene is requested again after it.
-            if (changed_stage(scene_, shown_ ? shown_->scene : scene_) != Stage::None)
-                dirty_ = true, changed_.reset();
+        if (place_anew()) {
+            const bool ready = wait_latest(std::chrono::milliseconds(60000)) && shown_ &&
+                               !shown_->preview() && !shown_kept_placement();
             if (!ready) {
                 error_ = "snapshot: the image with its rays placed anew is not ready";
                 return false;

@@ -86,6 +86,13 @@ class Session {
     /// screen is first replaced by the full-quality image (wait_full).
     /// Returns false (and sets error()) when there is nothing to save or writing fails.
     bool snapshot(const std::string& prefix, const Bytes& view3d_png, const Bytes& annotated_png = {});
+    /// The image on screen keeps rays placed for an earlier shading (a slider that steers the sampler), so
+    /// it differs from what `render` makes of its scene.
+    bool shown_kept_placement() const;
+    /// Requests the shown scene's image with its rays placed anew, once per kept image on screen (a
+    /// snapshot's annotated PNG is read back from the screen, so it waits for that image to be drawn).
+    /// Returns whether such an image is on its way.
+    bool place_anew();
     /// Ground truth per pixel for full-quality frames (computed by the worker): shown by the hover readout
     /// and written by snapshots as PREFIX_gt_<name>.npy. Turning it on re-requests the shown scene.
     void set_ground_truth(bool on);
@@ -123,8 +130,9 @@ class Session {
     /// The pings to ask the worker for: along ping_track_, or empty (the scene's own).
     std::vector<Ping> requested_pings() const;
     std::uint64_t requested_id_ = 0, shown_count_ = 0;
-    bool full_pending_ = false;       ///< the last request for scene_ was a preview
-    Clock::time_point last_change_{}; ///< when the last changed scene was sent
+    std::uint64_t placed_anew_for_ = 0; ///< the shown_count_ whose kept image place_anew() asked again
+    bool full_pending_ = false;         ///< the last request for scene_ was a preview
+    Clock::time_point last_change_{};   ///< when the last changed scene was sent
     std::shared_ptr<const RenderResult> shown_;
     std::string error_, status_;
     RenderWorker worker_;
