@@ -2,6 +2,7 @@
 
 #include "core/base/errors.hpp"
 #include "core/io/aris.hpp"
+#include "core/io/ping_output.hpp"
 #include "core/io/ros2_sonar.hpp"
 #include "core/scene/params.hpp"
 
@@ -58,9 +59,9 @@ void check_holds(const DatasetContainer& c, SonarKind kind, const std::string& o
     if (holds(c, kind)) return;
     const std::string what =
         kind == SonarKind::Imaging ? "an imaging sonar's frames" : "a " + kind_name(kind) + " sonar's pings";
-    const std::string own = kind == SonarKind::Sidescan   ? " (each frame also has its own .xtf)"
-                            : kind == SonarKind::Scanning ? " (each frame also has its own _ping360.bin)"
-                                                          : "";
+    std::string own;
+    for (const PingOutput& o : ping_outputs())
+        if (o.recording_of == kind) own = std::string(" (each frame also has its own ") + o.suffix + ")";
     throw InputError(origin, "sonar.kind",
                      std::string("an ") + c.name + " holds " +
                          (c.write_frames ? "an imaging sonar's frames" : "a side-scan's or scan's pings") +

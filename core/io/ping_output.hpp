@@ -7,6 +7,7 @@
 #include "core/kinds/ping_series.hpp"
 #include "core/scene/param_spec.hpp"
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,6 +29,9 @@ struct PingOutput {
     const char* what;
     Bytes (*encode)(const SceneDesc& scene, const PingSeries& series, const PingViews& views);
     bool (*wanted)(const SceneDesc& scene) = nullptr; ///< written only where it says so (null: always)
+    /// The recording format of this kind's devices (XTF for side-scan, the Ping Viewer log for a scan),
+    /// which each frame of a dataset has as well; nullopt for the others.
+    std::optional<SonarKind> recording_of = std::nullopt;
 };
 
 /// The one table of the files a side-scan or scanning image is written as.
