@@ -108,6 +108,7 @@ TraceResult trace_uniform(const SceneGeometry& g, const SceneDesc& s, const Trac
 
 TraceResult trace(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control, ImagePass* pass) {
     const auto t0 = std::chrono::steady_clock::now();
+    if (pass) pass->forget(); // it holds no pass of these hits unless the tracer runs one
     TraceResult out;
     if (moving(s.sonar)) {
         out = trace_moving(g, s, control);

@@ -272,14 +272,30 @@ TEST_CASE("a drag renders previews, then the full image once the input rests", "
     }
     REQUIRE(session.shown_kept_placement());
     const std::uint64_t kept_count = session.shown_count();
+    const std::uint64_t before = session.requested_id();
     CHECK(session.place_anew());
+    const std::uint64_t asked = session.requested_id();
+    CHECK(asked > before);
     CHECK(session.place_anew()); // asked already: on its way, not asked again
+    CHECK(session.requested_id() == asked);
     REQUIRE(session.wait_latest(60s));
     CHECK(session.shown_count() == kept_count + 1); // one image more: the one placed anew
     CHECK_FALSE(session.shown_kept_placement());
     CHECK_FALSE(session.place_anew()); // nothing kept on screen: nothing to ask
     CHECK(encode_npy(session.shown()->frame->polar()) ==
           encode_npy(Simulator(session.scene()).render()->polar()));
+
+    // A kept image with a newer edit on its way: that edit's image comes next, nothing is asked.
+    for (const double t_c : {18.0, 17.5}) {
+        REQUIRE(session.edit([&](SceneDesc& s) { s.water.temperature_c = t_c; }));
+        REQUIRE(session.submit() != 0);
+        REQUIRE(session.wait_latest(60s));
+    }
+    REQUIRE(session.shown_kept_placement());
+    REQUIRE(session.edit([](SceneDesc& s) { s.water.temperature_c = 17.0; }));
+    const std::uint64_t edited = session.requested_id();
+    CHECK_FALSE(session.place_anew());
+    CHECK(session.requested_id() == edited);
 }
 
 TEST_CASE("a preview request of a scheme without previews needs no second render", "[ui][session]") {

@@ -425,6 +425,17 @@ TEST_CASE("the frame pacer sleeps when idle, owes settle frames after it, and co
     REQUIRE(p.stats().image_ms.size() == 1);
     CHECK(p.stats().image_ms[0] == 7);
     CHECK(p.stats().estimate_median_db.empty()); // no frame, no estimate
+
+    // An image with an estimate: its median and the screen's precision of its display range.
+    auto f = std::make_shared<Frame>();
+    f->error_estimate.valid = true;
+    f->error_estimate.median_abs_db = 0.07;
+    f->display.lo_db = 50, f->display.hi_db = 101;
+    r.frame = f;
+    p.count_image(3, r, true);
+    REQUIRE(p.stats().estimate_median_db.size() == 1);
+    CHECK(p.stats().estimate_median_db[0] == 0.07);
+    CHECK(p.stats().screen_median_db[0] == Approx(0.1)); // half of 51 dB / 255 grey levels
 }
 
 TEST_CASE("snapshot requests wait for the full-quality image and take each one once", "[ui][snapshot]") {

@@ -167,6 +167,12 @@ void Viewer::frame(int index) {
         session_.poll();
     }
     if (snapshots_.pending() > 0) session_.wait_full(std::chrono::milliseconds(60000));
+    // A named snapshot after this frame (--snapshot, a script's snapshot step) reads its annotated PNG from
+    // this frame: an image whose rays were kept from an earlier shading is first replaced by the one placed
+    // anew, which the files will hold.
+    const bool last = script_.last_frame() >= 0 && index >= script_.last_frame();
+    if (((last && !opt_.snapshot.empty()) || script_.has_action(index, "snapshot")) && session_.place_anew())
+        session_.wait_latest(std::chrono::milliseconds(60000));
     if (session_.shown())
         pacer_.count_image(session_.shown_count(), *session_.shown(), index > 0 || !opt_.orbit);
 
@@ -216,7 +222,6 @@ void Viewer::frame(int index) {
     draw_gl(fb_w, fb_h, win_w, win_h);
     take_pending_snapshots(full_on_screen, fb_w, fb_h, win_w, win_h);
     script_actions(index, fb_w, fb_h);
-    const bool last = script_.last_frame() >= 0 && index >= script_.last_frame();
     if (last && !opt_.screenshot.empty()) write_screenshot(opt_.screenshot, fb_w, fb_h);
     if (last && !opt_.layout.empty()) write_layout(opt_.layout, win_w, win_h);
     if (last && !opt_.state.empty()) write_state(opt_.state);

@@ -54,6 +54,12 @@ std::vector<InputEvent> ScriptPlayer::input(int index, const std::map<std::strin
     return out;
 }
 
+bool ScriptPlayer::has_action(int index, const std::string& command) const {
+    for (size_t i = next_; i < steps_.size() && steps_[i].frame <= index; ++i)
+        if (steps_[i].command == command) return true;
+    return false;
+}
+
 std::vector<ScriptStep> ScriptPlayer::actions(int index) {
     std::vector<ScriptStep> out;
     for (; next_ < steps_.size() && steps_[next_].frame <= index; ++next_)

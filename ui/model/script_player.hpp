@@ -28,6 +28,8 @@ class ScriptPlayer {
     std::vector<InputEvent> input(int index, const std::map<std::string, Rect>& widgets);
     /// The actions (steps that are not input) due after frame `index` is drawn, in order; each once.
     std::vector<ScriptStep> actions(int index);
+    /// Whether an action `command` is due after frame `index` is drawn (actions() not yet taken).
+    bool has_action(int index, const std::string& command) const;
     /// The last frame to draw: `frames` - 1 when given, else the script's last frame + 1; -1: none (the
     /// viewer runs until its window closes).
     int last_frame() const { return last_frame_; }

@@ -225,15 +225,25 @@ bool Session::shown_kept_placement() const {
                       (shown_->pings && shown_->pings->kept_placement_profiles > 0));
 }
 
+std::uint64_t Session::request_placed_anew() {
+    requested_id_ = worker_.request(shown_->scene, false, ground_truth_, std::nullopt, fan_height_px_,
+                                    requested_pings(), false);
+    // That request replaces any of a newer edit: the edited scene is requested again after it.
+    if (changed_stage(scene_, shown_->scene) != Stage::None) dirty_ = true, changed_.reset();
+    return requested_id_;
+}
+
 bool Session::place_anew() {
     if (!shown_kept_placement()) return false;
-    if (placed_anew_for_ != shown_count_) {
-        placed_anew_for_ = shown_count_;
-        requested_id_ = worker_.request(shown_->scene, false, ground_truth_, std::nullopt, fan_height_px_,
-                                        requested_pings(), false);
-        // That request replaces any of a newer edit: the edited scene is requested again after it.
-        if (changed_stage(scene_, shown_->scene) != Stage::None) dirty_ = true, changed_.reset();
-    }
+    // A newer edit is on its way (its image comes next): nothing to ask; a snapshot now is of this image
+    // and snapshot() places it anew itself.
+    if (dirty_ || changed_stage(scene_, shown_->scene) != Stage::None) return false;
+    // Asked already for this image: on its way until the worker has finished it (an error, or a result
+    // replaced, leaves the kept image on screen: then not asked again).
+    if (placed_anew_for_ == shown_count_ && placed_anew_id_ != 0)
+        return !worker_.wait_for(placed_anew_id_, std::chrono::milliseconds(0));
+    placed_anew_for_ = shown_count_;
+    placed_anew_id_ = request_placed_anew();
     return true;
 }
 
@@ -253,7 +263,8 @@ bool Session::snapshot(const std::string& prefix, const Bytes& view3d_png, const
         }
         // An image whose rays were kept from an earlier shading (a slider that steers the sampler): placed
         // anew first, so that the files are what `render` makes of the scene.
-        if (place_anew()) {
+        if (shown_kept_placement()) {
+            request_placed_anew();
             const bool ready = wait_latest(std::chrono::milliseconds(60000)) && shown_ &&
                                !shown_->preview() && !shown_kept_placement();
             if (!ready) {

@@ -91,8 +91,11 @@ class Session {
     bool shown_kept_placement() const;
     /// Requests the shown scene's image with its rays placed anew, once per kept image on screen (a
     /// snapshot's annotated PNG is read back from the screen, so it waits for that image to be drawn).
-    /// Returns whether such an image is on its way.
+    /// Returns whether such an image is on its way: false when nothing is kept, when a newer edit's image
+    /// comes next, or when the one asked for has finished and the kept image is still on screen (an error).
     bool place_anew();
+    /// The id of the newest request sent to the worker (0: none yet).
+    std::uint64_t requested_id() const { return requested_id_; }
     /// Ground truth per pixel for full-quality frames (computed by the worker): shown by the hover readout
     /// and written by snapshots as PREFIX_gt_<name>.npy. Turning it on re-requests the shown scene.
     void set_ground_truth(bool on);
@@ -107,6 +110,9 @@ class Session {
     bool on_ping_track() const { return ping_track_ != nullptr; }
 
   private:
+    /// Requests the shown scene's image with its rays placed anew (the edited scene again after it, if it
+    /// differs). Returns the request's id.
+    std::uint64_t request_placed_anew();
     /// The status after a snapshot: its folder and files.
     void snapshot_status(const std::string& prefix, const std::vector<std::string>& paths);
     /// `st`: changed_stage from the current scene to `next` when the caller knows it (apply_setting's).
@@ -131,6 +137,7 @@ class Session {
     std::vector<Ping> requested_pings() const;
     std::uint64_t requested_id_ = 0, shown_count_ = 0;
     std::uint64_t placed_anew_for_ = 0; ///< the shown_count_ whose kept image place_anew() asked again
+    std::uint64_t placed_anew_id_ = 0;  ///< and the request it sent
     bool full_pending_ = false;         ///< the last request for scene_ was a preview
     Clock::time_point last_change_{};   ///< when the last changed scene was sent
     std::shared_ptr<const RenderResult> shown_;
