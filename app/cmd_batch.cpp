@@ -84,7 +84,7 @@ int run_batch_command(const BatchCliOptions& o) {
     std::vector<std::pair<const DatasetContainer*, std::string>> packs;
     if (!o.aris.empty()) packs.emplace_back(&dataset_container("--aris"), o.aris);
     if (!o.mcap.empty()) packs.emplace_back(&dataset_container("--mcap"), o.mcap);
-    for (const auto& [container, path] : packs) check_holds(*container, scene.sonar.kind, container->option);
+    for (const auto& [container, path] : packs) check_holds(*container, scene, container->option);
     if (scene.sonar.kind != SonarKind::Imaging) { // each frame a waterfall or sweep: the timing said once
         std::string line = ping_timing_text(scene);
         if (trajectory.size() > 1) {

@@ -55,13 +55,15 @@ std::string containers_for(SonarKind kind) {
     return out;
 }
 
-void check_holds(const DatasetContainer& c, SonarKind kind, const std::string& origin) {
+void check_holds(const DatasetContainer& c, const SceneDesc& scene, const std::string& origin) {
+    const SonarKind kind = scene.sonar.kind;
     if (holds(c, kind)) return;
     const std::string what =
         kind == SonarKind::Imaging ? "an imaging sonar's frames" : "a " + kind_name(kind) + " sonar's pings";
     std::string own;
     for (const PingOutput& o : ping_outputs())
-        if (o.recording_of == kind) own = std::string(" (each frame also has its own ") + o.suffix + ")";
+        if (o.recording_of == kind && (!o.wanted || o.wanted(scene)))
+            own = std::string(" (each frame also has its own ") + o.suffix + ")";
     throw InputError(origin, "sonar.kind",
                      std::string("an ") + c.name + " holds " +
                          (c.write_frames ? "an imaging sonar's frames" : "a side-scan's or scan's pings") +

@@ -51,7 +51,8 @@ const DatasetContainer& dataset_container(const std::string& option);
 bool holds(const DatasetContainer& c, SonarKind kind);
 /// The options of the containers that hold a `kind` sonar's data ("--mcap"; "--aris, --mcap").
 std::string containers_for(SonarKind kind);
-/// Throws InputError(origin, "sonar.kind", ...) unless `c` holds a `kind` sonar's data, naming those that do.
-void check_holds(const DatasetContainer& c, SonarKind kind, const std::string& origin);
+/// Throws InputError(origin, "sonar.kind", ...) unless `c` holds the data of `scene`'s kind of sonar, naming
+/// those that do and the recording file each frame of this scene has besides (XTF, a Ping Viewer log).
+void check_holds(const DatasetContainer& c, const SceneDesc& scene, const std::string& origin);
 
 } // namespace sonarsim

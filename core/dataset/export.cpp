@@ -18,7 +18,7 @@ ExportReport export_dataset(const std::string& dir, const std::string& path,
     SceneDesc scene; // the files describe the dataset as rendered
     Trajectory poses;
     load_dataset(dir, scene, poses);
-    check_holds(container, scene.sonar.kind, origin);
+    check_holds(container, scene, origin);
     scene.exports = exports;
     if (!(scene.exports.start_time_s > 0)) scene.exports.start_time_s = dataset_start_time_s(dir);
     ContainerJob job;
