@@ -100,28 +100,6 @@ BeamGroups make_groups(const std::vector<int>& traced, int stride) {
     return groups;
 }
 
-/// The image of `beams` (-1: none) from the cells (and ghosts, with multipath) in `r`, as an image of
-/// their own.
-PolarImage shade_beams(const SceneDesc& s, TraceResult& r, const std::vector<int>& beams) {
-    TraceResult sub;
-    sub.beams = int(beams.size());
-    sub.cells.resize(beams.size());
-    const bool ghosts = !r.ghosts.empty();
-    if (ghosts) sub.ghosts.resize(beams.size());
-    for (size_t k = 0; k < beams.size(); ++k) {
-        if (beams[k] < 0) continue;
-        sub.cells[k] = std::move(r.cells[size_t(beams[k])]);
-        if (ghosts) sub.ghosts[k] = std::move(r.ghosts[size_t(beams[k])]);
-    }
-    PolarImage img = shade_columns(sub, s, sub.beams);
-    for (size_t k = 0; k < beams.size(); ++k) {
-        if (beams[k] < 0) continue;
-        r.cells[size_t(beams[k])] = std::move(sub.cells[k]);
-        if (ghosts) r.ghosts[size_t(beams[k])] = std::move(sub.ghosts[k]);
-    }
-    return img;
-}
-
 } // namespace
 
 TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const TraceControl& control,
@@ -236,7 +214,7 @@ TraceResult trace_adaptive(const SceneGeometry& g, const SceneDesc& s, const Tra
             if (all) { // the whole image in one pass: shade it once, for the estimate and the caller
                 fine_img = columns_of(*whole.run(out, s).image, samples);
             } else {
-                fine_img = shade_beams(s, out, samples);
+                fine_img = adaptive::shade_beams(out, s, samples);
             }
             sp.set_ref_db(fine_img);
             const int sampled = int(idx.size());

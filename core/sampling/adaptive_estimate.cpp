@@ -120,6 +120,20 @@ PolarImage columns_of(const PolarImage& img, const std::vector<int>& beams) {
     return out;
 }
 
+PolarImage shade_beams(const TraceResult& hits, const SceneDesc& s, const std::vector<int>& beams) {
+    TraceResult sub;
+    sub.beams = int(beams.size());
+    sub.cells.resize(beams.size());
+    const bool ghosts = !hits.ghosts.empty();
+    if (ghosts) sub.ghosts.resize(beams.size());
+    for (size_t k = 0; k < beams.size(); ++k) {
+        if (beams[k] < 0) continue;
+        sub.cells[k] = hits.cells[size_t(beams[k])];
+        if (ghosts) sub.ghosts[k] = hits.ghosts[size_t(beams[k])];
+    }
+    return shade_columns(sub, s, sub.beams);
+}
+
 } // namespace sonarsim::adaptive
 
 namespace sonarsim {
@@ -132,22 +146,8 @@ TraceResult::ErrorEstimate reestimate_error(const TraceResult& hits, const Scene
     if (s.sonar.beams != hits.beams || (image && image->beams != hits.beams))
         throw std::invalid_argument("reestimate_error: an image of another sonar");
     const int G = int(k.samples.size());
-    PolarImage fine;
-    if (image) {
-        fine = adaptive::columns_of(*image, k.samples);
-    } else { // the sample beams' cells (and the ghosts arriving in them), shaded as columns of their own
-        TraceResult sub;
-        sub.beams = G;
-        sub.cells.resize(size_t(G));
-        if (!hits.ghosts.empty()) sub.ghosts.resize(size_t(G));
-        for (int g = 0; g < G; ++g) {
-            const int b = k.samples[size_t(g)];
-            if (b < 0) continue;
-            sub.cells[size_t(g)] = hits.cells[size_t(b)];
-            if (!hits.ghosts.empty()) sub.ghosts[size_t(g)] = hits.ghosts[size_t(b)];
-        }
-        fine = shade_columns(sub, s, G);
-    }
+    const PolarImage fine =
+        image ? adaptive::columns_of(*image, k.samples) : adaptive::shade_beams(hits, s, k.samples);
     const PolarImage coarse = shade_columns(k.coarse, s, G), edges = shade_columns(k.coarse_edges, s, G);
     PolarImage one, three;
     if (k.probed) one = shade_columns(k.az_one, s, G), three = shade_columns(k.az_three, s, G);

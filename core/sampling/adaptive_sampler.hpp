@@ -244,6 +244,9 @@ struct EstimateImages {
 
 /// Columns `beams` of `img` as an image of their own (-1: an empty column).
 PolarImage columns_of(const PolarImage& img, const std::vector<int>& beams);
+/// The image of `beams` (-1: an empty column) shaded from the cells (and ghosts, with multipath) of `hits`,
+/// as an image of their own (shade_columns).
+PolarImage shade_beams(const TraceResult& hits, const SceneDesc& scene, const std::vector<int>& beams);
 
 /// Per sample beam (column k of the images: the same beams), the estimate's share (adaptive_estimate.cpp).
 /// Without `coarse_edges`, every triple counts as not smooth; without the probe's images, no azimuth share.
