@@ -56,8 +56,11 @@ void same_line_if_fits(const char* next) {
 }
 
 void remember_rect(ControlsWidgets& w, const std::string& key) {
-    const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
-    w.item_rects[key] = {a.x, a.y, b.x - a.x, b.y - a.y};
+    // The part of the widget on screen: scrolled out of the sections, or under the footer, it is not
+    // there to be clicked.
+    const ImRect clip = ImGui::GetCurrentWindow()->ClipRect;
+    const ImVec2 a = ImMax(ImGui::GetItemRectMin(), clip.Min), b = ImMin(ImGui::GetItemRectMax(), clip.Max);
+    if (b.x > a.x && b.y > a.y) w.item_rects[key] = {a.x, a.y, b.x - a.x, b.y - a.y};
 }
 
 /// The label of a field: beside it (returned as the widget label) or drawn above it now.
@@ -272,6 +275,8 @@ void material_section(Session& session, ControlsUi& ui) {
     }
 }
 
+constexpr float kMostFooterShare = 0.25f;
+
 void footer(Session& session) {
     if (!session.error().empty()) {
         ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
@@ -307,7 +312,12 @@ void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, Tra
                                    ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoBackground |
                                    ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse;
     ImGui::Begin("Controls", nullptr, flags);
-    const float fh = footer_height(session, ImGui::GetContentRegionAvail().x);
+    ui.widgets.item_rects.clear(); // this frame's, as drawn
+    // The footer (error, status) takes at most a quarter of the panel, scrolling beyond: a long message
+    // never hides the sections' widgets.
+    float fh = footer_height(session, ImGui::GetContentRegionAvail().x);
+    const bool footer_scrolls = fh > kMostFooterShare * ImGui::GetContentRegionAvail().y;
+    if (footer_scrolls) fh = kMostFooterShare * ImGui::GetContentRegionAvail().y;
     ImGui::BeginChild("##sections", ImVec2(0, -fh), false);
     const float avail = ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ScrollbarSize,
                 label_w = widest_label();
@@ -358,7 +368,9 @@ void draw_controls_panel(const Rect& area, Session& session, ControlsUi& ui, Tra
     }
     ImGui::PopItemWidth();
     ImGui::EndChild();
+    if (footer_scrolls) ImGui::BeginChild("##footer", ImVec2(0, 0), false);
     footer(session);
+    if (footer_scrolls) ImGui::EndChild();
     ImGui::End();
 }
 

@@ -19,7 +19,8 @@ struct ControlsWidgets {
     unsigned fine_id = 0;
     double fine_base = 0;
     float fine_mouse_x0 = 0;
-    /// Where each parameter's widget was drawn last frame (key -> window px), for `--script move_to`.
+    /// The part of each parameter's widget on screen last frame (key -> window px), for `--script move_to`:
+    /// none for a widget scrolled out of the panel or in a closed section.
     std::map<std::string, Rect> item_rects;
     /// Labels go beside the fields when the widest fits beside a field of half the panel, else above them.
     bool labels_above = false;

@@ -3,7 +3,8 @@
 //
 // One step per line, `FRAME COMMAND ARGS...`, frames counted from 0 in non-decreasing order; `#` starts a
 // comment. Input: `move X Y`, `move_to KEY FX FY` (to the point at fractions FX, FY of the panel widget of
-// parameter KEY as drawn in the frame before, e.g. `move_to sonar.source_level_db 0.3 0.5`), `move_by DX DY`,
+// parameter KEY as drawn in the frame before, e.g. `move_to sonar.source_level_db 0.3 0.5`; its part on
+// screen, an error when none is), `move_by DX DY`,
 // `press left|right|middle`, `release left|right|middle`, `click X Y` (move, press, release), `wheel STEPS`,
 // `key NAME` (press and release, e.g. `key S`, `key ctrl+shift+z`), `keydown NAME`, `keyup NAME`. Actions:
 // `screenshot FILE.png`, `state FILE.json`, `layout FILE.json`, `snapshot PREFIX`, `trajectory_save

@@ -39,7 +39,10 @@ std::vector<InputEvent> ScriptPlayer::input(int index, const std::map<std::strin
         if (st.command == "move_to") {
             const auto it = widgets.find(st.args[0]);
             if (it == widgets.end())
-                throw InputError(file_, "line " + std::to_string(st.line), "no widget for " + st.args[0]);
+                throw InputError(file_, "line " + std::to_string(st.line),
+                                 "move_to " + st.args[0] +
+                                     ": that widget is not on screen (scrolled out of the controls panel, "
+                                     "in a closed section, or not a parameter of this scene)");
             const Rect& r = it->second;
             mouse_ = {r.x + std::stod(st.args[1]) * r.w, r.y + std::stod(st.args[2]) * r.h};
             InputEvent e;

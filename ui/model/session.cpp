@@ -215,8 +215,14 @@ void Session::set_fan_height_px(int height_px) {
 
 void Session::snapshot_status(const std::string& prefix, const std::vector<std::string>& paths) {
     const std::filesystem::path folder = std::filesystem::absolute(prefix).lexically_normal().parent_path();
-    status_ = "snapshot in " + folder.string() + ":";
-    for (auto& p : paths) status_ += " " + std::filesystem::path(p).filename().string();
+    // Short enough for the panel's footer: the prefix's name once, then what each file adds to it.
+    const std::string stem = std::filesystem::path(prefix).filename().string();
+    status_ = "snapshot " + stem + " in " + folder.string() + ":";
+    for (auto& p : paths) {
+        const std::string name = std::filesystem::path(p).filename().string();
+        status_ +=
+            " " + (name.rfind(stem, 0) == 0 && name.size() > stem.size() ? name.substr(stem.size()) : name);
+    }
     error_.clear();
 }
 
