@@ -9,10 +9,15 @@ the repository's absolute path (mesh paths in the metadata) is replaced by a pla
 
   golden.py SONARSIM ASSETS OUTDIR MANIFEST            compare (exit 1 listing every file that differs)
   golden.py SONARSIM ASSETS OUTDIR MANIFEST --update   rewrite the manifest (only when an image is meant to change)
+  golden.py SONARSIM ASSETS OUTDIR MANIFEST --retake   this CPU maker's sums of an unchanged HEAD, whose
+                                                       outputs another maker's manifest already holds
 
-MANIFEST names the pair kept beside it, one per CPU maker (MANIFEST.GenuineIntel.sha256,
-MANIFEST.AuthenticAMD.sha256): images of meshes differ in their last bits between makers (cpu()). An update
-rewrites this machine's; the other is then stale until a machine of that maker retakes it.
+MANIFEST names the set kept beside it, one per CPU maker (MANIFEST.GenuineIntel.sha256,
+MANIFEST.AuthenticAMD.sha256): images of meshes differ in their last bits between makers (cpu()). Each
+manifest says which generation of the outputs it holds ("# outputs: N"). --update starts a new generation in
+this machine's; the others are then stale until a machine of their maker retakes them (--retake). A stale
+manifest, or none for this maker, cannot check anything: the comparison says so and exits 77 (skipped), where
+a wrong one would fail every unchanged file.
 """
 import hashlib
 import json
@@ -89,6 +94,35 @@ def vendor_manifest(path):
     return "%s.%s%s" % (root, vendor, ext)
 
 
+def read_manifest(path):
+    """(sums by file, header fields: cpu, outputs) of a manifest."""
+    sums, header = {}, {"cpu": None, "outputs": 0}
+    with open(path) as f:
+        for line in f:
+            if line.startswith("# cpu:"):
+                header["cpu"] = line[len("# cpu:"):].strip()
+            elif line.startswith("# outputs:"):
+                header["outputs"] = int(line[len("# outputs:"):])
+            elif line.strip():
+                h, k = line.split(None, 1)
+                sums[k.strip()] = h
+    return sums, header
+
+
+def newest_generation(manifest):
+    """The newest outputs generation among the makers' manifests beside MANIFEST (its maker's, generation)."""
+    root, ext = os.path.splitext(manifest)
+    folder, stem = os.path.split(root)
+    best = (None, 0)
+    for name in sorted(os.listdir(folder or ".")):
+        if name.startswith(stem + ".") and name.endswith(ext):
+            maker = name[len(stem) + 1:-len(ext)]
+            gen = read_manifest(os.path.join(folder, name))[1]["outputs"]
+            if gen > best[1]:
+                best = (maker, gen)
+    return best
+
+
 def run(cmd):
     r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=ENV)
     if r.returncode != 0:
@@ -98,12 +132,21 @@ def run(cmd):
 def main():
     if len(sys.argv) < 5:
         sys.exit(__doc__)
-    exe, assets, out, manifest = sys.argv[1:5]
-    manifest = vendor_manifest(manifest)
-    update = "--update" in sys.argv[5:]
-    if not update and not os.path.exists(manifest):
-        sys.exit("golden: no manifest for this CPU maker (%s): take one with --update from an unchanged HEAD"
-                 % manifest)
+    exe, assets, out, named = sys.argv[1:5]
+    manifest = vendor_manifest(named)
+    update, retake = "--update" in sys.argv[5:], "--retake" in sys.argv[5:]
+    newest_maker, newest = newest_generation(named)
+    own = read_manifest(manifest)[1]["outputs"] if os.path.exists(manifest) else None
+    if not (update or retake):
+        if own is None:
+            print("golden: skipped: no manifest for this CPU maker (%s); take one with --retake from an "
+                  "unchanged HEAD" % manifest)
+            sys.exit(77)
+        if own < newest:
+            print("golden: skipped: %s holds outputs generation %d, %s's holds %d (images changed since this "
+                  "maker's sums were taken); retake them with --retake on this maker from an unchanged HEAD"
+                  % (os.path.basename(manifest), own, newest_maker, newest))
+            sys.exit(77)
     shutil.rmtree(out, ignore_errors=True)
     os.makedirs(out)
     for i, (name, scene, extra) in enumerate(CASES):
@@ -123,22 +166,22 @@ def main():
             if rel.endswith(".lock"):
                 continue
             sums[rel] = normalise(p, os.path.dirname(os.path.abspath(assets)))
-    if update:
+    if update or retake:
+        before = read_manifest(manifest)[0] if own is not None else None
+        if retake:  # the newest generation, as another maker took it
+            gen = newest
+        elif before == sums and own == newest:  # nothing changed
+            gen = newest
+        else:
+            gen = newest + 1
         with open(manifest, "w") as f:
-            f.write("# cpu: %s\n" % cpu())
+            f.write("# cpu: %s\n# outputs: %d\n" % (cpu(), gen))
             for k in sorted(sums):
                 f.write("%s  %s\n" % (sums[k], k))
-        print("golden: wrote %d sums to %s" % (len(sums), manifest))
+        print("golden: wrote %d sums to %s (outputs generation %d)" % (len(sums), manifest, gen))
         return
-    want = {}
-    taken_on = None
-    with open(manifest) as f:
-        for line in f:
-            if line.startswith("# cpu:"):
-                taken_on = line[len("# cpu:"):].strip()
-                continue
-            h, k = line.split(None, 1)
-            want[k.strip()] = h
+    want, header = read_manifest(manifest)
+    taken_on = header["cpu"]
     bad = []
     for k in sorted(set(want) | set(sums)):
         if k not in sums:
