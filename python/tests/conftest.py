@@ -7,14 +7,18 @@ import shutil
 import pytest
 
 
+SOURCE = pathlib.Path(os.environ.get("SONARSIM_SOURCE", pathlib.Path(__file__).resolve().parents[2]))
+
+
 @pytest.fixture
 def sonarsim_exe():
-    return os.environ.get("SONARSIM_EXE", "build/sonarsim")
+    # The tree's build/ by default, so that pytest runs from any directory.
+    return os.environ.get("SONARSIM_EXE", str(SOURCE / "build" / "sonarsim"))
 
 
 @pytest.fixture
 def source_dir():
-    return pathlib.Path(os.environ.get("SONARSIM_SOURCE", pathlib.Path(__file__).resolve().parents[2]))
+    return SOURCE
 
 
 @pytest.fixture
