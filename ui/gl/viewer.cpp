@@ -4,6 +4,8 @@
 
 #include "ui/gl/viewer_app.hpp"
 
+#include "core/base/timing.hpp"
+
 #include "ui/model/display_mesh.hpp"
 #include "ui/model/layout.hpp"
 #include "ui/model/panel_layout.hpp"
@@ -244,8 +246,7 @@ void Viewer::upload_meshes() {
     if (triangles > kDisplayTriangles) {
         const auto t0 = std::chrono::steady_clock::now();
         const auto simple = simplify_for_display(meshes, kDisplayTriangles);
-        const double ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        const double ms = ms_since(t0);
         size_t drawn = 0;
         for (const auto& m : simple) drawn += m->triangles.size();
         renderer_->set_meshes(simple);

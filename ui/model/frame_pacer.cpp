@@ -1,5 +1,6 @@
 #include "ui/model/frame_pacer.hpp"
 
+#include "core/base/timing.hpp"
 #include "core/display/display_range.hpp"
 
 #include <algorithm>
@@ -16,7 +17,7 @@ bool FramePacer::poll_now(bool continuous) {
 }
 
 void FramePacer::end_frame() {
-    last_frame_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - t0_).count();
+    last_frame_ms_ = ms_since(t0_);
     stats_.frame_ms.push_back(last_frame_ms_);
 }
 
